@@ -1,0 +1,29 @@
+#pragma once
+// Stable 64-bit FNV-1a hashing for result-store keys and caches: the same text gives
+// the same key on every machine and run, so shards merge and sweeps resume.
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+namespace rl {
+
+inline uint64_t fnv1a64(const void* data, size_t size, uint64_t h = 1469598103934665603ull) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (size_t i = 0; i < size; ++i) {
+    h ^= p[i];
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+inline uint64_t fnv1a64(const std::string& s) {
+  return fnv1a64(s.data(), s.size());
+}
+
+inline std::string hex64(uint64_t v) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+  return buf;
+}
+
+}  // namespace rl

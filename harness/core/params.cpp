@@ -1,0 +1,74 @@
+#include "core/params.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace rl {
+
+std::string param_kind_name(ParamKind k) {
+  switch (k) {
+    case ParamKind::Int:
+      return "int";
+    case ParamKind::Float:
+      return "float";
+    case ParamKind::Bool:
+      return "bool";
+  }
+  return "?";
+}
+
+std::string format_param(const ParamSpec& spec, double value) {
+  std::ostringstream s;
+  if (spec.kind == ParamKind::Bool)
+    s << (value != 0 ? "true" : "false");
+  else if (spec.kind == ParamKind::Int)
+    s << static_cast<long long>(value);
+  else
+    s << value;
+  return s.str();
+}
+
+void check_param_value(const ParamSpec& spec, double value, const std::string& where) {
+  std::ostringstream err;
+  if (!std::isfinite(value)) {
+    err << where << ": parameter '" << spec.name << "' must be finite";
+    throw ConfigError(err.str());
+  }
+  if (spec.kind == ParamKind::Int && value != std::floor(value)) {
+    err << where << ": parameter '" << spec.name << "' must be an integer, got " << value;
+    throw ConfigError(err.str());
+  }
+  if (spec.kind == ParamKind::Bool && value != 0 && value != 1) {
+    err << where << ": parameter '" << spec.name << "' must be true or false";
+    throw ConfigError(err.str());
+  }
+  if (spec.kind != ParamKind::Bool && (value < spec.min_value || value > spec.max_value)) {
+    err << where << ": parameter '" << spec.name << "' = " << value << " is outside ["
+        << spec.min_value << ", " << spec.max_value << "]";
+    throw ConfigError(err.str());
+  }
+}
+
+ParamValues resolve_params(const std::vector<ParamSpec>& specs, const ParamValues& given,
+                           const std::string& where) {
+  ParamValues out;
+  for (const ParamSpec& s : specs) out[s.name] = s.default_value;
+  for (const auto& [name, value] : given) {
+    const ParamSpec* spec = nullptr;
+    for (const ParamSpec& s : specs)
+      if (s.name == name) spec = &s;
+    if (!spec) {
+      std::string known;
+      for (const ParamSpec& s : specs) known += (known.empty() ? "" : ", ") + s.name;
+      throw ConfigError(where + ": unknown parameter '" + name +
+                        "' (known: " + (known.empty() ? "none" : known) + ")");
+    }
+    check_param_value(*spec, value, where);
+    out[name] = value;
+  }
+  return out;
+}
+
+}  // namespace rl

@@ -1,0 +1,32 @@
+#pragma once
+// Technique parameters: declared with defaults and valid ranges in a technique's info(),
+// checked against the config before any work starts.
+#include <map>
+#include <string>
+#include <vector>
+
+namespace rl {
+
+enum class ParamKind { Int, Float, Bool };
+
+struct ParamSpec {
+  std::string name;
+  ParamKind kind = ParamKind::Float;
+  double default_value = 0;
+  double min_value = 0;
+  double max_value = 0;
+  std::string doc;
+};
+
+// Parameter values by name; ints and bools are stored as exact doubles.
+using ParamValues = std::map<std::string, double>;
+
+std::string param_kind_name(ParamKind k);
+// Throws ConfigError naming `where` when the value is out of range or of the wrong kind.
+void check_param_value(const ParamSpec& spec, double value, const std::string& where);
+// The defaults of every spec, overridden by `given` (which must only name declared params).
+ParamValues resolve_params(const std::vector<ParamSpec>& specs, const ParamValues& given,
+                           const std::string& where);
+std::string format_param(const ParamSpec& spec, double value);
+
+}  // namespace rl

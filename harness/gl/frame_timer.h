@@ -1,0 +1,19 @@
+#pragma once
+// Frame timing: the median of repeated frames after warm-up. On a GPU each frame is timed by
+// a GL_TIME_ELAPSED query; on a software rasteriser (llvmpipe), where that query measures
+// nothing useful, by the wall clock around the draw and a glFinish.
+#include <functional>
+#include <string>
+
+namespace rl {
+
+struct FrameTiming {
+  double median_ms = 0;
+  double min_ms = 0;
+  int frames = 0;
+  std::string method;  // "gpu_timer" or "wall_clock_glfinish"
+};
+
+FrameTiming time_frames(const std::function<void()>& draw, int warmup, int frames, bool software);
+
+}  // namespace rl

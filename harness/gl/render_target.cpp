@@ -1,0 +1,54 @@
+#include "gl/render_target.h"
+
+#include <string>
+
+#include "core/error.h"
+
+namespace rl {
+
+RenderTarget::RenderTarget(int width, int height, Kind kind)
+    : width_(width), height_(height), kind_(kind) {
+  attachments_ = kind == Kind::GBuffer ? 4 : 1;
+  glCreateFramebuffers(1, &fbo_);
+  glCreateTextures(GL_TEXTURE_2D, attachments_, color_);
+  for (int i = 0; i < attachments_; ++i) {
+    glTextureStorage2D(color_[i], 1, kind == Kind::GBuffer ? GL_RGBA32F : GL_RGBA8, width, height);
+    glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0 + i, color_[i], 0);
+  }
+  glCreateRenderbuffers(1, &depth_);
+  glNamedRenderbufferStorage(depth_, GL_DEPTH_COMPONENT32F, width, height);
+  glNamedFramebufferRenderbuffer(fbo_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
+  const GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                             GL_COLOR_ATTACHMENT3};
+  glNamedFramebufferDrawBuffers(fbo_, attachments_, buffers);
+  GLenum status = glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE)
+    throw GlError("render target " + std::to_string(width) + "x" + std::to_string(height) +
+                  " is incomplete (status " + std::to_string(status) + ")");
+}
+
+RenderTarget::~RenderTarget() {
+  glDeleteFramebuffers(1, &fbo_);
+  glDeleteTextures(attachments_, color_);
+  glDeleteRenderbuffers(1, &depth_);
+}
+
+void RenderTarget::bind_and_clear() {
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glViewport(0, 0, width_, height_);
+  const float zero[4] = {0, 0, 0, 0};
+  for (int i = 0; i < attachments_; ++i) glClearNamedFramebufferfv(fbo_, GL_COLOR, i, zero);
+  const float one = 1.0f;
+  glClearNamedFramebufferfv(fbo_, GL_DEPTH, 0, &one);
+}
+
+void RenderTarget::read_back(GBuffer& out) const {
+  if (kind_ != Kind::GBuffer) throw GlError("read_back needs a G-buffer render target");
+  out.resize(width_, height_);
+  std::vector<glm::vec4>* dst[4] = {&out.color, &out.position, &out.normal, &out.hit};
+  const GLsizei bytes = static_cast<GLsizei>(out.size() * sizeof(glm::vec4));
+  for (int i = 0; i < 4; ++i)
+    glGetTextureImage(color_[i], 0, GL_RGBA, GL_FLOAT, bytes, dst[i]->data());
+}
+
+}  // namespace rl

@@ -1,0 +1,32 @@
+#pragma once
+// Offscreen render targets: the G-buffer (four RGBA32F attachments + depth, matching
+// core/gbuffer.h) for measuring, or a single RGBA8 colour target for timing.
+#include <epoxy/gl.h>
+
+#include "core/gbuffer.h"
+
+namespace rl {
+
+class RenderTarget {
+ public:
+  enum class Kind { GBuffer, ColorOnly };
+  RenderTarget(int width, int height, Kind kind);
+  ~RenderTarget();
+  RenderTarget(const RenderTarget&) = delete;
+  RenderTarget& operator=(const RenderTarget&) = delete;
+
+  void bind_and_clear();
+  void read_back(GBuffer& out) const;  // GBuffer kind only
+  int width() const { return width_; }
+  int height() const { return height_; }
+  Kind kind() const { return kind_; }
+
+ private:
+  int width_, height_;
+  Kind kind_;
+  GLuint fbo_ = 0, depth_ = 0;
+  GLuint color_[4] = {0, 0, 0, 0};
+  int attachments_ = 0;
+};
+
+}  // namespace rl

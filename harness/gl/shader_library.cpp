@@ -1,0 +1,156 @@
+#include "gl/shader_library.h"
+
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+#include "gl/embedded_files.h"
+
+namespace rl {
+namespace {
+
+const std::string& embedded(const std::string& path, const std::string& from) {
+  const auto& files = embedded_files();
+  auto it = files.find(path);
+  if (it == files.end())
+    throw GlError("GLSL file '" + path + "' not found" +
+                  (from.empty() ? "" : " (included from " + from + ")") +
+                  "; is it under harness/glsl/ or techniques/ and was CMake re-run?");
+  return it->second;
+}
+
+void expand(const std::string& path, const std::string& from, ComposedSource& out,
+            std::set<std::string>& seen) {
+  if (!seen.insert(path).second) return;  // each file once: includes act as guarded headers
+  const int id = static_cast<int>(out.files.size());
+  out.files.push_back(path);
+  std::istringstream in(embedded(path, from));
+  std::string line;
+  int line_no = 0;
+  static const std::regex include_re(R"(^\s*#\s*include\s+"([^"]+)\"\s*$)");
+  out.text += "#line 1 " + std::to_string(id) + "\n";
+  while (std::getline(in, line)) {
+    ++line_no;
+    std::smatch m;
+    if (std::regex_match(line, m, include_re)) {
+      expand(m[1].str(), path + ":" + std::to_string(line_no), out, seen);
+      out.text += "#line " + std::to_string(line_no + 1) + " " + std::to_string(id) + "\n";
+    } else {
+      out.text += line + "\n";
+    }
+  }
+}
+
+GLuint compile(GLenum stage, const ComposedSource& src, const std::string& owner) {
+  GLuint shader = glCreateShader(stage);
+  const char* text = src.text.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    GLint len = 0;
+    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &len);
+    std::string log(static_cast<size_t>(std::max(len, 1)), '\0');
+    glGetShaderInfoLog(shader, len, nullptr, log.data());
+    glDeleteShader(shader);
+    throw GlError("technique '" + owner +
+                  "': " + (stage == GL_VERTEX_SHADER ? "vertex" : "fragment") +
+                  " shader failed to compile:\n" + map_glsl_log(log, src.files));
+  }
+  return shader;
+}
+
+std::string cache_key(const ProgramDesc& d) {
+  std::string key = d.owner + "|" + d.vertex_file;
+  for (const auto& f : d.fragment_files) key += "|" + f;
+  for (const auto& [k, v] : d.defines) key += "|" + k + "=" + v;
+  return key;
+}
+
+}  // namespace
+
+ComposedSource compose_glsl(const std::vector<std::string>& files, const Defines& defines) {
+  ComposedSource out;
+  std::string header = "#version 450 core\n";
+  for (const auto& [k, v] : defines) header += "#define " + k + " " + v + "\n";
+  std::set<std::string> seen;
+  for (const std::string& file : files) expand(file, "", out, seen);
+  out.text = header + out.text;
+  return out;
+}
+
+std::string map_glsl_log(const std::string& log, const std::vector<std::string>& files) {
+  auto name = [&](const std::string& id) {
+    size_t i = std::stoul(id);
+    return i < files.size() ? files[i] : "source " + id;
+  };
+  std::string out;
+  std::istringstream in(log);
+  std::string line;
+  static const std::regex mesa(R"(^(\d+):(\d+)\((\d+)\):(.*)$)");
+  static const std::regex nvidia(R"(^(\d+)\((\d+)\)\s*:(.*)$)");
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (std::regex_match(line, m, mesa))
+      out += name(m[1]) + ":" + m[2].str() + ":" + m[3].str() + ":" + m[4].str() + "\n";
+    else if (std::regex_match(line, m, nvidia))
+      out += name(m[1]) + ":" + m[2].str() + ":" + m[3].str() + "\n";
+    else if (!line.empty() && line[0] != '\0')
+      out += line + "\n";
+  }
+  return out;
+}
+
+ShaderLibrary& ShaderLibrary::shared() {
+  static ShaderLibrary library;
+  return library;
+}
+
+ShaderLibrary::Entry& ShaderLibrary::entry(const ProgramDesc& desc) {
+  const std::string key = cache_key(desc);
+  auto it = programs_.find(key);
+  if (it != programs_.end()) return it->second;
+  ComposedSource vs = compose_glsl({desc.vertex_file}, desc.defines);
+  ComposedSource fs = compose_glsl(desc.fragment_files, desc.defines);
+  GLuint v = compile(GL_VERTEX_SHADER, vs, desc.owner);
+  GLuint f = 0;
+  try {
+    f = compile(GL_FRAGMENT_SHADER, fs, desc.owner);
+  } catch (...) {
+    glDeleteShader(v);
+    throw;
+  }
+  GLuint program = glCreateProgram();
+  glAttachShader(program, v);
+  glAttachShader(program, f);
+  glLinkProgram(program);
+  glDeleteShader(v);
+  glDeleteShader(f);
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    GLint len = 0;
+    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &len);
+    std::string log(static_cast<size_t>(std::max(len, 1)), '\0');
+    glGetProgramInfoLog(program, len, nullptr, log.data());
+    glDeleteProgram(program);
+    throw GlError("technique '" + desc.owner + "': program " + fs.files.back() +
+                  " failed to link:\n" + map_glsl_log(log, fs.files));
+  }
+  Entry e;
+  e.program = program;
+  e.fragment_source = fs.text;
+  return programs_.emplace(key, std::move(e)).first->second;
+}
+
+GLuint ShaderLibrary::program(const ProgramDesc& desc) {
+  return entry(desc).program;
+}
+
+const std::string& ShaderLibrary::fragment_source(const ProgramDesc& desc) {
+  return entry(desc).fragment_source;
+}
+
+}  // namespace rl

@@ -1,0 +1,52 @@
+#pragma once
+// GLSL composition and caching. A program is described by its owner (a technique name, for
+// error messages), its stage files and its #defines; files are resolved from the sources
+// embedded in the binary, with `#include "path"` expanded recursively (once per file) and
+// `#line` directives so compile errors name the real file and line. Programs are cached per
+// (owner, files, defines): a sweep compiles each variant once.
+#include <map>
+#include <string>
+#include <vector>
+
+#include <epoxy/gl.h>
+
+namespace rl {
+
+using Defines = std::map<std::string, std::string>;
+
+struct ProgramDesc {
+  std::string owner;                        // e.g. "relief"
+  std::string vertex_file;                  // e.g. "harness/glsl/base.vert"
+  std::vector<std::string> fragment_files;  // composed in order, e.g. {technique, main}
+  Defines defines;
+};
+
+struct ComposedSource {
+  std::string text;
+  std::vector<std::string> files;  // source-string number -> file path, for error messages
+};
+
+// Expands includes in each file, in order, and prepends `#version 450 core` and the defines.
+ComposedSource compose_glsl(const std::vector<std::string>& files, const Defines& defines);
+// Rewrites "0:12(5): error" (Mesa) and "0(12) : error" (NVIDIA) to "file:12: error".
+std::string map_glsl_log(const std::string& log, const std::vector<std::string>& files);
+
+class ShaderLibrary {
+ public:
+  static ShaderLibrary& shared();
+  // Compiles and links on first use; throws GlError naming owner, file and line on failure.
+  GLuint program(const ProgramDesc& desc);
+  // The composed fragment source of a cached program (for tests that inspect what was compiled).
+  const std::string& fragment_source(const ProgramDesc& desc);
+  size_t compiled_count() const { return programs_.size(); }
+
+ private:
+  struct Entry {
+    GLuint program = 0;
+    std::string fragment_source;
+  };
+  Entry& entry(const ProgramDesc& desc);
+  std::map<std::string, Entry> programs_;
+};
+
+}  // namespace rl

@@ -1,0 +1,23 @@
+// Base surface: world position, texture coordinate and the mapping's tangent frame.
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec2 a_uv;
+layout(location = 2) in vec3 a_dpdu;
+layout(location = 3) in vec3 a_dpdv;
+layout(location = 4) in vec3 a_normal;
+
+uniform mat4 rl_view_projection;
+
+out vec3 v_world;
+out vec2 v_uv;
+out vec3 v_dpdu;
+out vec3 v_dpdv;
+out vec3 v_normal;
+
+void main() {
+  v_world = a_position;
+  v_uv = a_uv;
+  v_dpdu = a_dpdu;
+  v_dpdv = a_dpdv;
+  v_normal = a_normal;
+  gl_Position = rl_view_projection * vec4(a_position, 1.0);
+}

@@ -1,0 +1,34 @@
+// Shared by every single-layer technique: texture bindings, the fetch counter, the hit record.
+
+// rgb: tangent-space normal * 0.5 + 0.5 (z out of the surface); a: depth, 0 top, 1 bottom.
+layout(binding = 0) uniform sampler2D rl_relief;
+layout(binding = 1) uniform sampler2D rl_color;
+
+// World relief depth / world length of one unit of u: converts a texture-space step back to
+// a unit tangent-space direction (parallax's offset limiting needs its z).
+uniform float rl_depth_aspect;
+
+// Every texture read of a technique goes through RL_FETCH, so fetch counts compare across
+// techniques. Level 0 explicitly: searches run in non-uniform control flow, where implicit
+// derivatives are undefined, and the truth reconstructs the level-0 bilinear surface.
+int rl_fetches = 0;
+#define RL_FETCH(tex, uv) (rl_fetches++, textureLod(tex, uv, 0.0))
+
+// A found hit. The ray is (u, v, depth)(t) = p + t * s with s.z = 1, so depth = p.z + t.
+struct RlHit {
+  vec2 uv;      // texture coordinate of the hit
+  float depth;  // depth of the hit, 0 (top) to 1 (bottom)
+  float t;      // ray parameter (depth units travelled)
+  int layer;    // layer of a multilayer map (0 for heightfields)
+  bool hit;     // false: the routine found no surface
+};
+
+RlHit rl_hit_on_ray(vec3 p, vec3 s, float t, bool hit) {
+  RlHit h;
+  h.t = t;
+  h.uv = p.xy + s.xy * t;
+  h.depth = p.z + t;
+  h.layer = 0;
+  h.hit = hit;
+  return h;
+}

@@ -1,0 +1,70 @@
+// Surface pass: per fragment of the base, trace the view ray through the relief with the
+// technique's rl_intersect, shade the hit, and (only when the scene asks for self_shadow)
+// trace the shadow ray of Listing 5.3. With RL_GBUFFER it writes the G-buffer of
+// harness/core/gbuffer.h; without, colour only (the timing variant).
+#include "harness/glsl/relief_common.glsl"
+#include "harness/glsl/shading.glsl"
+
+in vec3 v_world;
+in vec2 v_uv;
+in vec3 v_dpdu;
+in vec3 v_dpdv;
+in vec3 v_normal;
+
+uniform vec3 rl_eye;
+uniform vec3 rl_light;
+uniform float rl_depth_scale;  // world depth of depth 1
+#ifdef RL_SELF_SHADOW
+uniform float rl_shadow_bias;  // depth units (Listing 5.3's shadow_threshold)
+#endif
+
+layout(location = 0) out vec4 o_color;
+#ifdef RL_GBUFFER
+layout(location = 1) out vec4 o_position;
+layout(location = 2) out vec4 o_normal;
+layout(location = 3) out vec4 o_hit;
+#endif
+
+// A world direction in texture units per world unit: (du, dv, d depth).
+vec3 rl_texture_direction(vec3 d, vec3 n) {
+  return vec3(dot(d, v_dpdu) / dot(v_dpdu, v_dpdu), dot(d, v_dpdv) / dot(v_dpdv, v_dpdv),
+              -dot(d, n) / rl_depth_scale);
+}
+
+void main() {
+  vec3 N = normalize(v_normal);
+  vec3 V = normalize(v_world - rl_eye);
+  vec3 tv = rl_texture_direction(V, N);
+  if (tv.z <= 0.0) discard;  // base seen from below: no relief there
+  vec3 s = tv / tv.z;
+  RlHit h = rl_intersect(vec3(v_uv, 0.0), s);
+
+  // The point the technique claims: its hit uv at its hit depth, in the base's frame.
+  vec3 hit_world = v_world + v_dpdu * (h.uv.x - v_uv.x) + v_dpdv * (h.uv.y - v_uv.y) -
+                   N * (h.depth * rl_depth_scale);
+  vec3 tn = normalize(RL_FETCH(rl_relief, h.uv).xyz * 2.0 - 1.0);
+  vec3 n = normalize(tn.x * normalize(v_dpdu) + tn.y * normalize(v_dpdv) + tn.z * N);
+  vec3 albedo = RL_FETCH(rl_color, h.uv).rgb;
+  vec3 to_light = normalize(rl_light - hit_world);
+
+  bool in_shadow = false;
+#ifdef RL_SELF_SHADOW
+  // Listing 5.3: enter the relief where the light ray crosses the top, search along it, and
+  // call the pixel shadowed when that search stops clearly above our hit.
+  vec3 tl = rl_texture_direction(-to_light, N);
+  if (tl.z <= 0.0) {
+    in_shadow = true;  // light at or below the hit
+  } else {
+    vec3 sl = tl / tl.z;
+    RlHit hl = rl_intersect(vec3(h.uv - sl.xy * h.depth, 0.0), sl);
+    in_shadow = hl.hit && hl.depth < h.depth - rl_shadow_bias;
+  }
+#endif
+
+  o_color = vec4(rl_shade(albedo, n, to_light, -V, in_shadow), 1.0);
+#ifdef RL_GBUFFER
+  o_position = vec4(hit_world, 1.0);
+  o_normal = vec4(n, in_shadow ? 1.0 : 0.0);
+  o_hit = vec4(h.uv, float(h.layer), float(rl_fetches));
+#endif
+}

@@ -1,0 +1,190 @@
+#include "metrics/metrics.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/constants.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace rl {
+namespace {
+
+bool finite4(const glm::vec4& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
+}
+
+cv::Mat color_mat(const GBuffer& g) {
+  cv::Mat m(g.height, g.width, CV_32FC3);
+  for (int y = 0; y < g.height; ++y)
+    for (int x = 0; x < g.width; ++x) {
+      const glm::vec4& c = g.color[size_t(y) * g.width + x];
+      auto clamp01 = [](float v) { return std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f; };
+      m.at<cv::Vec3f>(y, x) = cv::Vec3f(clamp01(c.r), clamp01(c.g), clamp01(c.b));
+    }
+  return m;
+}
+
+}  // namespace
+
+ErrorStats error_stats(std::vector<double> v) {
+  ErrorStats s;
+  if (v.empty()) return s;
+  double sum = 0, sq = 0;
+  for (double e : v) {
+    sum += e;
+    sq += e * e;
+    s.max = std::max(s.max, e);
+  }
+  s.mean = sum / v.size();
+  s.rmse = std::sqrt(sq / v.size());
+  const size_t rank = static_cast<size_t>(std::ceil(0.99 * v.size())) - 1;
+  std::nth_element(v.begin(), v.begin() + rank, v.end());
+  s.p99 = v[rank];
+  return s;
+}
+
+double psnr_db(const GBuffer& a, const GBuffer& b) {
+  cv::Mat ma = color_mat(a), mb = color_mat(b);
+  cv::Mat diff;
+  cv::absdiff(ma, mb, diff);
+  diff = diff.mul(diff);
+  const cv::Scalar s = cv::sum(diff);
+  const double mse = (s[0] + s[1] + s[2]) / (3.0 * ma.total());
+  if (mse <= 1e-10) return 100.0;
+  return std::min(100.0, 10.0 * std::log10(1.0 / mse));
+}
+
+double ssim(const GBuffer& a, const GBuffer& b) {
+  // Per channel on single-channel images (OpenCV adds a scalar to the first channel only of a
+  // multi-channel matrix), then averaged.
+  const double c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;  // (K L)^2 with L = 1
+  std::vector<cv::Mat> xs, ys;
+  cv::split(color_mat(a), xs);
+  cv::split(color_mat(b), ys);
+  auto blur = [](const cv::Mat& m) {
+    cv::Mat r;
+    cv::GaussianBlur(m, r, cv::Size(11, 11), 1.5);
+    return r;
+  };
+  double total = 0;
+  for (int c = 0; c < 3; ++c) {
+    const cv::Mat &x = xs[c], &y = ys[c];
+    cv::Mat mx = blur(x), my = blur(y);
+    cv::Mat mx2 = mx.mul(mx), my2 = my.mul(my), mxy = mx.mul(my);
+    cv::Mat sx2 = blur(x.mul(x)) - mx2, sy2 = blur(y.mul(y)) - my2, sxy = blur(x.mul(y)) - mxy;
+    cv::Mat num = (2 * mxy + c1).mul(2 * sxy + c2);
+    cv::Mat den = (mx2 + my2 + c1).mul(sx2 + sy2 + c2);
+    cv::Mat map;
+    cv::divide(num, den, map);
+    total += cv::mean(map)[0];
+  }
+  return total / 3.0;
+}
+
+std::vector<float> position_error_texels(const GBuffer& t, const GBuffer& r, double texel_world) {
+  std::vector<float> e(t.size(), std::numeric_limits<float>::quiet_NaN());
+  for (size_t i = 0; i < t.size(); ++i)
+    if (t.covered(i) && r.covered(i))
+      e[i] =
+          float(glm::distance(glm::dvec3(t.position[i]), glm::dvec3(r.position[i])) / texel_world);
+  return e;
+}
+
+ImageMetrics compare_gbuffers(const GBuffer& t, const GBuffer& r, double depth_world,
+                              double texel_world) {
+  ImageMetrics m;
+  long both = 0, missed = 0, false_hits = 0, artifacts = 0, shadow_diff = 0;
+  std::vector<double> pos, pos_texels, normal_deg, fetches;
+  for (size_t i = 0; i < t.size(); ++i) {
+    const bool tc = t.covered(i), rc = r.covered(i);
+    if (!finite4(t.color[i]) || !finite4(t.position[i]) || !finite4(t.normal[i]) ||
+        !finite4(t.hit[i]))
+      ++m.nonfinite_px;
+    if (rc) ++m.truth_covered_px;
+    if (rc && !tc) ++missed;
+    if (tc && !rc) ++false_hits;
+    if (tc) fetches.push_back(t.hit[i].w);
+    if (!(tc && rc)) continue;
+    ++both;
+    const double d = glm::distance(glm::dvec3(t.position[i]), glm::dvec3(r.position[i]));
+    const double d_safe = std::isfinite(d) ? d : 1e30;
+    pos.push_back(d_safe / depth_world);
+    pos_texels.push_back(d_safe / texel_world);
+    if (d_safe > texel_world) ++artifacts;
+    const double c =
+        glm::dot(glm::normalize(glm::dvec3(t.normal[i])), glm::normalize(glm::dvec3(r.normal[i])));
+    normal_deg.push_back(std::isfinite(c) ? glm::degrees(std::acos(std::clamp(c, -1.0, 1.0)))
+                                          : 180.0);
+    if (t.shadowed(i) != r.shadowed(i)) ++shadow_diff;
+  }
+  const double covered = std::max<long>(1, m.truth_covered_px);
+  m.missed_pct = 100.0 * missed / covered;
+  m.false_pct = 100.0 * false_hits / covered;
+  m.pos_err = error_stats(pos);
+  m.pos_err_texels = error_stats(pos_texels);
+  m.artifact_pct = both ? 100.0 * artifacts / both : 0;
+  const ErrorStats n = error_stats(normal_deg);
+  m.normal_err_mean_deg = n.mean;
+  m.normal_err_p99_deg = n.p99;
+  m.psnr_db = psnr_db(t, r);
+  m.ssim = ssim(t, r);
+  m.shadow_disagree_pct = both ? 100.0 * shadow_diff / both : 0;
+  m.fetches = error_stats(fetches);
+  return m;
+}
+
+std::vector<std::pair<std::string, double>> ImageMetrics::named() const {
+  return {{"covered_px", double(truth_covered_px)},
+          {"missed_pct", missed_pct},
+          {"false_pct", false_pct},
+          {"pos_err_mean", pos_err.mean},
+          {"pos_err_rmse", pos_err.rmse},
+          {"pos_err_p99", pos_err.p99},
+          {"pos_err_max", pos_err.max},
+          {"pos_err_texels_mean", pos_err_texels.mean},
+          {"pos_err_texels_rmse", pos_err_texels.rmse},
+          {"pos_err_texels_p99", pos_err_texels.p99},
+          {"pos_err_texels_max", pos_err_texels.max},
+          {"artifact_pct", artifact_pct},
+          {"normal_err_mean_deg", normal_err_mean_deg},
+          {"normal_err_p99_deg", normal_err_p99_deg},
+          {"psnr_db", psnr_db},
+          {"ssim", ssim},
+          {"shadow_disagree_pct", shadow_disagree_pct},
+          {"fetches_mean", fetches.mean},
+          {"fetches_p99", fetches.p99},
+          {"fetches_max", fetches.max},
+          {"nonfinite_px", double(nonfinite_px)}};
+}
+
+std::vector<float> error_heat_map(const GBuffer& t, const GBuffer& r, double texel_world,
+                                  double scale_texels) {
+  const std::vector<float> err = position_error_texels(t, r, texel_world);
+  cv::Mat levels(1, int(t.size()), CV_8UC1);
+  for (size_t i = 0; i < t.size(); ++i) {
+    const double e = std::isfinite(err[i]) ? err[i] / scale_texels : 1.0;
+    levels.at<uint8_t>(0, int(i)) = uint8_t(std::clamp(e, 0.0, 1.0) * 255.0 + 0.5);
+  }
+  cv::Mat colored;
+  cv::applyColorMap(levels, colored, cv::COLORMAP_TURBO);  // BGR
+  std::vector<float> rgb(t.size() * 3, 0.0f);
+  for (size_t i = 0; i < t.size(); ++i) {
+    const bool tc = t.covered(i), rc = r.covered(i);
+    glm::vec3 c(0);
+    if (tc && rc) {
+      const cv::Vec3b bgr = colored.at<cv::Vec3b>(0, int(i));
+      c = glm::vec3(bgr[2], bgr[1], bgr[0]) / 255.0f;
+    } else if (rc) {
+      c = glm::vec3(1, 0, 1);  // missed
+    } else if (tc) {
+      c = glm::vec3(0, 1, 1);  // false hit
+    }
+    rgb[3 * i] = c.r;
+    rgb[3 * i + 1] = c.g;
+    rgb[3 * i + 2] = c.b;
+  }
+  return rgb;
+}
+
+}  // namespace rl

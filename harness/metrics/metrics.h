@@ -1,0 +1,63 @@
+#pragma once
+// Metrics comparing a technique's G-buffer with the truth's. Only ever two G-buffers: every
+// technique and truth mode is measured the same way.
+//
+// Conventions (stated once, used everywhere):
+// - coverage: missed_pct = truth-covered pixels the technique left empty, false_pct =
+//   technique-covered pixels the truth leaves empty, both in % of truth-covered pixels;
+// - position error: world distance between the two hits over pixels both cover, reported in
+//   units of the relief depth (pos_err_*) and of the world texel width (pos_err_texels_*);
+// - artifact_pct: % of jointly covered pixels whose hit is more than one texel from the truth;
+// - normal error: angle between shading normals, degrees;
+// - psnr_db / ssim: shaded colour over the whole image (background black in both), PSNR
+//   capped at 100 dB for identical images; SSIM after Wang et al. 2004 (11x11 Gaussian, 1.5);
+// - shadow_disagree_pct: % of jointly covered pixels whose shadow flags differ;
+// - fetches_*: technique texture fetches per covered pixel;
+// - nonfinite_px: technique pixels with a NaN or infinite output (hard cases report them).
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/gbuffer.h"
+
+namespace rl {
+
+struct ErrorStats {
+  double mean = 0, rmse = 0, p99 = 0, max = 0;
+};
+
+// mean / rmse / 99th percentile (nearest rank) / max of the values; zeros when empty.
+ErrorStats error_stats(std::vector<double> values);
+
+struct ImageMetrics {
+  long truth_covered_px = 0;
+  double missed_pct = 0, false_pct = 0;
+  ErrorStats pos_err;         // depth units
+  ErrorStats pos_err_texels;  // texel widths
+  double artifact_pct = 0;
+  double normal_err_mean_deg = 0, normal_err_p99_deg = 0;
+  double psnr_db = 0, ssim = 0;
+  double shadow_disagree_pct = 0;
+  ErrorStats fetches;
+  long nonfinite_px = 0;
+
+  // (name, value) in the column order of rows.csv.
+  std::vector<std::pair<std::string, double>> named() const;
+};
+
+ImageMetrics compare_gbuffers(const GBuffer& technique, const GBuffer& truth, double depth_world,
+                              double texel_world);
+
+double psnr_db(const GBuffer& a, const GBuffer& b);
+double ssim(const GBuffer& a, const GBuffer& b);
+
+// Per-pixel position error in texels (NaN where not jointly covered), for heat maps.
+std::vector<float> position_error_texels(const GBuffer& technique, const GBuffer& truth,
+                                         double texel_world);
+
+// RGB heat map, row 0 at the bottom: error 0..scale_texels through OpenCV's TURBO colour map,
+// pixels the technique missed in magenta, false hits in cyan, background black.
+std::vector<float> error_heat_map(const GBuffer& technique, const GBuffer& truth,
+                                  double texel_world, double scale_texels);
+
+}  // namespace rl

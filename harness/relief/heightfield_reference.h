@@ -1,0 +1,27 @@
+#pragma once
+// Double-precision reference intersection of a ray with the bilinearly reconstructed
+// heightfield (the surface GL_LINEAR + GL_REPEAT sampling of the depth map defines).
+// Walks the texel cells under the ray (2D DDA between texel centres) and, in each cell,
+// solves the ray against the bilinear patch exactly: the depth along the ray is a quadratic in t.
+// Used by ray-probe tests as the ground truth of every single-layer search.
+#include <glm/glm.hpp>
+
+#include "relief/relief_map.h"
+
+namespace rl {
+
+struct ReferenceHit {
+  bool hit = false;
+  double t = 0;      // ray parameter of the first point with ray depth >= surface depth
+  glm::dvec2 uv{0};  // texture coordinate at t
+  double depth = 0;  // ray depth at t (equals the surface depth there)
+  long cells = 0;    // texel cells visited
+};
+
+// Ray: (uv, depth)(t) = origin + t * direction, t in [0, t_max]. Depth grows downward; the
+// map surface is depth d(u, v) in [0, 1]. Returns the first t where the ray is at or below
+// the surface. Rays with direction.z <= 0 that never go below the surface miss.
+ReferenceHit intersect_heightfield(const ReliefMap& map, const glm::dvec3& origin,
+                                   const glm::dvec3& direction, double t_max);
+
+}  // namespace rl

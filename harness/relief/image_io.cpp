@@ -1,0 +1,146 @@
+#include "relief/image_io.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+#include "core/error.h"
+
+namespace rl {
+namespace {
+
+struct Image {
+  int width = 0, height = 0, channels = 0;
+  bool eight_bit = false;
+  std::vector<float> pixels;  // row 0 = top of the file
+  float at(int x, int y, int c) const {
+    return pixels[(static_cast<size_t>(y) * width + x) * channels + std::min(c, channels - 1)];
+  }
+};
+
+Image read_image(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw ConfigError("relief image not found: " + path);
+  // Keep stored channels as they are: by default OIIO premultiplies PNG colour by alpha,
+  // which would scale the normals of a map whose alpha holds heights.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
+  if (!in) throw ConfigError("cannot read image " + path + ": " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  Image img;
+  img.width = spec.width;
+  img.height = spec.height;
+  img.channels = spec.nchannels;
+  img.eight_bit = spec.format == OIIO::TypeDesc::UINT8;
+  img.pixels.resize(static_cast<size_t>(img.width) * img.height * img.channels);
+  if (!in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
+    throw ConfigError("cannot decode image " + path + ": " + in->geterror());
+  if (img.width < 2 || img.height < 2) throw ConfigError("image too small: " + path);
+  return img;
+}
+
+// Bilinear resample of one image to (w, h), used only for colour maps of a different size.
+Image resized(const Image& img, int w, int h) {
+  if (img.width == w && img.height == h) return img;
+  OIIO::ImageSpec in_spec(img.width, img.height, img.channels, OIIO::TypeDesc::FLOAT);
+  OIIO::ImageBuf in(in_spec, const_cast<float*>(img.pixels.data()));
+  OIIO::ImageBuf out(OIIO::ImageSpec(w, h, img.channels, OIIO::TypeDesc::FLOAT));
+  OIIO::ImageBufAlgo::resize(out, in);
+  Image r = img;
+  r.width = w;
+  r.height = h;
+  r.eight_bit = false;
+  r.pixels.resize(static_cast<size_t>(w) * h * img.channels);
+  out.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, r.pixels.data());
+  return r;
+}
+
+}  // namespace
+
+ReliefMap load_relief_images(const ReliefImageSource& src, double depth_per_texel) {
+  if (src.normal_path.empty() && src.depth_path.empty())
+    throw ConfigError("relief image source needs a normal map with depth in alpha, or a depth map");
+  Image normal, depth;
+  if (!src.normal_path.empty()) normal = read_image(src.normal_path);
+  if (!src.depth_path.empty()) {
+    depth = read_image(src.depth_path);
+  } else {
+    if (normal.channels < 4)
+      throw ConfigError(src.normal_path + ": no alpha channel to read depth from (has " +
+                        std::to_string(normal.channels) + " channels); give a depth image");
+    depth = normal;
+  }
+  const int w = depth.width, h = depth.height;
+  const bool has_normals = !src.normal_path.empty();
+  if (has_normals && (normal.width != w || normal.height != h)) normal = resized(normal, w, h);
+
+  ReliefMap map;
+  map.name = std::filesystem::path(src.normal_path.empty() ? src.depth_path : src.normal_path)
+                 .stem()
+                 .string();
+  map.width = w;
+  map.height = h;
+  map.relief.resize(static_cast<size_t>(w) * h);
+  map.color.assign(map.relief.size(), glm::vec4(0.5f, 0.5f, 0.5f, 1.0f));
+  const int depth_channel = src.depth_path.empty() ? 3 : 0;
+  for (int y = 0; y < h; ++y) {
+    const int file_row = h - 1 - y;  // file's top row is v = 1
+    for (int x = 0; x < w; ++x) {
+      float d = depth.at(x, file_row, depth_channel);
+      if (src.height_convention) d = 1.0f - d;
+      glm::vec4 t(0.5f, 0.5f, 1.0f, std::clamp(d, 0.0f, 1.0f));
+      if (has_normals) {
+        t.r = normal.at(x, file_row, 0);
+        t.g = normal.at(x, file_row, 1);
+        t.b = normal.at(x, file_row, 2);
+        if (src.flip_green) t.g = 1.0f - t.g;
+      }
+      map.relief[map.index(x, y)] = t;
+    }
+  }
+  if (src.normalize) {
+    const float lo = map.min_depth(), hi = map.max_depth();
+    if (hi > lo)
+      for (auto& t : map.relief) t.a = (t.a - lo) / (hi - lo);
+  }
+  if (!has_normals) normals_from_depth(map, depth_per_texel);
+  if (!src.color_path.empty()) {
+    Image color = resized(read_image(src.color_path), w, h);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        map.color[map.index(x, y)] = glm::vec4(color.at(x, h - 1 - y, 0), color.at(x, h - 1 - y, 1),
+                                               color.at(x, h - 1 - y, 2), 1.0f);
+  }
+  map.quantized = false;  // set only by quantize_8bit(), which makes every channel exact
+  return map;
+}
+
+void write_png(const std::string& path, int width, int height, int channels,
+               const std::vector<float>& pixels) {
+  std::vector<unsigned char> bytes(static_cast<size_t>(width) * height * channels);
+  for (int y = 0; y < height; ++y) {
+    const float* src = &pixels[static_cast<size_t>(height - 1 - y) * width * channels];
+    unsigned char* dst = &bytes[static_cast<size_t>(y) * width * channels];
+    for (int i = 0; i < width * channels; ++i) {
+      float v = std::isfinite(src[i]) ? std::clamp(src[i], 0.0f, 1.0f) : 0.0f;
+      dst[i] = static_cast<unsigned char>(v * 255.0f + 0.5f);
+    }
+  }
+  std::filesystem::path final_path(path);
+  std::filesystem::create_directories(final_path.parent_path());
+  std::string tmp = path + ".tmp.png";
+  auto out = OIIO::ImageOutput::create(tmp);
+  OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
+  if (!out || !out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::UINT8, bytes.data()) ||
+      !out->close())
+    throw std::runtime_error("cannot write image " + path);
+  std::filesystem::rename(tmp, final_path);
+}
+
+}  // namespace rl

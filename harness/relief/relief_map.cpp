@@ -1,0 +1,135 @@
+#include "relief/relief_map.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+#include "core/hash.h"
+
+namespace rl {
+namespace {
+
+int wrap(int i, int n) {
+  int r = i % n;
+  return r < 0 ? r + n : r;
+}
+
+// GL_LINEAR footprint of coordinate u on n texels: texel i0, i0 + 1 and the weight of i0 + 1.
+void linear_footprint(double u, int n, int& i0, int& i1, double& f) {
+  double x = u * n - 0.5;
+  double fl = std::floor(x);
+  f = x - fl;
+  i0 = wrap(static_cast<int>(static_cast<long long>(fl) % n), n);
+  i1 = wrap(i0 + 1, n);
+}
+
+template <typename Get>
+glm::dvec4 bilinear(const ReliefMap& m, double u, double v, Get get) {
+  int x0, x1, y0, y1;
+  double fx, fy;
+  linear_footprint(u, m.width, x0, x1, fx);
+  linear_footprint(v, m.height, y0, y1, fy);
+  glm::dvec4 a = get(x0, y0), b = get(x1, y0), c = get(x0, y1), d = get(x1, y1);
+  return (a * (1 - fx) + b * fx) * (1 - fy) + (c * (1 - fx) + d * fx) * fy;
+}
+
+}  // namespace
+
+size_t ReliefMap::index(int x, int y) const {
+  return static_cast<size_t>(wrap(y, height)) * width + wrap(x, width);
+}
+
+double ReliefMap::sample_depth(double u, double v) const {
+  return sample_relief(u, v).a;
+}
+
+glm::dvec4 ReliefMap::sample_relief(double u, double v) const {
+  return bilinear(*this, u, v, [&](int x, int y) { return glm::dvec4(relief[index(x, y)]); });
+}
+
+glm::dvec4 ReliefMap::sample_color(double u, double v) const {
+  return bilinear(*this, u, v, [&](int x, int y) { return glm::dvec4(color[index(x, y)]); });
+}
+
+float ReliefMap::min_depth() const {
+  float m = 1;
+  for (const auto& t : relief) m = std::min(m, t.a);
+  return m;
+}
+
+float ReliefMap::max_depth() const {
+  float m = 0;
+  for (const auto& t : relief) m = std::max(m, t.a);
+  return m;
+}
+
+uint64_t ReliefMap::content_hash() const {
+  uint64_t h = fnv1a64(&width, sizeof width);
+  h = fnv1a64(&height, sizeof height, h);
+  h = fnv1a64(relief.data(), relief.size() * sizeof(glm::vec4), h);
+  return fnv1a64(color.data(), color.size() * sizeof(glm::vec4), h);
+}
+
+size_t ReliefMap::gpu_bytes() const {
+  size_t texel = quantized ? 4 : 16;
+  return static_cast<size_t>(width) * height * texel * 2;
+}
+
+glm::dvec3 decode_normal(const glm::dvec4& rgba) {
+  glm::dvec3 n = glm::dvec3(rgba) * 2.0 - 1.0;
+  double len = glm::length(n);
+  return len > 0 ? n / len : glm::dvec3(0, 0, 1);
+}
+
+void quantize_8bit(ReliefMap& map) {
+  auto q = [](float v) { return std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f; };
+  for (auto& t : map.relief) t = glm::vec4(q(t.r), q(t.g), q(t.b), q(t.a));
+  for (auto& c : map.color) c = glm::vec4(q(c.r), q(c.g), q(c.b), 1.0f);
+  map.quantized = true;
+}
+
+ReliefMap resample(const ReliefMap& map, int width, int height) {
+  if (width == map.width && height == map.height) return map;
+  auto resize = [&](const std::vector<glm::vec4>& src) {
+    OIIO::ImageSpec in_spec(map.width, map.height, 4, OIIO::TypeDesc::FLOAT);
+    OIIO::ImageBuf in(in_spec, const_cast<glm::vec4*>(src.data()));
+    OIIO::ImageSpec out_spec(width, height, 4, OIIO::TypeDesc::FLOAT);
+    OIIO::ImageBuf out(out_spec);
+    OIIO::ImageBufAlgo::resize(out, in);
+    std::vector<glm::vec4> dst(static_cast<size_t>(width) * height);
+    out.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, dst.data());
+    return dst;
+  };
+  ReliefMap out;
+  out.name = map.name;
+  out.width = width;
+  out.height = height;
+  out.relief = resize(map.relief);
+  out.color = resize(map.color);
+  for (auto& t : out.relief) {
+    glm::dvec3 n = decode_normal(glm::dvec4(t));
+    t = glm::vec4(glm::vec3(n * 0.5 + 0.5), std::clamp(t.a, 0.0f, 1.0f));
+  }
+  for (auto& c : out.color) c = glm::clamp(c, glm::vec4(0), glm::vec4(1));
+  out.quantized = false;
+  return out;
+}
+
+void normals_from_depth(ReliefMap& map, double depth_per_texel) {
+  std::vector<glm::vec4> out(map.relief.size());
+  for (int y = 0; y < map.height; ++y) {
+    for (int x = 0; x < map.width; ++x) {
+      // Surface height is -depth; its normal is (depth_x, depth_y, 1) in slope units.
+      double dx = 0.5 * (map.depth_texel(x + 1, y) - map.depth_texel(x - 1, y));
+      double dy = 0.5 * (map.depth_texel(x, y + 1) - map.depth_texel(x, y - 1));
+      glm::dvec3 n = glm::normalize(glm::dvec3(dx * depth_per_texel, dy * depth_per_texel, 1));
+      out[map.index(x, y)] = glm::vec4(glm::vec3(n * 0.5 + 0.5), map.depth_texel(x, y));
+    }
+  }
+  map.relief = std::move(out);
+  map.quantized = false;
+}
+
+}  // namespace rl

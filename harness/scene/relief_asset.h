@@ -1,0 +1,11 @@
+#pragma once
+// Builds a scene's relief map at a texture resolution: procedural maps are generated at that
+// resolution, image maps are loaded and resampled; then quantised to 8 bits if the scene asks.
+#include "relief/relief_map.h"
+#include "scene/scene.h"
+
+namespace rl {
+
+ReliefMap build_relief_asset(const SceneDesc& scene, int resolution);
+
+}  // namespace rl

@@ -1,0 +1,79 @@
+#include "scene/scene.h"
+
+#include <cmath>
+
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace rl {
+
+PlanarBase planar_base(const SceneDesc& scene) {
+  PlanarBase b;
+  b.size = scene.size;
+  b.tile = scene.tile;
+  b.depth = scene.depth;
+  return b;
+}
+
+BaseGeometry make_base_geometry(const SceneDesc& scene) {
+  const PlanarBase base = planar_base(scene);
+  BaseGeometry g;
+  const glm::vec2 corners[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (const glm::vec2& c : corners) {
+    BaseVertex v;
+    glm::dvec3 uvd(c.x * scene.tile, c.y * scene.tile, 0);
+    v.position = glm::vec3(base.world_from_texture(uvd));
+    v.uv = glm::vec2(uvd);
+    v.dpdu = glm::vec3(base.dpdu());
+    v.dpdv = glm::vec3(base.dpdv());
+    v.normal = glm::vec3(base.normal());
+    g.vertices.push_back(v);
+  }
+  g.indices = {0, 1, 2, 0, 2, 3};
+  return g;
+}
+
+glm::dmat4 Camera::view_matrix() const {
+  return glm::lookAt(eye, target, up);
+}
+
+glm::dmat4 Camera::projection_matrix() const {
+  return glm::perspective(glm::radians(fov_y_deg), double(width) / height, near_plane, far_plane);
+}
+
+void Camera::pixel_ray(int x, int y, glm::dvec3& origin, glm::dvec3& direction) const {
+  const glm::dvec3 forward = glm::normalize(target - eye);
+  const glm::dvec3 right = glm::normalize(glm::cross(forward, up));
+  const glm::dvec3 true_up = glm::cross(right, forward);
+  const double tan_half = std::tan(glm::radians(fov_y_deg) * 0.5);
+  const double aspect = double(width) / height;
+  const double ndc_x = (x + 0.5) / width * 2.0 - 1.0;
+  const double ndc_y = (y + 0.5) / height * 2.0 - 1.0;
+  origin = eye;
+  direction =
+      glm::normalize(forward + right * (ndc_x * tan_half * aspect) + true_up * (ndc_y * tan_half));
+}
+
+Camera make_camera(const SceneDesc& scene, const View& view, int width, int height) {
+  Camera cam;
+  cam.width = width;
+  cam.height = height;
+  cam.fov_y_deg = scene.fov_deg;
+  const double el = glm::radians(view.elevation_deg), az = glm::radians(view.azimuth_deg);
+  // Fit the quad's bounding sphere (relief included) in the narrower field of view.
+  const double radius = std::sqrt(0.5 * scene.size * scene.size + scene.depth * scene.depth);
+  double half_fov = glm::radians(scene.fov_deg) * 0.5;
+  if (width < height) half_fov = std::atan(std::tan(half_fov) * width / height);
+  const double distance = scene.distance > 0 ? scene.distance : radius / std::sin(half_fov);
+  cam.target = glm::dvec3(0, 0, -0.5 * scene.depth);
+  const glm::dvec3 dir(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
+  cam.eye = cam.target + dir * distance;
+  // d(dir)/d(elevation): perpendicular to the view direction at every elevation, so the
+  // top-down view (90 degrees) needs no special case.
+  cam.up = glm::dvec3(-std::sin(el) * std::cos(az), -std::sin(el) * std::sin(az), std::cos(el));
+  cam.near_plane = std::max(1e-3, distance - 2 * radius) * 0.5;
+  cam.far_plane = distance + 4 * radius + 10 * scene.size;
+  return cam;
+}
+
+}  // namespace rl

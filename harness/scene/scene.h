@@ -1,0 +1,106 @@
+#pragma once
+// A scene: the relief asset, the base surface it is mapped on, its scale, the light and the
+// effects it asks for. Issue 2 has one base, the planar quad; curved bases come later and
+// fill the same BaseGeometry vertex layout.
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/effects.h"
+
+namespace rl {
+
+struct View {
+  double elevation_deg = 45;  // 90 = looking straight down on the base
+  double azimuth_deg = 0;     // 0 = camera on the +u side, looking along -u
+};
+
+struct ReliefSourceDesc {
+  // Exactly one of: a procedural kind, or image files.
+  std::string procedural;                 // "sines", "bricks", ...
+  std::map<std::string, double> options;  // procedural options
+  std::string normal_path, depth_path, color_path;
+  bool height_convention = true;  // image stores height (1 = top)
+  bool flip_green = false;
+  bool normalize = false;       // remap image depths to [0, 1]
+  int native_resolution = 256;  // resolution when texture_res = 0 ("native")
+};
+
+struct Material {
+  glm::dvec3 ambient{0.12, 0.12, 0.12};
+  glm::dvec3 diffuse{1.0, 1.0, 1.0};
+  glm::dvec3 specular{0.25, 0.25, 0.25};
+  double shininess = 32;
+  double shadow_intensity = 0.4;  // colour factor in shadow (Listing 5.3)
+};
+
+struct SceneDesc {
+  std::string name;
+  ReliefSourceDesc relief;
+  double size = 1.0;     // world side of the quad
+  double tile = 1.0;     // texture repeats across the quad
+  double depth = 0.08;   // world depth of the relief (depth 1 in the map)
+  bool quantize = true;  // 8-bit textures like the papers; false keeps float
+  EffectSet effects;
+  glm::dvec3 light_position{0.9, -0.6, 1.4};
+  Material material;
+  double fov_deg = 40;
+  double distance = 0;        // camera distance to the quad centre; 0 = fit the quad in view
+  double shadow_bias = 0.02;  // depth units (Listing 5.3's shadow_threshold)
+};
+
+// The planar base: texture space (u, v, depth) <-> world. The quad spans [-size/2, size/2]^2
+// at z = 0 with u along +x, v along +y; depth 1 lies `depth` below it.
+struct PlanarBase {
+  double size = 1, tile = 1, depth = 0.08;
+
+  glm::dvec3 dpdu() const { return {size / tile, 0, 0}; }
+  glm::dvec3 dpdv() const { return {0, size / tile, 0}; }
+  glm::dvec3 normal() const { return {0, 0, 1}; }
+  glm::dvec3 world_from_texture(const glm::dvec3& uvd) const {
+    return {-0.5 * size + uvd.x * size / tile, -0.5 * size + uvd.y * size / tile, -uvd.z * depth};
+  }
+  glm::dvec3 texture_from_world(const glm::dvec3& p) const {
+    return {(p.x + 0.5 * size) * tile / size, (p.y + 0.5 * size) * tile / size, -p.z / depth};
+  }
+  glm::dvec3 texture_direction(const glm::dvec3& d) const {
+    return {d.x * tile / size, d.y * tile / size, -d.z / depth};
+  }
+  double texel_world(int resolution) const { return size / tile / resolution; }
+};
+
+PlanarBase planar_base(const SceneDesc& scene);
+
+// Vertices of the base surface as the shaders receive them.
+struct BaseVertex {
+  glm::vec3 position;
+  glm::vec2 uv;
+  glm::vec3 dpdu;  // world change per unit u (tangent scaled by the mapping)
+  glm::vec3 dpdv;
+  glm::vec3 normal;
+};
+
+struct BaseGeometry {
+  std::vector<BaseVertex> vertices;
+  std::vector<unsigned> indices;
+};
+
+BaseGeometry make_base_geometry(const SceneDesc& scene);
+
+struct Camera {
+  glm::dvec3 eye, target, up;
+  double fov_y_deg = 40;
+  double near_plane = 0.01, far_plane = 100;
+  int width = 256, height = 256;
+
+  glm::dmat4 view_matrix() const;
+  glm::dmat4 projection_matrix() const;
+  // World ray through the centre of pixel (x, y), y = 0 the bottom row (GL's convention).
+  void pixel_ray(int x, int y, glm::dvec3& origin, glm::dvec3& direction) const;
+};
+
+Camera make_camera(const SceneDesc& scene, const View& view, int width, int height);
+
+}  // namespace rl

@@ -1,0 +1,101 @@
+#include "sweep/cells.h"
+
+#include <algorithm>
+
+#include "core/hash.h"
+#include "technique/technique.h"
+
+namespace rl {
+namespace {
+
+// Results change when the harness's measuring changes: bump this when a metric or the truth
+// is redefined, so stale rows are not mistaken for current ones.
+constexpr int kMeasurementVersion = 1;
+
+void product(const std::vector<std::pair<std::string, std::vector<double>>>& lists, size_t i,
+             ParamValues& current, std::vector<ParamValues>& out) {
+  if (i == lists.size()) {
+    out.push_back(current);
+    return;
+  }
+  for (double v : lists[i].second) {
+    current[lists[i].first] = v;
+    product(lists, i + 1, current, out);
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> parameter_columns(const SweepConfig& config) {
+  std::vector<std::string> cols;
+  for (const TechniqueSweep& ts : config.techniques)
+    for (const ParamSpec& p : TechniqueRegistry::instance().find(ts.name)->info.params)
+      if (std::find(cols.begin(), cols.end(), p.name) == cols.end()) cols.push_back(p.name);
+  return cols;
+}
+
+std::vector<Cell> expand_cells(const SweepConfig& config) {
+  std::vector<Cell> cells;
+  for (size_t si = 0; si < config.scenes.size(); ++si) {
+    const SceneDesc& scene = config.scenes[si];
+    for (const TechniqueSweep& ts : config.techniques) {
+      if (!ts.scenes.empty() &&
+          std::find(ts.scenes.begin(), ts.scenes.end(), scene.name) == ts.scenes.end())
+        continue;
+      const TechniqueInfo& info = TechniqueRegistry::instance().find(ts.name)->info;
+      std::vector<std::pair<std::string, std::vector<double>>> lists;
+      for (const ParamSpec& p : info.params) {
+        auto it = ts.param_lists.find(p.name);
+        lists.push_back({p.name, it != ts.param_lists.end()
+                                     ? it->second
+                                     : std::vector<double>{p.default_value}});
+      }
+      std::vector<ParamValues> settings;
+      ParamValues current;
+      product(lists, 0, current, settings);
+      for (int tex : config.texture_res) {
+        const int res = resolve_texture_res(scene, tex);
+        for (const auto& [w, h] : config.viewports) {
+          for (const View& view : config.views) {
+            for (const ParamValues& params : settings) {
+              Cell c;
+              c.scene_index = si;
+              c.technique = ts.name;
+              c.params = params;
+              c.texture_res = res;
+              c.width = w;
+              c.height = h;
+              c.view = view;
+              const std::string scene_text = config.scene_canonical.at(scene.name);
+              c.asset_key = hex64(fnv1a64(scene_text + "|res=" + std::to_string(res)));
+              nlohmann::ordered_json truth_id = {{"asset", c.asset_key},
+                                                 {"w", w},
+                                                 {"h", h},
+                                                 {"el", view.elevation_deg},
+                                                 {"az", view.azimuth_deg},
+                                                 {"tol", config.truth_tolerance},
+                                                 {"v", kMeasurementVersion}};
+              c.truth_key = hex64(fnv1a64(truth_id.dump()));
+              nlohmann::ordered_json id = {
+                  {"truth", c.truth_key},    {"technique", ts.name},
+                  {"params", params},        {"frames", config.frames},
+                  {"warmup", config.warmup}, {"images", config.write_images}};
+              c.key = hex64(fnv1a64(id.dump()));
+              c.identity["technique"] = ts.name;
+              c.identity["scene"] = scene.name;
+              c.identity["elevation_deg"] = view.elevation_deg;
+              c.identity["azimuth_deg"] = view.azimuth_deg;
+              c.identity["texture_res"] = res;
+              c.identity["viewport"] = std::to_string(w) + "x" + std::to_string(h);
+              for (const ParamSpec& p : info.params) c.identity[p.name] = params.at(p.name);
+              cells.push_back(std::move(c));
+            }
+          }
+        }
+      }
+    }
+  }
+  return cells;
+}
+
+}  // namespace rl

@@ -1,0 +1,33 @@
+#pragma once
+// Sweep expansion: the product of scenes x techniques x parameter settings x texture
+// resolutions x viewports x views, each cell keyed by a stable hash of what determines it.
+// Cells sharing (scene, texture resolution, viewport, view) share one truth.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/params.h"
+#include "sweep/config.h"
+
+namespace rl {
+
+struct Cell {
+  size_t scene_index = 0;
+  std::string technique;
+  ParamValues params;   // every declared parameter (defaults filled in)
+  int texture_res = 0;  // resolved (never 0)
+  int width = 0, height = 0;
+  View view;
+  std::string key;        // result-store key
+  std::string asset_key;  // (scene, texture_res): relief map, GPU textures, Embree scene
+  std::string truth_key;  // (scene, texture_res, viewport, view): one truth G-buffer
+  // Identity columns of the row: technique, scene, view, sizes, parameters.
+  nlohmann::ordered_json identity;
+};
+
+std::vector<Cell> expand_cells(const SweepConfig& config);
+// Every parameter column of the sweep, in order of first appearance.
+std::vector<std::string> parameter_columns(const SweepConfig& config);
+
+}  // namespace rl

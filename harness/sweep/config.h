@@ -1,0 +1,58 @@
+#pragma once
+// Sweep configs (TOML). A config names scenes, techniques with parameter lists, views,
+// viewports and texture resolutions; the harness runs their product. Everything is checked
+// here, before any work: unknown keys, unknown techniques, bad values, missing files and
+// effects a technique cannot simulate are ConfigErrors naming the file, line and key.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/params.h"
+#include "scene/scene.h"
+
+namespace rl {
+
+struct TechniqueSweep {
+  std::string name;
+  std::vector<std::string> scenes;                         // empty = every scene
+  std::map<std::string, std::vector<double>> param_lists;  // declared parameters only
+  std::string where;                                       // "file:line" for messages
+};
+
+struct TableSpec {
+  std::string file = "table.md";
+  std::string title;
+  std::vector<std::string> rows, columns, values;
+};
+
+struct SweepConfig {
+  std::string name = "sweep";
+  std::string source;  // the config file, or "<built-in default>"
+  std::vector<SceneDesc> scenes;
+  std::vector<TechniqueSweep> techniques;
+  std::vector<View> views;
+  std::vector<std::pair<int, int>> viewports;
+  std::vector<int> texture_res;  // 0 = the asset's native resolution
+  int frames = 5;                // timed frames per cell (median reported)
+  int warmup = 1;
+  double heat_map_scale = 4;      // texels at the top of the heat map's colour scale
+  double truth_tolerance = 2e-3;  // stated tessellation tolerance, depth units
+  bool write_images = true;
+  std::vector<TableSpec> tables;
+  std::map<std::string, std::string> scene_canonical;  // per scene: text of what defines it
+  std::string canonical;  // canonical text of everything that affects results
+};
+
+// Parses and validates a config file. Relative paths resolve against the config's folder,
+// then the repository root.
+SweepConfig load_sweep_config(const std::string& path);
+// Parses config text (`source_name` is used in messages and to resolve relative paths).
+SweepConfig parse_sweep_config(const std::string& text, const std::string& source_name,
+                               const std::string& base_dir);
+// The built-in default sweep (configs/default.toml, embedded at build time).
+SweepConfig default_sweep_config();
+
+// The resolution a texture_res entry means for a scene (0 = native).
+int resolve_texture_res(const SceneDesc& scene, int texture_res);
+
+}  // namespace rl

@@ -1,0 +1,92 @@
+#include "sweep/result_store.h"
+
+#include <sqlite3.h>
+
+#include <stdexcept>
+
+namespace rl {
+namespace {
+
+void check(int rc, sqlite3* db, const std::string& what) {
+  if (rc != SQLITE_OK && rc != SQLITE_DONE && rc != SQLITE_ROW)
+    throw std::runtime_error("result store: " + what + ": " + sqlite3_errmsg(db));
+}
+
+struct Statement {
+  sqlite3_stmt* s = nullptr;
+  Statement(sqlite3* db, const char* sql) {
+    check(sqlite3_prepare_v2(db, sql, -1, &s, nullptr), db, sql);
+  }
+  ~Statement() { sqlite3_finalize(s); }
+};
+
+}  // namespace
+
+ResultStore::ResultStore(const std::string& path) : path_(path) {
+  if (sqlite3_open(path.c_str(), &db_) != SQLITE_OK) {
+    std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    throw std::runtime_error("cannot open result store " + path + ": " + msg);
+  }
+  sqlite3_busy_timeout(db_, 5000);
+  check(sqlite3_exec(db_, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;", nullptr, nullptr,
+                     nullptr),
+        db_, "pragmas");
+  check(sqlite3_exec(db_,
+                     "CREATE TABLE IF NOT EXISTS rows ("
+                     " key TEXT PRIMARY KEY,"
+                     " row TEXT NOT NULL,"
+                     " written_at TEXT DEFAULT CURRENT_TIMESTAMP)",
+                     nullptr, nullptr, nullptr),
+        db_, "create table");
+}
+
+ResultStore::~ResultStore() {
+  sqlite3_close(db_);
+}
+
+bool ResultStore::contains(const std::string& key) const {
+  Statement st(db_, "SELECT 1 FROM rows WHERE key = ?");
+  sqlite3_bind_text(st.s, 1, key.c_str(), -1, SQLITE_TRANSIENT);
+  return sqlite3_step(st.s) == SQLITE_ROW;
+}
+
+std::set<std::string> ResultStore::keys() const {
+  std::set<std::string> out;
+  Statement st(db_, "SELECT key FROM rows");
+  while (sqlite3_step(st.s) == SQLITE_ROW)
+    out.insert(reinterpret_cast<const char*>(sqlite3_column_text(st.s, 0)));
+  return out;
+}
+
+std::optional<nlohmann::ordered_json> ResultStore::row(const std::string& key) const {
+  Statement st(db_, "SELECT row FROM rows WHERE key = ?");
+  sqlite3_bind_text(st.s, 1, key.c_str(), -1, SQLITE_TRANSIENT);
+  if (sqlite3_step(st.s) != SQLITE_ROW) return std::nullopt;
+  return nlohmann::ordered_json::parse(reinterpret_cast<const char*>(sqlite3_column_text(st.s, 0)));
+}
+
+void ResultStore::insert(const std::string& key, const nlohmann::ordered_json& row) {
+  Statement st(db_, "INSERT OR IGNORE INTO rows (key, row) VALUES (?, ?)");
+  const std::string text = row.dump();
+  sqlite3_bind_text(st.s, 1, key.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(st.s, 2, text.c_str(), -1, SQLITE_TRANSIENT);
+  check(sqlite3_step(st.s), db_, "insert row");
+}
+
+size_t ResultStore::merge_from(const std::string& other_path) {
+  Statement attach(db_, "ATTACH DATABASE ? AS other");
+  sqlite3_bind_text(attach.s, 1, other_path.c_str(), -1, SQLITE_TRANSIENT);
+  check(sqlite3_step(attach.s), db_, "attach " + other_path);
+  const int before = sqlite3_total_changes(db_);
+  check(sqlite3_exec(db_,
+                     "INSERT OR IGNORE INTO rows (key, row, written_at) SELECT key, row, "
+                     "written_at FROM other.rows",
+                     nullptr, nullptr, nullptr),
+        db_, "merge");
+  const size_t merged = size_t(sqlite3_total_changes(db_) - before);
+  check(sqlite3_exec(db_, "DETACH DATABASE other", nullptr, nullptr, nullptr), db_, "detach");
+  return merged;
+}
+
+}  // namespace rl

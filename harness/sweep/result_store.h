@@ -1,0 +1,38 @@
+#pragma once
+// The result store: one SQLite database per output folder, one row per sweep cell keyed by a
+// stable hash of everything that determines the cell. Each row is committed in its own
+// transaction (WAL journal), so a sweep killed midway loses at most the cell in flight, and a
+// re-run skips every key already present: nothing is redone, nothing duplicated. Stores from
+// shards run elsewhere merge by key.
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+struct sqlite3;
+
+namespace rl {
+
+class ResultStore {
+ public:
+  explicit ResultStore(const std::string& path);
+  ~ResultStore();
+  ResultStore(const ResultStore&) = delete;
+  ResultStore& operator=(const ResultStore&) = delete;
+
+  bool contains(const std::string& key) const;
+  std::set<std::string> keys() const;
+  std::optional<nlohmann::ordered_json> row(const std::string& key) const;
+  // Inserts the row; an existing key is left untouched (first result wins).
+  void insert(const std::string& key, const nlohmann::ordered_json& row);
+  // Copies every row of another store whose key this one lacks; returns how many.
+  size_t merge_from(const std::string& other_path);
+
+ private:
+  sqlite3* db_ = nullptr;
+  std::string path_;
+};
+
+}  // namespace rl

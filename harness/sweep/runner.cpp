@@ -1,0 +1,276 @@
+#include "sweep/runner.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <set>
+
+#include "gl/context.h"
+#include "gl/frame_timer.h"
+#include "gl/render_target.h"
+#include "metrics/metrics.h"
+#include "relief/image_io.h"
+#include "scene/relief_asset.h"
+#include "sweep/cells.h"
+#include "sweep/result_store.h"
+#include "sweep/tables.h"
+#include "technique/technique.h"
+#include "truth/truth_render.h"
+
+namespace rl {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+std::string hms(double seconds) {
+  const long s = long(seconds + 0.5);
+  char buf[32];
+  if (s >= 3600)
+    std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%ld:%02ld", s / 60, s % 60);
+  return buf;
+}
+
+std::vector<float> rgb_of(const GBuffer& g) {
+  std::vector<float> rgb(g.size() * 3);
+  for (size_t i = 0; i < g.size(); ++i)
+    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = g.color[i][c];
+  return rgb;
+}
+
+std::string describe_params(const Cell& c) {
+  std::string s;
+  for (const auto& [k, v] : c.params) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%s=%g", k.c_str(), v);
+    s += (s.empty() ? "" : " ") + std::string(buf);
+  }
+  return s;
+}
+
+// Everything built once per (scene, texture resolution).
+struct Asset {
+  ReliefMap map;
+  std::unique_ptr<GpuRelief> relief;
+  std::unique_ptr<GpuBase> base;
+  std::unique_ptr<HeightfieldTruth> truth;
+  double build_ms = 0;
+  // Prepared technique instances by (technique, parameters): prepare() runs once per asset.
+  std::map<std::string, std::pair<std::unique_ptr<Technique>, double>> prepared;
+};
+
+class Log {
+ public:
+  explicit Log(const std::string& path) : file_(path, std::ios::app) {}
+  void line(const std::string& s) {
+    std::fprintf(stderr, "%s\n", s.c_str());
+    file_ << s << "\n";
+    file_.flush();
+  }
+
+ private:
+  std::ofstream file_;
+};
+
+}  // namespace
+
+SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
+  const auto start = Clock::now();
+  SweepSummary summary;
+  const std::vector<Cell> cells = expand_cells(config);
+  summary.cells = cells.size();
+
+  fs::create_directories(options.out_dir);
+  Log log(options.out_dir + "/run.log");
+  ResultStore store(options.out_dir + "/results.sqlite");
+  const std::set<std::string> done = store.keys();
+  for (const Cell& c : cells) summary.already_done += done.count(c.key);
+
+  GlContext& gl = GlContext::shared();
+  summary.renderer = gl.renderer();
+  log.line("relieflab: sweep '" + config.name + "' from " + config.source + ": " +
+           std::to_string(cells.size()) + " cells, " + std::to_string(summary.already_done) +
+           " already in " + options.out_dir + "/results.sqlite");
+  log.line("relieflab: OpenGL " + gl.version() + " on " + gl.renderer() + " (" + gl.platform() +
+           "), frames timed by " +
+           (gl.is_software() ? "wall clock + glFinish" : "GL_TIME_ELAPSED"));
+
+  // Cells in order of (asset, truth), keeping the config's order otherwise.
+  std::vector<size_t> order(cells.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::map<std::string, size_t> asset_rank, truth_rank;
+  for (const Cell& c : cells) {
+    asset_rank.emplace(c.asset_key, asset_rank.size());
+    truth_rank.emplace(c.truth_key, truth_rank.size());
+  }
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    const Cell &ca = cells[a], &cb = cells[b];
+    if (asset_rank[ca.asset_key] != asset_rank[cb.asset_key])
+      return asset_rank[ca.asset_key] < asset_rank[cb.asset_key];
+    return truth_rank[ca.truth_key] < truth_rank[cb.truth_key];
+  });
+
+  const size_t todo = cells.size() - summary.already_done;
+  size_t finished = 0;
+  std::unique_ptr<Asset> asset;
+  std::string asset_key, truth_key;
+  GBuffer truth;
+  TruthStats truth_stats;
+  const auto work_start = Clock::now();
+
+  for (size_t oi = 0; oi < order.size(); ++oi) {
+    const Cell& cell = cells[order[oi]];
+    if (done.count(cell.key)) continue;
+    const SceneDesc& scene = config.scenes[cell.scene_index];
+    const PlanarBase base = planar_base(scene);
+
+    if (cell.asset_key != asset_key) {
+      const auto t0 = Clock::now();
+      asset = std::make_unique<Asset>();
+      asset->map = build_relief_asset(scene, cell.texture_res);
+      asset->relief = std::make_unique<GpuRelief>(asset->map);
+      asset->base = std::make_unique<GpuBase>(make_base_geometry(scene));
+      asset->truth = std::make_unique<HeightfieldTruth>(asset->map, config.truth_tolerance);
+      asset->build_ms = ms_since(t0);
+      asset_key = cell.asset_key;
+      truth_key.clear();
+      ++summary.asset_builds;
+      char buf[256];
+      std::snprintf(buf, sizeof buf,
+                    "relieflab: asset %s at %dx%d: built in %.0f ms (Embree truth %.0f ms, "
+                    "tessellation %dx%d per texel, deviation <= %.2g depth units)",
+                    scene.name.c_str(), asset->map.width, asset->map.height, asset->build_ms,
+                    asset->truth->build_ms(), asset->truth->subdivision(),
+                    asset->truth->subdivision(), asset->truth->tessellation_bound());
+      log.line(buf);
+    }
+    const Camera camera = make_camera(scene, cell.view, cell.width, cell.height);
+    const std::string image_dir = options.out_dir + "/images/" + scene.name;
+    if (cell.truth_key != truth_key) {
+      truth = render_truth(*asset->truth, asset->map, scene, camera, scene.effects, &truth_stats);
+      truth_key = cell.truth_key;
+      ++summary.truth_traces;
+      char buf[256];
+      std::snprintf(buf, sizeof buf,
+                    "relieflab: truth #%zu traced: %s el=%g az=%g %dx%d: %llu primary + %llu "
+                    "shadow rays in %.0f ms",
+                    summary.truth_traces, scene.name.c_str(), cell.view.elevation_deg,
+                    cell.view.azimuth_deg, cell.width, cell.height,
+                    (unsigned long long)truth_stats.primary_rays,
+                    (unsigned long long)truth_stats.shadow_rays, truth_stats.trace_ms);
+      log.line(buf);
+      if (truth_stats.unresolved)
+        log.line("relieflab: warning: " + std::to_string(truth_stats.unresolved) +
+                 " truth rays passed the floor by rounding and were placed on it");
+      if (config.write_images)
+        write_png(image_dir + "/truth_" + cell.truth_key + ".png", truth.width, truth.height, 3,
+                  rgb_of(truth));
+    }
+
+    // Technique instance, prepared once per asset and parameter setting.
+    const std::string instance_key = cell.technique + "|" + describe_params(cell);
+    auto& slot = asset->prepared[instance_key];
+    if (!slot.first) {
+      slot.first = TechniqueRegistry::instance().create(cell.technique, cell.params, config.source);
+      const auto t0 = Clock::now();
+      slot.first->prepare(asset->map);
+      glFinish();
+      slot.second = ms_since(t0);
+    }
+    Technique& technique = *slot.first;
+    FrameInput frame{scene, asset->map, *asset->relief, *asset->base, camera, scene.effects};
+
+    GBuffer g;
+    {
+      RenderTarget target(cell.width, cell.height, RenderTarget::Kind::GBuffer);
+      target.bind_and_clear();
+      technique.render(frame, RenderTarget::Kind::GBuffer);
+      target.read_back(g);
+    }
+    const double texel_world = base.texel_world(cell.texture_res);
+    const ImageMetrics m = compare_gbuffers(g, truth, scene.depth, texel_world);
+    RenderTarget timing_target(cell.width, cell.height, RenderTarget::Kind::ColorOnly);
+    const FrameTiming timing = time_frames(
+        [&] {
+          timing_target.bind_and_clear();
+          technique.render(frame, RenderTarget::Kind::ColorOnly);
+        },
+        config.warmup, config.frames, gl.is_software());
+
+    Row row = cell.identity;
+    for (const auto& [name, value] : m.named()) row[name] = value;
+    row["frame_ms"] = timing.median_ms;
+    row["frame_ms_min"] = timing.min_ms;
+    row["timing"] = timing.method;
+    row["precompute_ms"] = slot.second;
+    row["memory_bytes"] = double(asset->relief->bytes() + technique.memory_bytes());
+    row["truth_subdivision"] = asset->truth->subdivision();
+    row["truth_bound"] = asset->truth->tessellation_bound();
+    row["truth_ms"] = truth_stats.trace_ms;
+    row["effects"] = join_effects(scene.effects);
+    row["renderer"] = gl.renderer();
+    row["key"] = cell.key;
+    if (config.write_images) {
+      const std::string render_png = image_dir + "/" + cell.key + "_render.png";
+      const std::string error_png = image_dir + "/" + cell.key + "_error.png";
+      write_png(render_png, g.width, g.height, 3, rgb_of(g));
+      write_png(error_png, g.width, g.height, 3,
+                error_heat_map(g, truth, texel_world, config.heat_map_scale));
+      row["image_render"] = fs::relative(render_png, options.out_dir).string();
+      row["image_truth"] =
+          fs::relative(image_dir + "/truth_" + cell.truth_key + ".png", options.out_dir).string();
+      row["image_error"] = fs::relative(error_png, options.out_dir).string();
+    }
+    store.insert(cell.key, row);
+    ++summary.new_rows;
+    ++finished;
+
+    if (options.progress) {
+      const double elapsed = ms_since(work_start) / 1000.0;
+      const double eta = elapsed / finished * (todo - finished);
+      char buf[512];
+      std::snprintf(buf, sizeof buf,
+                    "[%zu/%zu] %3.0f%% %s elapsed, ~%s left | %s %s | %s el=%g az=%g %dx%d | "
+                    "pos_err_rmse=%.4g artifact=%.3g%% fetches=%.1f frame=%.2fms",
+                    summary.already_done + finished, cells.size(),
+                    100.0 * (summary.already_done + finished) / cells.size(), hms(elapsed).c_str(),
+                    hms(eta).c_str(), cell.technique.c_str(), describe_params(cell).c_str(),
+                    scene.name.c_str(), cell.view.elevation_deg, cell.view.azimuth_deg, cell.width,
+                    cell.height, m.pos_err.rmse, m.artifact_pct, m.fetches.mean, timing.median_ms);
+      std::fprintf(stderr, "%s\n", buf);
+    }
+  }
+
+  // Outputs from the store, in the config's cell order: the rows of this sweep only.
+  std::vector<Row> rows;
+  for (const Cell& c : cells)
+    if (auto r = store.row(c.key)) rows.push_back(*r);
+  std::vector<std::string> leading = {"technique",   "scene",       "elevation_deg",
+                                      "azimuth_deg", "texture_res", "viewport"};
+  for (const auto& p : parameter_columns(config)) leading.push_back(p);
+  write_text_atomic(options.out_dir + "/rows.csv", format_csv(rows, csv_columns(rows, leading)));
+  for (const TableSpec& t : config.tables)
+    write_text_atomic(options.out_dir + "/" + t.file, format_markdown_table(rows, t));
+
+  summary.elapsed_s = ms_since(start) / 1000.0;
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "relieflab: done in %s: %zu cells, %zu new rows, %zu already done; traced truth "
+                "%zu times, built %zu assets; wrote %s/rows.csv and %zu table(s)",
+                hms(summary.elapsed_s).c_str(), summary.cells, summary.new_rows,
+                summary.already_done, summary.truth_traces, summary.asset_builds,
+                options.out_dir.c_str(), config.tables.size());
+  log.line(buf);
+  return summary;
+}
+
+}  // namespace rl

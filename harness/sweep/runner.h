@@ -1,0 +1,30 @@
+#pragma once
+// Runs a sweep: for each relief asset (scene, texture resolution) it builds the map, its GPU
+// textures and its Embree truth once; for each (viewport, view) it traces the truth once and
+// measures every technique and parameter setting against it. Rows go to the result store as
+// they finish; tables and rows.csv are rewritten from the store at the end.
+#include <ostream>
+#include <string>
+
+#include "sweep/config.h"
+
+namespace rl {
+
+struct RunOptions {
+  std::string out_dir = "out/default";
+  bool progress = true;  // one progress line per cell on stderr
+};
+
+struct SweepSummary {
+  size_t cells = 0;
+  size_t already_done = 0;  // found in the store, not redone
+  size_t new_rows = 0;
+  size_t truth_traces = 0;  // truth G-buffers traced in this run
+  size_t asset_builds = 0;
+  double elapsed_s = 0;
+  std::string renderer;
+};
+
+SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options);
+
+}  // namespace rl

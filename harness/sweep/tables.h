@@ -1,0 +1,26 @@
+#pragma once
+// Writers for sweep results: rows.csv (one row per cell, every column) and Markdown tables
+// laid out as the config declares (row fields, column fields, metric values). Every file is
+// written to a temporary name and renamed, so a reader never sees half a table.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "sweep/config.h"
+
+namespace rl {
+
+using Row = nlohmann::ordered_json;
+
+// Column order: the given leading columns, then every other key in order of first appearance.
+std::vector<std::string> csv_columns(const std::vector<Row>& rows,
+                                     const std::vector<std::string>& leading);
+std::string format_csv(const std::vector<Row>& rows, const std::vector<std::string>& columns);
+std::string format_markdown_table(const std::vector<Row>& rows, const TableSpec& spec);
+// A value as a table shows it: numbers to 4 significant digits, missing as "–".
+std::string format_value(const nlohmann::ordered_json& v);
+
+void write_text_atomic(const std::string& path, const std::string& text);
+
+}  // namespace rl

@@ -1,0 +1,77 @@
+#include "technique/gpu_scene.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace rl {
+namespace {
+
+GLuint make_texture(int w, int h, bool eight_bit, const std::vector<glm::vec4>& texels) {
+  GLuint tex = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+  glTextureStorage2D(tex, 1, eight_bit ? GL_RGBA8 : GL_RGBA32F, w, h);
+  glTextureSubImage2D(tex, 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, texels.data());
+  // Bilinear, repeating, no mipmaps: the exact surface the truth reconstructs.
+  glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  return tex;
+}
+
+}  // namespace
+
+GpuRelief::GpuRelief(const ReliefMap& map) {
+  relief_ = make_texture(map.width, map.height, map.quantized, map.relief);
+  color_ = make_texture(map.width, map.height, map.quantized, map.color);
+  bytes_ = map.gpu_bytes();
+}
+
+GpuRelief::~GpuRelief() {
+  glDeleteTextures(1, &relief_);
+  glDeleteTextures(1, &color_);
+}
+
+void GpuRelief::bind(GLuint relief_unit, GLuint color_unit) const {
+  glBindTextureUnit(relief_unit, relief_);
+  glBindTextureUnit(color_unit, color_);
+}
+
+GpuBase::GpuBase(const BaseGeometry& g) {
+  glCreateVertexArrays(1, &vao_);
+  glCreateBuffers(1, &vbo_);
+  glCreateBuffers(1, &ibo_);
+  glNamedBufferStorage(vbo_, g.vertices.size() * sizeof(BaseVertex), g.vertices.data(), 0);
+  glNamedBufferStorage(ibo_, g.indices.size() * sizeof(unsigned), g.indices.data(), 0);
+  glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, sizeof(BaseVertex));
+  glVertexArrayElementBuffer(vao_, ibo_);
+  const struct {
+    GLuint location;
+    GLint size;
+    size_t offset;
+  } attributes[] = {{0, 3, offsetof(BaseVertex, position)},
+                    {1, 2, offsetof(BaseVertex, uv)},
+                    {2, 3, offsetof(BaseVertex, dpdu)},
+                    {3, 3, offsetof(BaseVertex, dpdv)},
+                    {4, 3, offsetof(BaseVertex, normal)}};
+  for (const auto& a : attributes) {
+    glEnableVertexArrayAttrib(vao_, a.location);
+    glVertexArrayAttribFormat(vao_, a.location, a.size, GL_FLOAT, GL_FALSE,
+                              static_cast<GLuint>(a.offset));
+    glVertexArrayAttribBinding(vao_, a.location, 0);
+  }
+  index_count_ = static_cast<GLsizei>(g.indices.size());
+}
+
+GpuBase::~GpuBase() {
+  glDeleteVertexArrays(1, &vao_);
+  glDeleteBuffers(1, &vbo_);
+  glDeleteBuffers(1, &ibo_);
+}
+
+void GpuBase::draw() const {
+  glBindVertexArray(vao_);
+  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+}
+
+}  // namespace rl

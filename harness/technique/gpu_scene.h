@@ -1,0 +1,38 @@
+#pragma once
+// GPU resources shared by every technique of one (scene, texture resolution): the relief and
+// colour textures and the base geometry. Created once, reused by all rows that need them.
+#include <epoxy/gl.h>
+
+#include "relief/relief_map.h"
+#include "scene/scene.h"
+
+namespace rl {
+
+class GpuRelief {
+ public:
+  explicit GpuRelief(const ReliefMap& map);  // RGBA8 when the map is quantised, else RGBA32F
+  ~GpuRelief();
+  GpuRelief(const GpuRelief&) = delete;
+  GpuRelief& operator=(const GpuRelief&) = delete;
+  void bind(GLuint relief_unit = 0, GLuint color_unit = 1) const;
+  size_t bytes() const { return bytes_; }
+
+ private:
+  GLuint relief_ = 0, color_ = 0;
+  size_t bytes_ = 0;
+};
+
+class GpuBase {
+ public:
+  explicit GpuBase(const BaseGeometry& geometry);
+  ~GpuBase();
+  GpuBase(const GpuBase&) = delete;
+  GpuBase& operator=(const GpuBase&) = delete;
+  void draw() const;
+
+ private:
+  GLuint vao_ = 0, vbo_ = 0, ibo_ = 0;
+  GLsizei index_count_ = 0;
+};
+
+}  // namespace rl

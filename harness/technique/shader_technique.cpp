@@ -1,0 +1,120 @@
+#include "technique/shader_technique.h"
+
+#include <algorithm>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl/render_target.h"
+
+namespace rl {
+namespace {
+
+void set_vec3(GLuint p, const char* name, const glm::dvec3& v) {
+  glProgramUniform3f(p, glGetUniformLocation(p, name), float(v.x), float(v.y), float(v.z));
+}
+void set_float(GLuint p, const char* name, double v) {
+  glProgramUniform1f(p, glGetUniformLocation(p, name), float(v));
+}
+
+}  // namespace
+
+ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Kind target) const {
+  ProgramDesc d;
+  d.owner = info().name;
+  d.vertex_file = "harness/glsl/base.vert";
+  d.fragment_files = {intersect_file(), "harness/glsl/surface_main.glsl"};
+  d.defines = parameter_defines();
+  for (Effect e : effects.list()) d.defines[effect_define(e)] = "1";
+  if (target == RenderTarget::Kind::GBuffer) d.defines["RL_GBUFFER"] = "1";
+  return d;
+}
+
+ProgramDesc ShaderTechnique::probe_program() const {
+  ProgramDesc d;
+  d.owner = info().name;
+  d.vertex_file = "harness/glsl/fullscreen.vert";
+  d.fragment_files = {intersect_file(), "harness/glsl/probe_main.glsl"};
+  d.defines = parameter_defines();
+  d.defines["RL_PROBE"] = "1";
+  return d;
+}
+
+void ShaderTechnique::render(const FrameInput& frame, RenderTarget::Kind target) {
+  const GLuint p = ShaderLibrary::shared().program(surface_program(frame.effects, target));
+  glUseProgram(p);
+  const glm::mat4 view_proj(frame.camera.projection_matrix() * frame.camera.view_matrix());
+  glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "rl_view_projection"), 1, GL_FALSE,
+                            glm::value_ptr(view_proj));
+  const SceneDesc& s = frame.scene;
+  const PlanarBase base = planar_base(s);
+  set_vec3(p, "rl_eye", frame.camera.eye);
+  set_vec3(p, "rl_light", s.light_position);
+  set_float(p, "rl_depth_scale", s.depth);
+  set_float(p, "rl_depth_aspect", s.depth / glm::length(base.dpdu()));
+  set_float(p, "rl_shadow_bias", s.shadow_bias);
+  set_vec3(p, "rl_ambient", s.material.ambient);
+  set_vec3(p, "rl_diffuse", s.material.diffuse);
+  set_vec3(p, "rl_specular", s.material.specular);
+  set_float(p, "rl_shininess", s.material.shininess);
+  set_float(p, "rl_shadow_intensity", s.material.shadow_intensity);
+  frame.relief.bind();
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_CULL_FACE);
+  frame.base.draw();
+}
+
+std::vector<ProbeHit> ShaderTechnique::probe(const ReliefMap& map, const GpuRelief& relief,
+                                             const std::vector<ProbeRay>& rays,
+                                             double depth_aspect) {
+  (void)map;
+  std::vector<ProbeHit> hits(rays.size());
+  if (rays.empty()) return hits;
+  // Rays are laid out in rows of up to 1024 texels; one fragment traces one ray.
+  const int width = static_cast<int>(std::min<size_t>(rays.size(), 1024));
+  const int height = static_cast<int>((rays.size() + width - 1) / width);
+  std::vector<glm::vec4> origins(static_cast<size_t>(width) * height, glm::vec4(0, 0, 0, 0));
+  std::vector<glm::vec4> directions(origins.size(), glm::vec4(0, 0, 1, 0));
+  for (size_t i = 0; i < rays.size(); ++i) {
+    origins[i] = glm::vec4(rays[i].origin, 1);
+    directions[i] = glm::vec4(rays[i].direction, 0);
+  }
+  GLuint inputs[2];
+  glCreateTextures(GL_TEXTURE_2D, 2, inputs);
+  const std::vector<glm::vec4>* data[2] = {&origins, &directions};
+  for (int i = 0; i < 2; ++i) {
+    glTextureStorage2D(inputs[i], 1, GL_RGBA32F, width, height);
+    glTextureSubImage2D(inputs[i], 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, data[i]->data());
+    glTextureParameteri(inputs[i], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(inputs[i], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  }
+  RenderTarget target(width, height, RenderTarget::Kind::GBuffer);
+  target.bind_and_clear();
+  const GLuint p = ShaderLibrary::shared().program(probe_program());
+  glUseProgram(p);
+  set_float(p, "rl_depth_aspect", depth_aspect);
+  relief.bind();
+  glBindTextureUnit(2, inputs[0]);
+  glBindTextureUnit(3, inputs[1]);
+  glDisable(GL_DEPTH_TEST);
+  GLuint vao;
+  glCreateVertexArrays(1, &vao);
+  glBindVertexArray(vao);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  GBuffer out;
+  target.read_back(out);
+  glDeleteVertexArrays(1, &vao);
+  glDeleteTextures(2, inputs);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const glm::vec4 a = out.color[i], b = out.position[i];
+    hits[i].t = a.x;
+    hits[i].uv = glm::vec2(a.y, a.z);
+    hits[i].fetches = static_cast<int>(a.w);
+    hits[i].depth = b.x;
+    hits[i].layer = static_cast<int>(b.y);
+    hits[i].hit = b.z > 0.5f;
+  }
+  return hits;
+}
+
+}  // namespace rl

@@ -1,0 +1,32 @@
+#pragma once
+// Base for techniques that are one GLSL intersection routine, `RlHit rl_intersect(vec3 p,
+// vec3 s)`, run per fragment of the base surface. The harness owns the passes around it:
+// harness/glsl/surface_main.glsl (view ray, shading, self-shadow ray, G-buffer outputs) and
+// harness/glsl/probe_main.glsl (ray-probe mode), so every such technique is measured alike.
+#include <string>
+
+#include "gl/shader_library.h"
+#include "technique/technique.h"
+
+namespace rl {
+
+class ShaderTechnique : public Technique {
+ public:
+  using Technique::Technique;
+
+  void render(const FrameInput& frame, RenderTarget::Kind target) override;
+  std::vector<ProbeHit> probe(const ReliefMap& map, const GpuRelief& relief,
+                              const std::vector<ProbeRay>& rays, double depth_aspect) override;
+
+  // The program a render with these effects and this target uses (tests inspect its source).
+  ProgramDesc surface_program(EffectSet effects, RenderTarget::Kind target) const;
+  ProgramDesc probe_program() const;
+
+ protected:
+  // GLSL file defining rl_intersect, e.g. "techniques/relief/relief.glsl".
+  virtual std::string intersect_file() const = 0;
+  // #defines for the parameters, e.g. {"RL_LINEAR_STEPS", "32"}.
+  virtual Defines parameter_defines() const { return {}; }
+};
+
+}  // namespace rl

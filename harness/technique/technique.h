@@ -1,0 +1,113 @@
+#pragma once
+// The technique plugin interface. A technique is a class registered by name with
+// RL_REGISTER_TECHNIQUE (like Mitsuba's plugin macros). Its static describe() gives the
+// citation, the effects it supports and its parameters, so a config is checked before any
+// work; an instance is made per parameter setting, prepared once per relief asset (timed as
+// precompute), then rendered per view.
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/effects.h"
+#include "core/params.h"
+#include "gl/render_target.h"
+#include "relief/relief_map.h"
+#include "scene/scene.h"
+#include "technique/gpu_scene.h"
+
+namespace rl {
+
+struct TechniqueInfo {
+  std::string name;      // registry key, e.g. "relief"
+  std::string title;     // e.g. "Relief mapping (linear + binary search)"
+  std::string citation;  // paper and section
+  EffectSet effects;     // effects it can simulate when a scene asks for them
+  std::vector<ParamSpec> params;
+};
+
+// What render() draws with: the scene, its GPU resources and the view.
+struct FrameInput {
+  const SceneDesc& scene;
+  const ReliefMap& map;
+  const GpuRelief& relief;
+  const GpuBase& base;
+  const Camera& camera;
+  EffectSet effects;  // exactly the scene's requested effects
+};
+
+// A tangent-space ray for ray-probe mode: (u, v, depth)(t) = origin + t * direction, with
+// direction.z = 1 (t counts depth units).
+struct ProbeRay {
+  glm::vec3 origin;
+  glm::vec3 direction;
+};
+
+struct ProbeHit {
+  float t = 0;
+  glm::vec2 uv{0};
+  float depth = 0;
+  int layer = 0;
+  bool hit = false;
+  int fetches = 0;
+};
+
+class Technique {
+ public:
+  explicit Technique(ParamValues params) : params_(std::move(params)) {}
+  virtual ~Technique() = default;
+  virtual const TechniqueInfo& info() const = 0;
+
+  // Offline work on the asset (safety radii, cone maps, curvature...). Timed by the harness.
+  virtual void prepare(const ReliefMap& map) { (void)map; }
+  // Draws the base (or the technique's own proxy geometry) into the bound render target.
+  // A ColorOnly target is the timing variant: no G-buffer outputs are compiled in.
+  virtual void render(const FrameInput& frame, RenderTarget::Kind target) = 0;
+  // Runs the technique's intersection routine on a batch of tangent-space rays.
+  virtual std::vector<ProbeHit> probe(const ReliefMap& map, const GpuRelief& relief,
+                                      const std::vector<ProbeRay>& rays, double depth_aspect) = 0;
+  // Bytes of the technique's own textures and buffers, beyond the shared relief + colour maps.
+  virtual size_t memory_bytes() const { return 0; }
+
+  const ParamValues& params() const { return params_; }
+  double param(const std::string& name) const { return params_.at(name); }
+
+ protected:
+  ParamValues params_;
+};
+
+struct TechniqueEntry {
+  TechniqueInfo info;
+  std::function<std::unique_ptr<Technique>(const ParamValues&)> create;
+};
+
+class TechniqueRegistry {
+ public:
+  static TechniqueRegistry& instance();
+  void add(TechniqueEntry entry);
+  const TechniqueEntry* find(const std::string& name) const;
+  std::vector<std::string> names() const;
+  // Creates `name` with its defaults overridden by `params`; throws ConfigError on unknown
+  // names or bad values (naming `where`).
+  std::unique_ptr<Technique> create(const std::string& name, const ParamValues& params,
+                                    const std::string& where) const;
+
+ private:
+  std::map<std::string, TechniqueEntry> entries_;
+};
+
+template <typename T>
+struct TechniqueRegistrar {
+  TechniqueRegistrar() {
+    TechniqueRegistry::instance().add(
+        {T::describe(), [](const ParamValues& p) { return std::make_unique<T>(p); }});
+  }
+};
+
+#define RL_REGISTER_TECHNIQUE(Class) \
+  static const ::rl::TechniqueRegistrar<Class> rl_technique_registrar_##Class
+
+}  // namespace rl

@@ -1,0 +1,198 @@
+#include "truth/heightfield_truth.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "core/parallel.h"
+
+namespace rl {
+namespace {
+
+// Largest |C| = |d00 - d10 - d01 + d11| over the bilinear cells: the twist that makes a
+// bilinear patch non-planar.
+double max_twist(const ReliefMap& map) {
+  double m = 0;
+  for (int y = 0; y < map.height; ++y)
+    for (int x = 0; x < map.width; ++x)
+      m = std::max(m, std::abs(double(map.depth_texel(x, y)) - map.depth_texel(x + 1, y) -
+                               map.depth_texel(x, y + 1) + map.depth_texel(x + 1, y + 1)));
+  return m;
+}
+
+void embree_error(void*, RTCError code, const char* message) {
+  throw std::runtime_error("Embree error " + std::to_string(int(code)) + ": " +
+                           (message ? message : ""));
+}
+
+}  // namespace
+
+HeightfieldTruth::HeightfieldTruth(const ReliefMap& map, double tolerance, size_t max_vertices,
+                                   int forced_subdivision) {
+  const auto start = std::chrono::steady_clock::now();
+  const double twist = max_twist(map);
+  const int max_k = std::max(
+      1, static_cast<int>(std::sqrt(double(max_vertices)) / std::max(map.width, map.height)));
+  const int needed = twist > 0 ? int(std::ceil(std::sqrt(twist / (4 * tolerance)))) : 1;
+  subdivision_ = forced_subdivision > 0 ? forced_subdivision : std::clamp(needed, 1, max_k);
+  bound_ = twist / (4.0 * subdivision_ * subdivision_);
+  max_depth_ = map.max_depth();
+  offset_ = glm::dvec2(0.5 / map.width, 0.5 / map.height);
+
+  device_ = rtcNewDevice(nullptr);
+  if (!device_) throw std::runtime_error("cannot create an Embree device");
+  rtcSetDeviceErrorFunction(device_, embree_error, nullptr);
+  scene_ = rtcNewScene(device_);
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+
+  const int nu = map.width * subdivision_ + 1, nv = map.height * subdivision_ + 1;
+  RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_GRID);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), size_t(nu) * nv));
+  const int k = subdivision_;
+  parallel_for(
+      size_t(nv),
+      [&](size_t begin, size_t end) {
+        for (size_t b = begin; b < end; ++b) {
+          for (int a = 0; a < nu; ++a) {
+            // Vertex (a, b) lies in texel-centre coordinates at (a / k, b / k): exactly on the
+            // crease lines every k vertices. Depth is the bilinear sample there.
+            const double u = offset_.x + double(a) / (double(k) * map.width);
+            const double v = offset_.y + double(b) / (double(k) * map.height);
+            float* p = vertices + 3 * (b * size_t(nu) + a);
+            p[0] = float(u);
+            p[1] = float(v);
+            p[2] = float(map.sample_depth(u, v));
+          }
+        }
+      },
+      16);
+  // Grids are limited to 32767 vertices a side; split into bands if needed.
+  const int band = 32766;
+  std::vector<RTCGrid> grids;
+  for (int v0 = 0; v0 < nv - 1; v0 += band)
+    for (int u0 = 0; u0 < nu - 1; u0 += band) {
+      RTCGrid g;
+      g.startVertexID = unsigned(v0 * nu + u0);
+      g.stride = unsigned(nu);
+      g.width = static_cast<unsigned short>(std::min(band, nu - 1 - u0) + 1);
+      g.height = static_cast<unsigned short>(std::min(band, nv - 1 - v0) + 1);
+      grids.push_back(g);
+    }
+  auto* grid_buffer = static_cast<RTCGrid*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_GRID, 0, RTC_FORMAT_GRID, sizeof(RTCGrid), grids.size()));
+  std::copy(grids.begin(), grids.end(), grid_buffer);
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(scene_, geom);
+  rtcReleaseGeometry(geom);
+  rtcCommitScene(scene_);
+  build_ms_ =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+HeightfieldTruth::~HeightfieldTruth() {
+  if (scene_) rtcReleaseScene(scene_);
+  if (device_) rtcReleaseDevice(device_);
+}
+
+template <typename CellQuery>
+bool HeightfieldTruth::walk(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,
+                            double t_max, CellQuery&& query) const {
+  // Tile cell (I, J) covers u in [offset + I, offset + I + 1); the tile geometry sits at I = J = 0.
+  const glm::dvec3 start = origin + direction * t_min;
+  double cu = start.x - offset_.x, cv = start.y - offset_.y;
+  long I = static_cast<long>(std::floor(cu)), J = static_cast<long>(std::floor(cv));
+  const double inf = std::numeric_limits<double>::infinity();
+  const int si = direction.x > 0 ? 1 : (direction.x < 0 ? -1 : 0);
+  const int sj = direction.y > 0 ? 1 : (direction.y < 0 ? -1 : 0);
+  auto boundary_t = [&](double o, double d, long cell, int s) {
+    if (s == 0) return inf;
+    const double edge = s > 0 ? double(cell + 1) : double(cell);
+    return t_min + (edge - o) / d;
+  };
+  double next_i = boundary_t(cu, direction.x, I, si);
+  double next_j = boundary_t(cv, direction.y, J, sj);
+  const double delta_i = si ? 1.0 / std::abs(direction.x) : inf;
+  const double delta_j = sj ? 1.0 / std::abs(direction.y) : inf;
+  double t_enter = t_min;
+  // A ray crosses at most |du| + |dv| tile edges per unit t: the walk is bounded.
+  const double span = (std::abs(direction.x) + std::abs(direction.y)) * (t_max - t_min);
+  const long max_cells = static_cast<long>(std::min(span, 1e7)) + 3;
+  for (long n = 0; n < max_cells && t_enter <= t_max; ++n) {
+    const double t_exit = std::min({next_i, next_j, t_max});
+    // Slightly overlapping intervals: a hit exactly on a tile edge is found from either side.
+    const double eps = 1e-7 * (1.0 + t_exit);
+    const glm::dvec3 local = origin - glm::dvec3(double(I), double(J), 0.0);
+    if (query(local, std::max(t_min, t_enter - eps), std::min(t_max, t_exit + eps),
+              glm::dvec2(double(I), double(J))))
+      return true;
+    if (t_exit >= t_max) break;
+    t_enter = t_exit;
+    if (next_i <= next_j) {
+      I += si;
+      next_i += delta_i;
+    } else {
+      J += sj;
+      next_j += delta_j;
+    }
+  }
+  return false;
+}
+
+TruthHit HeightfieldTruth::intersect(const glm::dvec3& origin, const glm::dvec3& direction,
+                                     double t_min, double t_max) const {
+  ++primary_rays_;
+  TruthHit result;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  walk(origin, direction, t_min, t_max,
+       [&](const glm::dvec3& local, double t0, double t1, glm::dvec2 cell) {
+         RTCRayHit rh{};
+         rh.ray.org_x = float(local.x);
+         rh.ray.org_y = float(local.y);
+         rh.ray.org_z = float(local.z);
+         rh.ray.dir_x = float(direction.x);
+         rh.ray.dir_y = float(direction.y);
+         rh.ray.dir_z = float(direction.z);
+         rh.ray.tnear = float(t0);
+         rh.ray.tfar = float(t1);
+         rh.ray.mask = 0xFFFFFFFFu;
+         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+         rtcIntersect1(scene_, &context, &rh);
+         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+         result.hit = true;
+         result.t = rh.ray.tfar;
+         result.point = origin + direction * result.t;
+         (void)cell;
+         return true;
+       });
+  return result;
+}
+
+bool HeightfieldTruth::occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,
+                                double t_max) const {
+  ++shadow_rays_;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  return walk(origin, direction, t_min, t_max,
+              [&](const glm::dvec3& local, double t0, double t1, glm::dvec2) {
+                RTCRay ray{};
+                ray.org_x = float(local.x);
+                ray.org_y = float(local.y);
+                ray.org_z = float(local.z);
+                ray.dir_x = float(direction.x);
+                ray.dir_y = float(direction.y);
+                ray.dir_z = float(direction.z);
+                ray.tnear = float(t0);
+                ray.tfar = float(t1);
+                ray.mask = 0xFFFFFFFFu;
+                rtcOccluded1(scene_, &context, &ray);
+                return ray.tfar < 0;  // Embree sets tfar = -inf on occlusion
+              });
+}
+
+}  // namespace rl

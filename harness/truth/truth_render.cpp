@@ -1,0 +1,102 @@
+#include "truth/truth_render.h"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+
+#include "core/parallel.h"
+
+namespace rl {
+namespace {
+constexpr double kAboveTop = 1e-6;  // depth units above the top plane where truth rays start
+}  // namespace
+
+glm::dvec3 shade(const Material& m, const glm::dvec3& albedo, const glm::dvec3& n,
+                 const glm::dvec3& to_light, const glm::dvec3& to_eye, bool in_shadow) {
+  const double diff = std::max(glm::dot(n, to_light), 0.0);
+  const double spec =
+      std::pow(std::max(glm::dot(n, glm::normalize(to_light + to_eye)), 0.0), m.shininess);
+  const glm::dvec3 lit = in_shadow ? albedo * m.diffuse * diff * m.shadow_intensity
+                                   : albedo * m.diffuse * diff + m.specular * spec;
+  return m.ambient * albedo + lit;
+}
+
+GBuffer render_truth(const HeightfieldTruth& truth, const ReliefMap& map, const SceneDesc& scene,
+                     const Camera& camera, EffectSet effects, TruthStats* stats) {
+  const auto start = std::chrono::steady_clock::now();
+  const uint64_t primary0 = truth.primary_rays(), shadow0 = truth.shadow_rays();
+  const PlanarBase base = planar_base(scene);
+  const bool shadows = effects.has(Effect::SelfShadow);
+  const double bottom = std::min(1.0, double(truth.max_depth()) + 1e-4);
+  GBuffer g;
+  g.resize(camera.width, camera.height);
+  std::atomic<long> unresolved{0};
+  const size_t pixels = size_t(camera.width) * camera.height;
+
+  parallel_for(
+      pixels,
+      [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+          const int x = int(i % camera.width), y = int(i / camera.width);
+          glm::dvec3 eye, dir;
+          camera.pixel_ray(x, y, eye, dir);
+          const glm::dvec3 o = base.texture_from_world(eye);
+          const glm::dvec3 d = base.texture_direction(dir);  // t stays the world distance
+          if (d.z <= 0) continue;                            // never descends into the relief
+          const double t_top = -o.z / d.z;
+          const glm::dvec3 entry = o + d * t_top;
+          if (t_top <= 0 || entry.x < 0 || entry.y < 0 || entry.x > scene.tile ||
+              entry.y > scene.tile)
+            continue;  // misses the base: background
+          // Start a hair above the top plane: a ray starting exactly on a flat top (depth 0)
+          // would miss it at t = 0 and continue inside the solid.
+          const double t_start = t_top - kAboveTop / d.z;
+          const glm::dvec3 start = o + d * t_start;
+          const double t_bottom = (bottom - start.z) / d.z;
+          TruthHit h = truth.intersect(start, d, 0.0, t_bottom);
+          if (!h.hit) {
+            // Rounding let the ray through the floor; it is inside the relief there.
+            ++unresolved;
+            h.point = start + d * t_bottom;
+            h.t = t_bottom;
+          }
+          const glm::dvec3 world = eye + dir * (t_start + h.t);
+          const glm::dvec2 uv(h.point.x, h.point.y);
+          const glm::dvec3 tn = decode_normal(map.sample_relief(uv.x, uv.y));
+          const glm::dvec3 n =
+              glm::normalize(tn.x * glm::normalize(base.dpdu()) +
+                             tn.y * glm::normalize(base.dpdv()) + tn.z * base.normal());
+          const glm::dvec3 albedo(map.sample_color(uv.x, uv.y));
+          const glm::dvec3 to_light = glm::normalize(scene.light_position - world);
+          bool in_shadow = false;
+          if (shadows) {
+            const glm::dvec3 l = base.texture_direction(scene.light_position - world);
+            if (l.z >= 0) {
+              in_shadow = true;  // light at or below the hit (as the shaders decide)
+            } else {
+              // From the hit toward the light, up to where it leaves the relief at the top.
+              const double t_exit = std::min(1.0, -h.point.z / l.z);
+              const double t_start = 1e-4 / std::max(1.0, glm::length(l));
+              in_shadow = truth.occluded(h.point, l, t_start, t_exit);
+            }
+          }
+          const glm::dvec3 c = shade(scene.material, albedo, n, to_light, -dir, in_shadow);
+          g.color[i] = glm::vec4(glm::vec3(c), 1.0f);
+          g.position[i] = glm::vec4(glm::vec3(world), 1.0f);
+          g.normal[i] = glm::vec4(glm::vec3(n), in_shadow ? 1.0f : 0.0f);
+          g.hit[i] = glm::vec4(float(uv.x), float(uv.y), 0.0f, 0.0f);
+        }
+      },
+      256);
+
+  if (stats) {
+    stats->trace_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    stats->primary_rays = truth.primary_rays() - primary0;
+    stats->shadow_rays = truth.shadow_rays() - shadow0;
+    stats->unresolved = unresolved.load();
+  }
+  return g;
+}
+
+}  // namespace rl

@@ -1,0 +1,29 @@
+#pragma once
+// Fills a G-buffer from the Embree truth with the same camera, base frame, tiling, depth
+// scale, light and shading formula as the techniques. Shadow rays are traced only when the
+// effects ask for self_shadow.
+#include <cstdint>
+
+#include "core/effects.h"
+#include "core/gbuffer.h"
+#include "relief/relief_map.h"
+#include "scene/scene.h"
+#include "truth/heightfield_truth.h"
+
+namespace rl {
+
+struct TruthStats {
+  double trace_ms = 0;
+  uint64_t primary_rays = 0;
+  uint64_t shadow_rays = 0;
+  long unresolved = 0;  // covered pixels whose ray found no surface (should be 0)
+};
+
+// harness/glsl/shading.glsl, in double precision.
+glm::dvec3 shade(const Material& m, const glm::dvec3& albedo, const glm::dvec3& n,
+                 const glm::dvec3& to_light, const glm::dvec3& to_eye, bool in_shadow);
+
+GBuffer render_truth(const HeightfieldTruth& truth, const ReliefMap& map, const SceneDesc& scene,
+                     const Camera& camera, EffectSet effects, TruthStats* stats = nullptr);
+
+}  // namespace rl

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages ReliefLab needs. Idempotent: when every
+# package is already present it only runs dpkg-query and exits in well under a second.
+set -euo pipefail
+
+packages=(
+  cmake g++ make pkg-config
+  libembree-dev                       # truth: Embree 3 ray tracing
+  libopenimageio-dev openimageio-tools # image files (the tools package is needed by OIIO's CMake config)
+  libopencv-core-dev libopencv-imgproc-dev # PSNR, SSIM, heat-map colour maps
+  libglm-dev                          # maths
+  libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri # headless GL 4.5 via EGL
+  libtomlplusplus-dev                 # sweep configs
+  libcli11-dev                        # command line
+  nlohmann-json3-dev                  # run manifests
+  libsqlite3-dev                      # result store (atomic, resumable)
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null || true)
+  [ "$status" = "installed" ] || missing+=("$p")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,28 @@
+// Normal mapping: the baseline every relief technique is compared with.
+#include "technique/shader_technique.h"
+
+namespace rl {
+
+class NormalMapping final : public ShaderTechnique {
+ public:
+  using ShaderTechnique::ShaderTechnique;
+  static TechniqueInfo describe() {
+    return {"normal",
+            "Normal mapping",
+            "Book chapter 5, 'Parallax mapping' and Figure 5.9 (the normal-map baseline); "
+            "Chapter 3 bump mapping",
+            {},
+            {}};
+  }
+  const TechniqueInfo& info() const override {
+    static const TechniqueInfo i = describe();
+    return i;
+  }
+
+ protected:
+  std::string intersect_file() const override { return "techniques/normal/normal.glsl"; }
+};
+
+RL_REGISTER_TECHNIQUE(NormalMapping);
+
+}  // namespace rl

@@ -1,0 +1,36 @@
+// Relief mapping with linear + binary search, book chapter 5 Listings 5.3 / 5.4.
+#include "technique/shader_technique.h"
+
+namespace rl {
+
+class ReliefMapping final : public ShaderTechnique {
+ public:
+  using ShaderTechnique::ShaderTechnique;
+  static TechniqueInfo describe() {
+    return {"relief",
+            "Relief mapping (linear + binary search)",
+            "Book chapter 5, 'Relief Texture mapping', Listings 5.3 and 5.4 "
+            "(Policarpo, Oliveira & Comba 2005)",
+            {Effect::SelfShadow},
+            {{"linear_steps", ParamKind::Int, 10, 2, 1024,
+              "linear search steps through the depth range (Listing 5.3: 10, or 20 in its "
+              "double-precision variant)"},
+             {"binary_steps", ParamKind::Int, 5, 0, 32,
+              "binary search refinements after the linear search (Listing 5.3: 5)"}}};
+  }
+  const TechniqueInfo& info() const override {
+    static const TechniqueInfo i = describe();
+    return i;
+  }
+
+ protected:
+  std::string intersect_file() const override { return "techniques/relief/relief.glsl"; }
+  Defines parameter_defines() const override {
+    return {{"RL_LINEAR_STEPS", std::to_string(static_cast<int>(param("linear_steps")))},
+            {"RL_BINARY_STEPS", std::to_string(static_cast<int>(param("binary_steps")))}};
+  }
+};
+
+RL_REGISTER_TECHNIQUE(ReliefMapping);
+
+}  // namespace rl
