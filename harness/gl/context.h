@@ -8,6 +8,7 @@ namespace rl {
 class GlContext {
  public:
   // The process-wide context, created on first use and made current on the calling thread.
+  // Every GL resource (textures, buffers, render targets, programs) calls it first.
   static GlContext& shared();
 
   const std::string& renderer() const { return renderer_; }

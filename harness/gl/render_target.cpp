@@ -3,11 +3,13 @@
 #include <string>
 
 #include "core/error.h"
+#include "gl/context.h"
 
 namespace rl {
 
 RenderTarget::RenderTarget(int width, int height, Kind kind)
     : width_(width), height_(height), kind_(kind) {
+  GlContext::shared();
   attachments_ = kind == Kind::GBuffer ? 4 : 1;
   glCreateFramebuffers(1, &fbo_);
   glCreateTextures(GL_TEXTURE_2D, attachments_, color_);

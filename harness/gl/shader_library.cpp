@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "gl/context.h"
 #include "gl/embedded_files.h"
 
 namespace rl {
@@ -104,6 +105,7 @@ std::string map_glsl_log(const std::string& log, const std::vector<std::string>&
 }
 
 ShaderLibrary& ShaderLibrary::shared() {
+  GlContext::shared();  // programs live in the shared context
   static ShaderLibrary library;
   return library;
 }

@@ -23,6 +23,14 @@ struct RlHit {
   bool hit;     // false: the routine found no surface
 };
 
+// normalize(rgb * 2 - 1); a texel that encodes the zero vector (quantised mid-grey) gives the
+// base normal instead of NaN. relief_map.cpp's decode_normal() is the same on the CPU.
+vec3 rl_decode_normal(vec4 texel) {
+  vec3 n = texel.xyz * 2.0 - 1.0;
+  float len = length(n);
+  return len > 0.0 ? n / len : vec3(0.0, 0.0, 1.0);
+}
+
 RlHit rl_hit_on_ray(vec3 p, vec3 s, float t, bool hit) {
   RlHit h;
   h.t = t;

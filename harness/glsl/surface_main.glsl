@@ -42,7 +42,7 @@ void main() {
   // The point the technique claims: its hit uv at its hit depth, in the base's frame.
   vec3 hit_world = v_world + v_dpdu * (h.uv.x - v_uv.x) + v_dpdv * (h.uv.y - v_uv.y) -
                    N * (h.depth * rl_depth_scale);
-  vec3 tn = normalize(RL_FETCH(rl_relief, h.uv).xyz * 2.0 - 1.0);
+  vec3 tn = rl_decode_normal(RL_FETCH(rl_relief, h.uv));
   vec3 n = normalize(tn.x * normalize(v_dpdu) + tn.y * normalize(v_dpdv) + tn.z * N);
   vec3 albedo = RL_FETCH(rl_color, h.uv).rgb;
   vec3 to_light = normalize(rl_light - hit_world);

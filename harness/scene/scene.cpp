@@ -65,7 +65,9 @@ Camera make_camera(const SceneDesc& scene, const View& view, int width, int heig
   double half_fov = glm::radians(scene.fov_deg) * 0.5;
   if (width < height) half_fov = std::atan(std::tan(half_fov) * width / height);
   const double distance = scene.distance > 0 ? scene.distance : radius / std::sin(half_fov);
-  cam.target = glm::dvec3(0, 0, -0.5 * scene.depth);
+  // Aim at the top of the relief: at grazing elevations a target inside the relief would put
+  // the eye below the top plane.
+  cam.target = glm::dvec3(0, 0, 0);
   const glm::dvec3 dir(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
   cam.eye = cam.target + dir * distance;
   // d(dir)/d(elevation): perpendicular to the view direction at every elevation, so the

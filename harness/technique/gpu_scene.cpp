@@ -3,6 +3,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "gl/context.h"
+
 namespace rl {
 namespace {
 
@@ -22,6 +24,7 @@ GLuint make_texture(int w, int h, bool eight_bit, const std::vector<glm::vec4>& 
 }  // namespace
 
 GpuRelief::GpuRelief(const ReliefMap& map) {
+  GlContext::shared();
   relief_ = make_texture(map.width, map.height, map.quantized, map.relief);
   color_ = make_texture(map.width, map.height, map.quantized, map.color);
   bytes_ = map.gpu_bytes();
@@ -38,6 +41,7 @@ void GpuRelief::bind(GLuint relief_unit, GLuint color_unit) const {
 }
 
 GpuBase::GpuBase(const BaseGeometry& g) {
+  GlContext::shared();
   glCreateVertexArrays(1, &vao_);
   glCreateBuffers(1, &vbo_);
   glCreateBuffers(1, &ibo_);

@@ -1,0 +1,72 @@
+#include "support/test_support.h"
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "gl/context.h"
+#include "gl/render_target.h"
+#include "scene/relief_asset.h"
+#include "technique/gpu_scene.h"
+
+namespace rl::test {
+
+SceneDesc procedural_scene(const std::string& kind, int resolution, double depth, bool quantize,
+                           const std::map<std::string, double>& options) {
+  SceneDesc s;
+  s.name = kind;
+  s.relief.procedural = kind;
+  s.relief.options = options;
+  s.relief.native_resolution = resolution;
+  s.depth = depth;
+  s.quantize = quantize;
+  return s;
+}
+
+Measured measure(const SceneDesc& scene, const std::string& technique, const ParamValues& params,
+                 const View& view, int size) {
+  GlContext::shared();
+  const int res = scene.relief.native_resolution;
+  ReliefMap map = build_relief_asset(scene, res);
+  GpuRelief relief(map);
+  GpuBase base(make_base_geometry(scene));
+  HeightfieldTruth truth(map);
+  const Camera camera = make_camera(scene, view, size, size);
+  Measured m;
+  m.truth = render_truth(truth, map, scene, camera, scene.effects, &m.truth_stats);
+  auto t = TechniqueRegistry::instance().create(technique, params, "test");
+  t->prepare(map);
+  FrameInput frame{scene, map, relief, base, camera, scene.effects};
+  RenderTarget target(size, size, RenderTarget::Kind::GBuffer);
+  target.bind_and_clear();
+  t->render(frame, RenderTarget::Kind::GBuffer);
+  target.read_back(m.technique);
+  m.metrics =
+      compare_gbuffers(m.technique, m.truth, scene.depth, planar_base(scene).texel_world(res));
+  return m;
+}
+
+std::string scratch_dir(const std::string& name) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "relieflab-tests" /
+      (std::string(info->test_suite_name()) + "." + info->name() + "." + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir.parent_path());
+  return dir.string();
+}
+
+int run_cli(const std::string& args, std::string& output) {
+  const std::string cmd = std::string(RELIEFLAB_CLI) + " " + args + " 2>&1";
+  output.clear();
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return -1;
+  std::array<char, 4096> buf;
+  while (fgets(buf.data(), buf.size(), pipe)) output += buf.data();
+  const int status = pclose(pipe);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace rl::test

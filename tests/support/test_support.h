@@ -1,0 +1,39 @@
+#pragma once
+// Helpers shared by the tests: small scenes, one technique rendered into a G-buffer, its
+// truth, and a scratch folder per test.
+#include <memory>
+#include <string>
+
+#include "core/gbuffer.h"
+#include "metrics/metrics.h"
+#include "relief/relief_map.h"
+#include "scene/scene.h"
+#include "technique/technique.h"
+#include "truth/truth_render.h"
+
+namespace rl::test {
+
+// A planar scene with a procedural relief (float textures unless quantize is set).
+SceneDesc procedural_scene(const std::string& kind, int resolution, double depth = 0.08,
+                           bool quantize = false,
+                           const std::map<std::string, double>& options = {});
+
+struct Measured {
+  GBuffer technique;
+  GBuffer truth;
+  ImageMetrics metrics;
+  TruthStats truth_stats;
+};
+
+// Renders `technique` with `params` on `scene` at `view` into a size x size G-buffer and
+// measures it against a freshly traced truth.
+Measured measure(const SceneDesc& scene, const std::string& technique, const ParamValues& params,
+                 const View& view, int size = 96);
+
+// A fresh, empty folder under the build's temporary directory.
+std::string scratch_dir(const std::string& name);
+
+// Runs the relieflab CLI with `args`; returns its exit status, stderr+stdout in `output`.
+int run_cli(const std::string& args, std::string& output);
+
+}  // namespace rl::test

@@ -1,0 +1,135 @@
+// Bad input gets a clear error naming the file, key or value, and writes nothing: each case
+// runs the real CLI into a fresh output folder and checks the folder was never created, and
+// that a folder holding earlier results is left exactly as it was.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "support/test_support.h"
+
+namespace rl {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kGood = R"(
+[sweep]
+name = "ok"
+elevations = [45]
+viewports = [16]
+frames = 1
+[[scene]]
+name = "flat"
+relief = { procedural = "flat", resolution = 8 }
+[[technique]]
+name = "relief"
+linear_steps = [4]
+)";
+
+std::string write_config(const std::string& dir, const std::string& text) {
+  fs::create_directories(dir);
+  const std::string path = dir + "/sweep.toml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const size_t at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return s.replace(at, from.size(), to);
+}
+
+struct BadCase {
+  const char* name;
+  std::string text;
+  std::vector<std::string> expected;  // substrings of the message
+};
+
+TEST(ConfigErrors, EachNamesTheProblemAndWritesNothing) {
+  // Parallax cannot self-shadow; the scene asks for it.
+  const std::string parallax_on_shadowed_scene = replace(
+      replace(replace(kGood, "name = \"relief\"", "name = \"parallax\""), "linear_steps = [4]", ""),
+      "[[technique]]", "effects = [\"self_shadow\"]\n[[technique]]");
+  const std::vector<BadCase> cases = {
+      {"unknown_key",
+       replace(kGood, "frames = 1", "frames = 1\nframez = 2"),
+       {"sweep.toml:7", "unknown key 'framez'", "[sweep]"}},
+      {"unknown_technique",
+       replace(kGood, "name = \"relief\"", "name = \"releif\""),
+       {"unknown technique 'releif'", "relief"}},
+      {"unknown_parameter",
+       replace(kGood, "linear_steps = [4]", "linear_stepz = [4]"),
+       {"no parameter 'linear_stepz'"}},
+      {"out_of_range",
+       replace(kGood, "linear_steps = [4]", "linear_steps = [4, 0]"),
+       {"linear_steps", "outside [2, 1024]"}},
+      {"not_an_integer",
+       replace(kGood, "linear_steps = [4]", "linear_steps = [2.5]"),
+       {"linear_steps", "integer"}},
+      {"bad_elevation",
+       replace(kGood, "elevations = [45]", "elevations = [95]"),
+       {"elevations", "(0, 90]"}},
+      {"missing_file",
+       replace(kGood, "procedural = \"flat\", resolution = 8", "normal = \"no/such/map.png\""),
+       {"file not found: no/such/map.png"}},
+      {"unknown_procedural",
+       replace(kGood, "procedural = \"flat\"", "procedural = \"noise\""),
+       {"unknown procedural relief 'noise'"}},
+      {"unsupported_effect",
+       parallax_on_shadowed_scene,
+       {"technique 'parallax' does not support effect(s) self_shadow", "scene 'flat'"}},
+      {"unknown_effect",
+       replace(kGood, "[[technique]]", "effects = [\"self_shadows\"]\n[[technique]]"),
+       {"unknown effect 'self_shadows'"}},
+      {"toml_syntax",
+       replace(kGood, "frames = 1", "frames = = 1"),
+       {"sweep.toml:6", "TOML syntax error"}},
+  };
+  for (const BadCase& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string dir = test::scratch_dir(c.name);
+    const std::string config = write_config(dir, c.text);
+    const std::string out = dir + "/out";
+    std::string output;
+    EXPECT_EQ(test::run_cli("run " + config + " --out " + out, output), 2) << output;
+    EXPECT_NE(output.find("config error"), std::string::npos) << output;
+    for (const auto& e : c.expected)
+      EXPECT_NE(output.find(e), std::string::npos) << "expected '" << e << "' in: " << output;
+    EXPECT_FALSE(fs::exists(out)) << "a failed config wrote " << out;
+  }
+}
+
+TEST(ConfigErrors, EarlierResultsSurviveABadConfig) {
+  const std::string dir = test::scratch_dir("keep");
+  const std::string out = dir + "/out";
+  std::string output;
+  ASSERT_EQ(test::run_cli("run " + write_config(dir, kGood) + " --out " + out + " -q", output), 0)
+      << output;
+  const auto before = fs::last_write_time(out + "/results.sqlite");
+  const auto size = fs::file_size(out + "/rows.csv");
+  const std::string bad =
+      write_config(dir + "/bad", replace(kGood, "linear_steps = [4]", "linear_steps = [0]"));
+  EXPECT_EQ(test::run_cli("run " + bad + " --out " + out, output), 2);
+  EXPECT_EQ(fs::last_write_time(out + "/results.sqlite"), before);
+  EXPECT_EQ(fs::file_size(out + "/rows.csv"), size);
+}
+
+TEST(ConfigErrors, MissingConfigFile) {
+  std::string output;
+  EXPECT_EQ(test::run_cli("run /no/such/sweep.toml", output), 2);
+  EXPECT_NE(output.find("/no/such/sweep.toml: config file not found"), std::string::npos) << output;
+}
+
+TEST(Cli, ListAndHelp) {
+  std::string output;
+  ASSERT_EQ(test::run_cli("list", output), 0);
+  for (const char* s :
+       {"relief", "parallax", "normal", "Listing 5.3", "linear_steps", "self_shadow", "bricks"})
+    EXPECT_NE(output.find(s), std::string::npos) << s;
+  ASSERT_EQ(test::run_cli("--help", output), 0);
+  EXPECT_NE(output.find("run"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rl

@@ -1,0 +1,86 @@
+// Golden figures: error metrics of fixed cells, pinned in tests/golden/golden.json. A change
+// that makes a technique worse (more error, or more fetches for the same error) fails here.
+// Improvements pass and print a note; after checking them, regenerate the file with
+//   RELIEFLAB_UPDATE_GOLDEN=1 ctest --test-dir build -R Golden
+// llvmpipe renders deterministically, so values only move when the code does.
+#include <cstdlib>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/test_support.h"
+
+namespace rl {
+namespace {
+
+struct GoldenCell {
+  std::string label, kind, technique;
+  ParamValues params;
+  View view;
+};
+
+std::vector<GoldenCell> golden_cells() {
+  std::vector<GoldenCell> cells;
+  for (const char* kind : {"bricks", "pyramids", "sines"})
+    for (double el : {45.0, 20.0}) {
+      for (double steps : {8.0, 32.0})
+        cells.push_back({std::string(kind) + "/relief/ls" + std::to_string(int(steps)) + "/el" +
+                             std::to_string(int(el)),
+                         kind,
+                         "relief",
+                         {{"linear_steps", steps}, {"binary_steps", 5}},
+                         View{el, 30}});
+      cells.push_back({std::string(kind) + "/parallax/el" + std::to_string(int(el)),
+                       kind,
+                       "parallax",
+                       {},
+                       View{el, 30}});
+    }
+  return cells;
+}
+
+// Metrics pinned, and whether larger is worse.
+const std::vector<std::pair<std::string, bool>> kPinned = {
+    {"pos_err_rmse", true},        {"pos_err_p99", true}, {"artifact_pct", true},
+    {"normal_err_mean_deg", true}, {"psnr_db", false},    {"fetches_mean", true}};
+
+TEST(Golden, TechniquesAreNoWorseThanTheirGoldenFigures) {
+  const std::string path = std::string(RELIEFLAB_TEST_DIR) + "/golden/golden.json";
+  const bool update = std::getenv("RELIEFLAB_UPDATE_GOLDEN") != nullptr;
+  nlohmann::ordered_json golden;
+  if (!update) {
+    std::ifstream in(path);
+    ASSERT_TRUE(in) << path << " missing: run with RELIEFLAB_UPDATE_GOLDEN=1 to create it";
+    golden = nlohmann::ordered_json::parse(in);
+  }
+  nlohmann::ordered_json measured;
+  for (const GoldenCell& c : golden_cells()) {
+    SceneDesc scene = test::procedural_scene(c.kind, 64, 0.08, true);
+    test::Measured m = test::measure(scene, c.technique, c.params, c.view, 96);
+    for (const auto& [name, value] : m.metrics.named()) measured[c.label][name] = value;
+    if (update) continue;
+    SCOPED_TRACE(c.label);
+    ASSERT_TRUE(golden.contains(c.label)) << "no golden figures for this cell";
+    for (const auto& [metric, larger_is_worse] : kPinned) {
+      const double now = measured[c.label][metric], then = golden[c.label][metric];
+      // 1% relative (and a small absolute floor) for differences across Mesa versions.
+      const double slack = 0.01 * std::abs(then) + 1e-6;
+      if (larger_is_worse)
+        EXPECT_LE(now, then + slack) << metric << " got worse: " << then << " -> " << now;
+      else
+        EXPECT_GE(now, then - slack) << metric << " got worse: " << then << " -> " << now;
+      const bool better = larger_is_worse ? now < then - slack : now > then + slack;
+      if (better)
+        std::printf("note: %s %s improved %g -> %g; update the golden file\n", c.label.c_str(),
+                    metric.c_str(), then, now);
+    }
+  }
+  if (update) {
+    std::ofstream(path) << measured.dump(2) << "\n";
+    std::printf("wrote %s\n", path.c_str());
+  }
+}
+
+}  // namespace
+}  // namespace rl

@@ -1,0 +1,107 @@
+// Metrics on hand-made G-buffers with known answers.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "metrics/metrics.h"
+
+namespace rl {
+namespace {
+
+GBuffer filled(int w, int h) {
+  GBuffer g;
+  g.resize(w, h);
+  for (size_t i = 0; i < g.size(); ++i) {
+    g.color[i] = glm::vec4(0.5f, 0.5f, 0.5f, 1.0f);
+    g.position[i] = glm::vec4(0, 0, 0, 1);
+    g.normal[i] = glm::vec4(0, 0, 1, 0);
+    g.hit[i] = glm::vec4(0, 0, 0, 4);
+  }
+  return g;
+}
+
+TEST(ErrorStats, KnownValues) {
+  ErrorStats s = error_stats({1, 2, 3, 4});
+  EXPECT_DOUBLE_EQ(s.mean, 2.5);
+  EXPECT_DOUBLE_EQ(s.rmse, std::sqrt(7.5));
+  EXPECT_DOUBLE_EQ(s.max, 4);
+  EXPECT_DOUBLE_EQ(s.p99, 4);  // nearest rank: ceil(0.99 * 4) = 4th value
+  std::vector<double> hundred;
+  for (int i = 1; i <= 100; ++i) hundred.push_back(i);
+  EXPECT_DOUBLE_EQ(error_stats(hundred).p99, 99);
+  EXPECT_DOUBLE_EQ(error_stats({}).mean, 0);
+}
+
+TEST(Metrics, IdenticalBuffersHaveNoError) {
+  GBuffer a = filled(16, 16);
+  ImageMetrics m = compare_gbuffers(a, a, 0.1, 0.01);
+  EXPECT_EQ(m.truth_covered_px, 256);
+  EXPECT_EQ(m.missed_pct, 0);
+  EXPECT_EQ(m.pos_err.max, 0);
+  EXPECT_EQ(m.artifact_pct, 0);
+  EXPECT_NEAR(m.normal_err_mean_deg, 0, 1e-6);
+  EXPECT_EQ(m.psnr_db, 100);  // the stated cap for identical images
+  EXPECT_NEAR(m.ssim, 1.0, 1e-9);
+  EXPECT_EQ(m.fetches.mean, 4);
+  EXPECT_EQ(m.nonfinite_px, 0);
+}
+
+TEST(Metrics, CoveragePositionNormalsShadowsAndFetches) {
+  GBuffer truth = filled(10, 10), tech = filled(10, 10);
+  // 10 truth pixels left empty by the technique (missed); 5 empty truth pixels covered.
+  for (int i = 0; i < 10; ++i) tech.color[i].a = tech.position[i].w = 0;
+  for (int i = 10; i < 15; ++i) truth.color[i].a = truth.position[i].w = 0;
+  // 20 jointly covered pixels off by 0.05 world units (0.5 depth units, 5 texels).
+  for (int i = 20; i < 40; ++i) tech.position[i].x = 0.05f;
+  // 10 pixels with normals at 90 degrees; 7 with disagreeing shadows.
+  for (int i = 40; i < 50; ++i) tech.normal[i] = glm::vec4(1, 0, 0, 0);
+  for (int i = 50; i < 57; ++i) tech.normal[i].w = 1;
+  for (int i = 60; i < 100; ++i) tech.hit[i].w = 10;
+  ImageMetrics m = compare_gbuffers(tech, truth, 0.1, 0.01);
+  EXPECT_EQ(m.truth_covered_px, 95);
+  EXPECT_NEAR(m.missed_pct, 100.0 * 10 / 95, 1e-9);
+  EXPECT_NEAR(m.false_pct, 100.0 * 5 / 95, 1e-9);
+  const double both = 85;
+  EXPECT_NEAR(m.artifact_pct, 100.0 * 20 / both, 1e-9);
+  EXPECT_NEAR(m.pos_err.max, 0.5, 1e-6);
+  EXPECT_NEAR(m.pos_err_texels.max, 5.0, 1e-5);
+  EXPECT_NEAR(m.pos_err.mean, 0.5 * 20 / both, 1e-6);
+  EXPECT_NEAR(m.normal_err_mean_deg, 90.0 * 10 / both, 1e-4);
+  EXPECT_NEAR(m.shadow_disagree_pct, 100.0 * 7 / both, 1e-9);
+  // Fetches over the 90 technique-covered pixels: 50 x 4 and 40 x 10.
+  EXPECT_NEAR(m.fetches.mean, (50 * 4 + 40 * 10) / 90.0, 1e-9);
+  EXPECT_EQ(m.fetches.max, 10);
+}
+
+TEST(Metrics, PsnrOfAKnownDifference) {
+  GBuffer a = filled(32, 32), b = filled(32, 32);
+  for (auto& c : b.color) c = glm::vec4(0.6f, 0.6f, 0.6f, 1.0f);  // MSE = 0.01 -> 20 dB
+  EXPECT_NEAR(psnr_db(a, b), 20.0, 1e-4);
+  EXPECT_LT(ssim(a, b), 1.0);
+}
+
+TEST(Metrics, NonFiniteOutputsAreCountedNotHidden) {
+  GBuffer truth = filled(4, 4), tech = filled(4, 4);
+  tech.position[3].x = std::numeric_limits<float>::quiet_NaN();
+  tech.normal[5].y = std::numeric_limits<float>::infinity();
+  ImageMetrics m = compare_gbuffers(tech, truth, 0.1, 0.01);
+  EXPECT_EQ(m.nonfinite_px, 2);
+  EXPECT_TRUE(std::isfinite(m.pos_err.mean));
+  EXPECT_GT(m.artifact_pct, 0);  // the NaN hit counts as an artifact, not as a perfect pixel
+}
+
+TEST(HeatMap, MarksMissedAndFalsePixels) {
+  GBuffer truth = filled(2, 1), tech = filled(2, 1);
+  tech.color[0].a = 0;   // missed
+  truth.color[1].a = 0;  // false hit
+  std::vector<float> rgb = error_heat_map(tech, truth, 0.01, 4);
+  EXPECT_EQ(rgb[0], 1.0f);  // magenta
+  EXPECT_EQ(rgb[1], 0.0f);
+  EXPECT_EQ(rgb[2], 1.0f);
+  EXPECT_EQ(rgb[3], 0.0f);  // cyan
+  EXPECT_EQ(rgb[4], 1.0f);
+  EXPECT_EQ(rgb[5], 1.0f);
+}
+
+}  // namespace
+}  // namespace rl

@@ -1,0 +1,148 @@
+// Relief assets: procedural generators, GL-identical sampling, quantisation, image loading.
+#include <cmath>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "relief/image_io.h"
+#include "relief/procedural.h"
+#include "support/test_support.h"
+
+namespace rl {
+namespace {
+
+ReliefMap make(const std::string& kind, int res, const std::map<std::string, double>& o = {}) {
+  return make_procedural(kind, res, o, 10.0, "test");
+}
+
+TEST(Procedural, FlatAndConstantAreExact) {
+  ReliefMap flat = make("flat", 16);
+  EXPECT_EQ(flat.min_depth(), 0.0f);
+  EXPECT_EQ(flat.max_depth(), 0.0f);
+  ReliefMap c = make("constant", 16, {{"value", 0.25}});
+  EXPECT_EQ(c.min_depth(), 0.25f);
+  EXPECT_EQ(c.max_depth(), 0.25f);
+  // A flat surface has the base normal.
+  EXPECT_NEAR(decode_normal(glm::dvec4(c.relief[5])).z, 1.0, 1e-7);
+}
+
+TEST(Procedural, WallsAreOneTexelThick) {
+  ReliefMap w = make("walls", 64, {{"spacing", 16}});
+  // Row 5 is no wall row: exactly 64 / 16 wall texels (depth 0), all others at the floor.
+  int walls = 0;
+  for (int x = 0; x < 64; ++x) walls += w.depth_texel(x, 5) == 0.0f;
+  EXPECT_EQ(walls, 4);
+  for (int x = 1; x < 16; ++x) EXPECT_EQ(w.depth_texel(x, 5), 1.0f);
+  EXPECT_EQ(w.depth_texel(0, 5), 0.0f);
+  EXPECT_EQ(w.depth_texel(16, 5), 0.0f);
+}
+
+TEST(Procedural, BricksHaveVerticalSteps) {
+  ReliefMap b = make("bricks", 128);
+  EXPECT_EQ(b.min_depth(), 0.0f);
+  EXPECT_FLOAT_EQ(b.max_depth(), 0.8f);
+  // Somewhere two neighbouring texels differ by the full mortar depth: a vertical step.
+  bool step = false;
+  for (int x = 0; x < 128 && !step; ++x)
+    step = std::abs(b.depth_texel(x, 0) - b.depth_texel(x, 1)) > 0.79f;
+  for (int y = 0; y < 128 && !step; ++y)
+    step = std::abs(b.depth_texel(0, y) - b.depth_texel(1, y)) > 0.79f;
+  EXPECT_TRUE(step);
+}
+
+TEST(Procedural, PyramidsHaveSharpApexes) {
+  ReliefMap p = make("pyramids", 64, {{"count", 4}});  // 16 texels per pyramid
+  EXPECT_NEAR(p.min_depth(), 2.0 * 0.5 / 16, 1e-6);    // apex texels straddle the peak
+  EXPECT_NEAR(p.max_depth(), 2.0 * 7.5 / 16, 1e-6);
+}
+
+TEST(Procedural, UnknownKindOrOptionIsAConfigError) {
+  EXPECT_THROW(make("noise", 16), ConfigError);
+  try {
+    make("sines", 16, {{"frequncy", 2}});
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("frequncy"), std::string::npos);
+  }
+  EXPECT_THROW(make("sines", 1), ConfigError);
+}
+
+TEST(Sampling, MatchesGlLinearRepeat) {
+  ReliefMap m = make("sines", 8);
+  // At a texel centre the sample is the texel.
+  EXPECT_NEAR(m.sample_depth(2.5 / 8, 3.5 / 8), m.depth_texel(2, 3), 1e-7);
+  // Half-way between two centres it is their mean.
+  EXPECT_NEAR(m.sample_depth(3.0 / 8, 3.5 / 8), 0.5 * (m.depth_texel(2, 3) + m.depth_texel(3, 3)),
+              1e-7);
+  // At u = 0 it wraps: the mean of the last and the first texel (GL_REPEAT).
+  EXPECT_NEAR(m.sample_depth(0.0, 3.5 / 8), 0.5 * (m.depth_texel(7, 3) + m.depth_texel(0, 3)),
+              1e-7);
+  // Periodic in whole tiles, also far from the origin and for negative coordinates.
+  EXPECT_NEAR(m.sample_depth(0.3, 0.7), m.sample_depth(-4.7, 5.7), 1e-9);
+}
+
+TEST(Quantize, MakesEveryChannelAnExactByte) {
+  ReliefMap m = make("sines", 16);
+  quantize_8bit(m);
+  EXPECT_TRUE(m.quantized);
+  for (const auto& t : m.relief)
+    for (int c = 0; c < 4; ++c) EXPECT_FLOAT_EQ(std::round(t[c] * 255.0f), t[c] * 255.0f);
+}
+
+TEST(Images, NormalMapKeepsStraightAlpha) {
+  // panel1's heights sit in alpha; OIIO would premultiply colour by it unless told not to,
+  // which scales the normals down. Straight values average to a unit-ish normal.
+  ReliefImageSource src;
+  src.normal_path = std::string(RELIEFLAB_SOURCE_DIR) + "/assets/relief/trak5/panel1_n.png";
+  ReliefMap m = load_relief_images(src, 10.0);
+  ASSERT_EQ(m.width, 512);
+  glm::dvec4 avg(0);
+  for (const auto& t : m.relief) avg += glm::dvec4(t);
+  avg /= double(m.relief.size());
+  EXPECT_NEAR(avg.r, 0.5, 0.02);
+  EXPECT_NEAR(avg.g, 0.5, 0.02);
+  EXPECT_GT(avg.b, 0.9);
+  // Height convention: alpha 1 = top, so depth = 1 - alpha; panel1's alpha is at most 0.224.
+  EXPECT_GT(m.min_depth(), 0.77f);
+  src.normalize = true;
+  ReliefMap n = load_relief_images(src, 10.0);
+  EXPECT_FLOAT_EQ(n.min_depth(), 0.0f);
+  EXPECT_FLOAT_EQ(n.max_depth(), 1.0f);
+}
+
+TEST(Images, FileTopRowIsVOne) {
+  // write_png takes row 0 as the bottom (GL's convention); loading must give it back there.
+  const std::string dir = test::scratch_dir("img");
+  std::vector<float> px(4 * 4 * 3, 0.0f);
+  for (int x = 0; x < 4; ++x)
+    for (int c = 0; c < 3; ++c) px[(3 * 4 + x) * 3 + c] = 1.0f;  // row 3 = top
+  write_png(dir + "/depth.png", 4, 4, 3, px);
+  ReliefImageSource src;
+  src.depth_path = dir + "/depth.png";
+  src.height_convention = false;
+  ReliefMap m = load_relief_images(src, 1.0);
+  EXPECT_EQ(m.depth_texel(0, 3), 1.0f);  // v = 3.5 / 4, near the top of the picture
+  EXPECT_EQ(m.depth_texel(0, 0), 0.0f);
+}
+
+TEST(Images, MissingFileOrAlphaIsAClearError) {
+  ReliefImageSource src;
+  src.normal_path = "/nonexistent/relief.png";
+  try {
+    load_relief_images(src, 1.0);
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/relief.png"), std::string::npos);
+  }
+  src.normal_path = std::string(RELIEFLAB_SOURCE_DIR) + "/assets/relief/rockwall/rockwall.jpg";
+  try {
+    load_relief_images(src, 1.0);
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("no alpha channel"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace rl

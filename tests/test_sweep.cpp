@@ -1,0 +1,225 @@
+// Sweeps end to end: truth traced once per view and shared, no work on a re-run, a killed
+// sweep resumes without losing or duplicating rows, outputs have the promised columns.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "support/test_support.h"
+#include "sweep/cells.h"
+#include "sweep/config.h"
+#include "sweep/result_store.h"
+#include "sweep/runner.h"
+
+namespace rl {
+namespace {
+
+namespace fs = std::filesystem;
+
+// 3 techniques x 4 views; relief and parallax with 4 parameter settings each (normal mapping
+// has no parameters, so it runs once per view): 36 cells that share 4 truths.
+const char* kThreeByFourByFour = R"(
+[sweep]
+name = "three_by_four"
+elevations = [90, 45, 20, 5]
+azimuths = [30]
+viewports = [24]
+frames = 1
+warmup = 0
+[[scene]]
+name = "bricks"
+relief = { procedural = "bricks", resolution = 32 }
+[[technique]]
+name = "relief"
+linear_steps = [4, 8, 16, 32]
+[[technique]]
+name = "parallax"
+offset_limiting = [false, true]
+bias = [0.0, 0.1]
+[[technique]]
+name = "normal"
+)";
+
+std::string read(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+TEST(Sweep, TruthOncePerViewAndNoWorkOnARerun) {
+  const std::string out = test::scratch_dir("out");
+  SweepConfig config = parse_sweep_config(kThreeByFourByFour, "three_by_four.toml", ".");
+  RunOptions opt;
+  opt.out_dir = out;
+  opt.progress = false;
+  SweepSummary first = run_sweep(config, opt);
+  EXPECT_EQ(first.cells, (4u + 4u + 1u) * 4u);
+  EXPECT_EQ(first.new_rows, first.cells);
+  EXPECT_EQ(first.truth_traces, 4u);
+  EXPECT_EQ(first.asset_builds, 1u);
+  EXPECT_NE(read(out + "/run.log").find("traced truth 4 times"), std::string::npos);
+
+  SweepSummary second = run_sweep(config, opt);
+  EXPECT_EQ(second.new_rows, 0u);
+  EXPECT_EQ(second.already_done, first.cells);
+  EXPECT_EQ(second.truth_traces, 0u);
+  EXPECT_EQ(second.asset_builds, 0u);
+
+  // rows.csv: one row per cell, with the promised columns.
+  const std::vector<std::string> csv = lines(read(out + "/rows.csv"));
+  ASSERT_EQ(csv.size(), first.cells + 1);
+  for (const char* col : {"technique",
+                          "scene",
+                          "elevation_deg",
+                          "azimuth_deg",
+                          "texture_res",
+                          "viewport",
+                          "linear_steps",
+                          "binary_steps",
+                          "offset_limiting",
+                          "bias",
+                          "missed_pct",
+                          "false_pct",
+                          "pos_err_mean",
+                          "pos_err_rmse",
+                          "pos_err_p99",
+                          "pos_err_max",
+                          "pos_err_texels_rmse",
+                          "artifact_pct",
+                          "normal_err_mean_deg",
+                          "normal_err_p99_deg",
+                          "psnr_db",
+                          "ssim",
+                          "shadow_disagree_pct",
+                          "fetches_mean",
+                          "fetches_p99",
+                          "fetches_max",
+                          "frame_ms",
+                          "precompute_ms",
+                          "memory_bytes",
+                          "image_render",
+                          "image_truth",
+                          "image_error"})
+    EXPECT_NE(csv[0].find(col), std::string::npos) << col;
+  // Images of every row exist.
+  SweepConfig again = parse_sweep_config(kThreeByFourByFour, "three_by_four.toml", ".");
+  ResultStore store(out + "/results.sqlite");
+  for (const Cell& c : expand_cells(again)) {
+    auto row = store.row(c.key);
+    ASSERT_TRUE(row);
+    for (const char* img : {"image_render", "image_truth", "image_error"})
+      EXPECT_TRUE(fs::exists(out + "/" + (*row)[img].get<std::string>())) << img;
+  }
+  // The default table exists and has one line per (scene, elevation, technique, settings).
+  EXPECT_NE(read(out + "/table.md").find("| scene | elevation_deg | technique |"),
+            std::string::npos);
+}
+
+TEST(Sweep, KilledMidwayResumesWithoutLosingOrDuplicatingRows) {
+  const std::string dir = test::scratch_dir("kill");
+  fs::create_directories(dir);
+  const std::string config_path = dir + "/slow.toml";
+  std::ofstream(config_path) << R"(
+[sweep]
+name = "slow"
+elevations = [80, 60, 45, 30, 20, 10]
+viewports = [96]
+frames = 40
+[[scene]]
+name = "pyramids"
+relief = { procedural = "pyramids", resolution = 64 }
+[[technique]]
+name = "relief"
+linear_steps = [16, 32, 64, 128]
+)";
+  const std::string out = dir + "/out";
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    execl(RELIEFLAB_CLI, RELIEFLAB_CLI, "run", config_path.c_str(), "--out", out.c_str(), "-q",
+          (char*)nullptr);
+    _exit(127);
+  }
+  // Kill it hard once a few rows are committed.
+  size_t before = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (fs::exists(out + "/results.sqlite")) {
+      before = ResultStore(out + "/results.sqlite").keys().size();
+      if (before >= 3) break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the sweep finished before it could be killed";
+  before = ResultStore(out + "/results.sqlite").keys().size();
+  EXPECT_FALSE(fs::exists(out + "/rows.csv"));  // outputs come at the end
+
+  SweepConfig config = load_sweep_config(config_path);
+  RunOptions opt;
+  opt.out_dir = out;
+  opt.progress = false;
+  SweepSummary resumed = run_sweep(config, opt);
+  EXPECT_EQ(resumed.cells, 24u);
+  EXPECT_EQ(resumed.already_done, before);
+  EXPECT_EQ(resumed.new_rows, 24u - before);
+  EXPECT_EQ(ResultStore(out + "/results.sqlite").keys().size(), 24u);
+  const std::vector<std::string> csv = lines(read(out + "/rows.csv"));
+  ASSERT_EQ(csv.size(), 25u);
+  std::set<std::string> unique(csv.begin() + 1, csv.end());
+  EXPECT_EQ(unique.size(), 24u);
+}
+
+TEST(ResultStore, ShardsMergeByKey) {
+  const std::string dir = test::scratch_dir("shards");
+  fs::create_directories(dir);
+  {
+    ResultStore a(dir + "/a.sqlite"), b(dir + "/b.sqlite");
+    a.insert("k1", {{"v", 1}});
+    a.insert("k2", {{"v", 2}});
+    b.insert("k2", {{"v", 99}});  // same cell measured on another shard: first result wins
+    b.insert("k3", {{"v", 3}});
+    a.insert("k1", {{"v", 7}});  // re-inserting never duplicates or overwrites
+  }
+  ResultStore a(dir + "/a.sqlite");
+  EXPECT_EQ(a.merge_from(dir + "/b.sqlite"), 1u);
+  EXPECT_EQ(a.keys(), (std::set<std::string>{"k1", "k2", "k3"}));
+  EXPECT_EQ((*a.row("k1"))["v"], 1);
+  EXPECT_EQ((*a.row("k2"))["v"], 2);
+}
+
+TEST(Sweep, DefaultConfigParsesAndExpands) {
+  SweepConfig c = default_sweep_config();
+  EXPECT_EQ(c.name, "default");
+  const std::vector<Cell> cells = expand_cells(c);
+  // 4 scenes x (normal + parallax + 4 relief) x 4 elevations, + the shadowed scene x 4 relief x 4.
+  EXPECT_EQ(cells.size(), 4u * 6u * 4u + 4u * 4u);
+  std::set<std::string> truths, keys;
+  for (const Cell& cell : cells) {
+    truths.insert(cell.truth_key);
+    keys.insert(cell.key);
+  }
+  EXPECT_EQ(truths.size(), 5u * 4u);
+  EXPECT_EQ(keys.size(), cells.size());
+}
+
+}  // namespace
+}  // namespace rl

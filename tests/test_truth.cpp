@@ -1,0 +1,138 @@
+// The Embree truth: its tessellation tolerance, agreement with the exact reference across
+// tile seams, and shadow rays traced only when asked for.
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "relief/heightfield_reference.h"
+#include "relief/procedural.h"
+#include "scene/relief_asset.h"
+#include "support/test_support.h"
+#include "truth/heightfield_truth.h"
+
+namespace rl {
+namespace {
+
+struct Ray {
+  glm::dvec3 o, d;
+};
+
+// Rays entering at the top (depth 0, a hair above) at random points, with elevations from
+// `min_el` to 85 degrees; direction scaled so that t counts depth units.
+std::vector<Ray> random_rays(int n, double min_el_deg, double aspect, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 2), el(min_el_deg, 85), az(0, 360);
+  std::vector<Ray> rays;
+  for (int i = 0; i < n; ++i) {
+    const double e = glm::radians(el(rng)), a = glm::radians(az(rng));
+    // Unit world-space direction in the tangent frame; lateral texture units per depth unit
+    // = cot(elevation) * aspect, aspect = world depth / world length of one u.
+    const double lateral = aspect / std::tan(e);
+    rays.push_back({{u(rng), u(rng), -1e-6}, {lateral * std::cos(a), lateral * std::sin(a), 1.0}});
+  }
+  return rays;
+}
+
+// Stated tolerance: every truth hit lies within the tessellation bound (vertically) of the
+// bilinear surface the shaders sample, plus float rounding of the stored vertices.
+TEST(Truth, EveryHitLiesWithinTheStatedBoundOfTheBilinearSurface) {
+  for (const char* kind : {"sines", "bricks", "pyramids", "walls"}) {
+    ReliefMap m = make_procedural(kind, 64, {}, 10.0, "test");
+    HeightfieldTruth truth(m, 2e-3);
+    EXPECT_LE(truth.tessellation_bound(), 2e-3 + 1e-12) << kind;
+    int hits = 0;
+    for (const Ray& r : random_rays(3000, 10, 0.08 * 64 / 64.0, 11)) {
+      TruthHit h = truth.intersect(r.o, r.d, 0, 1.0 + 1e-6);
+      if (!h.hit) continue;
+      ++hits;
+      const double surface = m.sample_depth(h.point.x, h.point.y);
+      ASSERT_LE(std::abs(h.point.z - surface), truth.tessellation_bound() + 2e-6)
+          << kind << " at uv " << h.point.x << ", " << h.point.y;
+    }
+    EXPECT_GT(hits, 2900) << kind;
+  }
+}
+
+// Doubling the tessellation moves no truth hit by more than the stated tolerance, measured
+// in depth units of the hit, except where the ray grazes a ridge and changes which side it
+// hits: those are counted and must stay rare.
+TEST(Truth, DoublingTheTessellationMovesHitsWithinTolerance) {
+  const double tolerance = 2e-3;
+  for (const char* kind : {"sines", "pyramids", "bricks"}) {
+    ReliefMap m = make_procedural(kind, 64, {}, 10.0, "test");
+    HeightfieldTruth coarse(m, tolerance);
+    HeightfieldTruth fine(m, tolerance, 1u << 24, 2 * coarse.subdivision());
+    int moved = 0, total = 0;
+    double worst = 0;
+    for (const Ray& r : random_rays(4000, 20, 0.08, 5)) {
+      TruthHit a = coarse.intersect(r.o, r.d, 0, 1.0 + 1e-6);
+      TruthHit b = fine.intersect(r.o, r.d, 0, 1.0 + 1e-6);
+      ASSERT_TRUE(a.hit && b.hit);
+      ++total;
+      const double dz = std::abs(a.point.z - b.point.z);
+      if (dz > tolerance)
+        ++moved;
+      else
+        worst = std::max(worst, dz);
+    }
+    EXPECT_LE(moved, total / 1000)
+        << kind << ": " << moved << " of " << total << " hits moved more than " << tolerance;
+    EXPECT_LE(worst, tolerance) << kind;
+  }
+}
+
+TEST(Truth, AgreesWithTheExactReferenceAcrossTileSeams) {
+  // Grazing rays (5-20 degrees) travel across several tiles; the reference wraps by texture
+  // repetition, the truth by walking tiles: they must find the same surface.
+  ReliefMap m = make_procedural("sines", 32, {}, 10.0, "test");
+  HeightfieldTruth truth(m, 5e-4);
+  std::vector<double> err;
+  for (const Ray& r : random_rays(2000, 5, 0.5, 3)) {
+    TruthHit h = truth.intersect(r.o, r.d, 0, 1.0 + 1e-6);
+    ReferenceHit ref = intersect_heightfield(m, r.o, r.d, 1.0 + 1e-6);
+    ASSERT_TRUE(h.hit && ref.hit);
+    err.push_back(std::abs(h.point.z - ref.depth));
+  }
+  std::sort(err.begin(), err.end());
+  EXPECT_LE(err[err.size() * 999 / 1000], 5e-3);  // 99.9% within a few bounds along grazing rays
+  EXPECT_LE(err[err.size() / 2], 5e-4);
+}
+
+TEST(Truth, TracesShadowRaysOnlyWhenAsked) {
+  SceneDesc scene = test::procedural_scene("bricks", 64);
+  ReliefMap m = build_relief_asset(scene, 64);
+  HeightfieldTruth truth(m);
+  const Camera cam = make_camera(scene, View{45, 30}, 48, 48);
+  TruthStats without, with;
+  GBuffer a = render_truth(truth, m, scene, cam, EffectSet{}, &without);
+  GBuffer b = render_truth(truth, m, scene, cam, EffectSet{Effect::SelfShadow}, &with);
+  EXPECT_EQ(without.shadow_rays, 0u);
+  EXPECT_GT(without.primary_rays, 0u);
+  EXPECT_EQ(with.shadow_rays, with.primary_rays);
+  long shadowed = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_FALSE(a.shadowed(i));
+    shadowed += b.shadowed(i);
+  }
+  EXPECT_GT(shadowed, 0);  // bricks cast shadows into the mortar
+}
+
+TEST(Truth, FlatMapHitsTheBaseExactly) {
+  SceneDesc scene = test::procedural_scene("flat", 16);
+  ReliefMap m = build_relief_asset(scene, 16);
+  HeightfieldTruth truth(m);
+  const Camera cam = make_camera(scene, View{37, 12}, 40, 40);
+  GBuffer g = render_truth(truth, m, scene, cam, EffectSet{});
+  long covered = 0;
+  for (size_t i = 0; i < g.size(); ++i) {
+    if (!g.covered(i)) continue;
+    ++covered;
+    EXPECT_NEAR(g.position[i].z, 0.0, 1e-6);
+  }
+  EXPECT_GT(covered, 400);
+}
+
+}  // namespace
+}  // namespace rl
