@@ -1,2 +1,105 @@
+// Truth throughput: rays/s of HeightfieldTruth::intersect (tile walk + Embree grid) against
+// raw rtcIntersect1 on the same Embree scene with the same rays, single-threaded, and the
+// whole truth G-buffer (all cores). Not part of CI.
+#include <cmath>
+#include <map>
+#include <memory>
+#include <random>
+
 #include <benchmark/benchmark.h>
+
+#include "scene/relief_asset.h"
+#include "truth/heightfield_truth.h"
+#include "truth/truth_render.h"
+
+namespace rl {
+namespace {
+
+struct Setup {
+  SceneDesc scene;
+  ReliefMap map;
+  std::unique_ptr<HeightfieldTruth> truth;
+  std::vector<glm::dvec3> origins, directions;  // texture space, starting at the top
+};
+
+Setup& setup(const std::string& kind, int res) {
+  static std::map<std::string, Setup> cache;
+  const std::string key = kind + std::to_string(res);
+  if (cache.count(key)) return cache[key];
+  Setup& s = cache[key];
+  s.scene.name = kind;
+  s.scene.relief.procedural = kind;
+  s.scene.relief.native_resolution = res;
+  s.map = build_relief_asset(s.scene, res);
+  s.truth = std::make_unique<HeightfieldTruth>(s.map);
+  // Rays at 45 degrees that stay inside the one tile the raw scene holds: origins in the
+  // tile's middle, lateral travel at most 0.08 tile units over the full depth.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0.2, 0.8), az(0, 6.2831853);
+  for (int i = 0; i < 1 << 16; ++i) {
+    const double a = az(rng);
+    s.origins.push_back({u(rng), u(rng), -1e-6});
+    s.directions.push_back({0.08 * std::cos(a), 0.08 * std::sin(a), 1.0});
+  }
+  return s;
+}
+
+void BM_TruthIntersect(benchmark::State& state, std::string kind) {
+  Setup& s = setup(kind, int(state.range(0)));
+  size_t i = 0;
+  for (auto _ : state) {
+    TruthHit h = s.truth->intersect(s.origins[i], s.directions[i], 0, 1.0 + 1e-6);
+    benchmark::DoNotOptimize(h);
+    i = (i + 1) % s.origins.size();
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["subdivision"] = s.truth->subdivision();
+}
+
+void BM_RawEmbreeIntersect1(benchmark::State& state, std::string kind) {
+  Setup& s = setup(kind, int(state.range(0)));
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  size_t i = 0;
+  for (auto _ : state) {
+    RTCRayHit rh{};
+    rh.ray.org_x = float(s.origins[i].x);
+    rh.ray.org_y = float(s.origins[i].y);
+    rh.ray.org_z = float(s.origins[i].z);
+    rh.ray.dir_x = float(s.directions[i].x);
+    rh.ray.dir_y = float(s.directions[i].y);
+    rh.ray.dir_z = float(s.directions[i].z);
+    rh.ray.tnear = 0;
+    rh.ray.tfar = 1.0f + 1e-6f;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(s.truth->scene(), &context, &rh);
+    benchmark::DoNotOptimize(rh);
+    i = (i + 1) % s.origins.size();
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+void BM_TruthGBuffer(benchmark::State& state) {
+  Setup& s = setup("bricks", 256);
+  const Camera cam = make_camera(s.scene, View{45, 30}, 512, 512);
+  uint64_t rays = 0;
+  for (auto _ : state) {
+    TruthStats stats;
+    GBuffer g = render_truth(*s.truth, s.map, s.scene, cam, EffectSet{}, &stats);
+    benchmark::DoNotOptimize(g.color.data());
+    rays += stats.primary_rays;
+  }
+  state.SetItemsProcessed(int64_t(rays));
+}
+
+BENCHMARK_CAPTURE(BM_TruthIntersect, bricks, "bricks")->Arg(256)->Arg(512);
+BENCHMARK_CAPTURE(BM_RawEmbreeIntersect1, bricks, "bricks")->Arg(256)->Arg(512);
+BENCHMARK_CAPTURE(BM_TruthIntersect, sines, "sines")->Arg(256)->Arg(512);
+BENCHMARK_CAPTURE(BM_RawEmbreeIntersect1, sines, "sines")->Arg(256)->Arg(512);
+BENCHMARK(BM_TruthGBuffer)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+}  // namespace rl
+
 BENCHMARK_MAIN();

@@ -108,6 +108,8 @@ TEST(Truth, TracesShadowRaysOnlyWhenAsked) {
   TruthStats without, with;
   GBuffer a = render_truth(truth, m, scene, cam, EffectSet{}, &without);
   GBuffer b = render_truth(truth, m, scene, cam, EffectSet{Effect::SelfShadow}, &with);
+  EXPECT_EQ(without.unresolved, 0);
+  EXPECT_EQ(with.unresolved, 0);
   EXPECT_EQ(without.shadow_rays, 0u);
   EXPECT_GT(without.primary_rays, 0u);
   EXPECT_EQ(with.shadow_rays, with.primary_rays);

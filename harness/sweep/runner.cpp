@@ -216,6 +216,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     row["truth_subdivision"] = asset->truth->subdivision();
     row["truth_bound"] = asset->truth->tessellation_bound();
     row["truth_ms"] = truth_stats.trace_ms;
+    row["truth_unresolved_px"] = double(truth_stats.unresolved);
     row["effects"] = join_effects(scene.effects);
     row["renderer"] = gl.renderer();
     row["key"] = cell.key;

@@ -27,7 +27,9 @@ GBuffer render_truth(const HeightfieldTruth& truth, const ReliefMap& map, const 
   const uint64_t primary0 = truth.primary_rays(), shadow0 = truth.shadow_rays();
   const PlanarBase base = planar_base(scene);
   const bool shadows = effects.has(Effect::SelfShadow);
-  const double bottom = std::min(1.0, double(truth.max_depth()) + 1e-4);
+  // Rays end just below the deepest point of the map (not clamped at 1: a map reaching depth 1
+  // would put its deepest hits exactly on the end of the ray, where rounding can lose them).
+  const double bottom = double(truth.max_depth()) + 1e-4;
   GBuffer g;
   g.resize(camera.width, camera.height);
   std::atomic<long> unresolved{0};
