@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/hash.h"
+#include "metrics/metrics.h"
 #include "technique/technique.h"
 
 namespace rl {
@@ -25,6 +26,18 @@ void product(const std::vector<std::pair<std::string, std::vector<double>>>& lis
 }
 
 }  // namespace
+
+const std::vector<std::string>& measured_columns() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const auto& [name, value] : ImageMetrics().named()) n.push_back(name);
+    for (const char* c : {"frame_ms", "frame_ms_min", "precompute_ms", "memory_bytes",
+                          "truth_bound", "truth_subdivision", "truth_ms", "truth_unresolved_px"})
+      n.push_back(c);
+    return n;
+  }();
+  return names;
+}
 
 std::vector<std::string> parameter_columns(const SweepConfig& config) {
   std::vector<std::string> cols;

@@ -27,6 +27,8 @@ struct Cell {
 };
 
 std::vector<Cell> expand_cells(const SweepConfig& config);
+// Every numeric column a row measures (image metrics, then cost), e.g. for table values.
+const std::vector<std::string>& measured_columns();
 // Every parameter column of the sweep, in order of first appearance.
 std::vector<std::string> parameter_columns(const SweepConfig& config);
 

@@ -13,6 +13,7 @@
 #include "core/hash.h"
 #include "gl/embedded_files.h"
 #include "relief/procedural.h"
+#include "sweep/cells.h"
 #include "technique/technique.h"
 
 namespace rl {
@@ -103,6 +104,17 @@ uint64_t file_hash(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   return fnv1a64(bytes);
+}
+
+bool is_measured(const std::string& name) {
+  const auto& m = measured_columns();
+  return std::find(m.begin(), m.end(), name) != m.end();
+}
+
+std::string measured_list() {
+  std::string out;
+  for (const auto& m : measured_columns()) out += (out.empty() ? "" : ", ") + m;
+  return out;
 }
 
 int positive_int(const toml::node& n, const Src& src, const std::string& key, int lo, int hi) {
@@ -306,7 +318,7 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
     throw ConfigError(source_name + ":" + std::to_string(e.source().begin.line) +
                       ": TOML syntax error: " + std::string(e.description()));
   }
-  check_keys(root, {"sweep", "scene", "technique", "table"}, src, "the top level");
+  check_keys(root, {"sweep", "scene", "technique", "table", "plot"}, src, "the top level");
   SweepConfig c;
   c.source = source_name;
   json canon;
@@ -445,6 +457,10 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
       if (auto* v = t->get("columns")) spec.columns = string_list(*v, src, "columns");
       if (auto* v = t->get("values")) spec.values = string_list(*v, src, "values");
       if (spec.values.empty()) fail(src.at(tn), "[[table]] needs 'values' (metric names)");
+      for (const std::string& v : spec.values)
+        if (!is_measured(v))
+          fail(src.at(tn),
+               "[[table]] value '" + v + "' is not a measured column (" + measured_list() + ")");
       for (const auto* list : {&spec.rows, &spec.columns})
         for (const std::string& f : *list)
           if (!fields.count(f))
@@ -461,6 +477,31 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
     t.values = {"pos_err_rmse", "artifact_pct", "psnr_db", "fetches_mean", "frame_ms"};
     c.tables.push_back(t);
   }
+
+  // [[plot]]
+  if (auto* n = root.get("plot")) {
+    const toml::array* plots = n->as_array();
+    if (!plots) fail(src.at(*n), "plots are given as [[plot]]");
+    for (const toml::node& pn : *plots) {
+      const toml::table* t = pn.as_table();
+      if (!t) fail(src.at(pn), "[[plot]] must be a table");
+      check_keys(*t, {"x", "y", "group", "log_y"}, src, "[[plot]]");
+      PlotSpec p;
+      if (auto* v = t->get("x")) p.x = string_of(*v, src, "x");
+      if (auto* v = t->get("y")) p.y = string_of(*v, src, "y");
+      if (auto* v = t->get("group")) p.group = string_list(*v, src, "group");
+      if (auto* v = t->get("log_y")) p.log_y = number(*v, src, "log_y") != 0;
+      for (const std::string& m : {p.x, p.y})
+        if (!is_measured(m))
+          fail(src.at(pn),
+               "[[plot]] axis '" + m + "' is not a measured column (" + measured_list() + ")");
+      for (const std::string& f : p.group)
+        if (!fields.count(f))
+          fail(src.at(pn), "[[plot]] group field '" + f + "' is not a sweep field or parameter");
+      c.plots.push_back(p);
+    }
+  }
+  if (c.plots.empty()) c.plots.push_back(PlotSpec{});
 
   canon["frames"] = c.frames;
   canon["warmup"] = c.warmup;

@@ -9,6 +9,7 @@
 
 #include "core/params.h"
 #include "scene/scene.h"
+#include "sweep/pareto.h"
 
 namespace rl {
 
@@ -39,6 +40,7 @@ struct SweepConfig {
   double truth_tolerance = 2e-3;  // stated tessellation tolerance, depth units
   bool write_images = true;
   std::vector<TableSpec> tables;
+  std::vector<PlotSpec> plots;                         // Pareto plots of error against cost
   std::map<std::string, std::string> scene_canonical;  // per scene: text of what defines it
   std::string canonical;  // canonical text of everything that affects results
 };

@@ -15,6 +15,7 @@
 #include "relief/image_io.h"
 #include "scene/relief_asset.h"
 #include "sweep/cells.h"
+#include "sweep/pareto.h"
 #include "sweep/result_store.h"
 #include "sweep/tables.h"
 #include "technique/technique.h"
@@ -261,15 +262,19 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   write_text_atomic(options.out_dir + "/rows.csv", format_csv(rows, csv_columns(rows, leading)));
   for (const TableSpec& t : config.tables)
     write_text_atomic(options.out_dir + "/" + t.file, format_markdown_table(rows, t));
+  std::string fronts;
+  for (const PlotSpec& p : config.plots)
+    fronts += write_pareto_plots(rows, p, parameter_columns(config), options.out_dir) + "\n";
+  write_text_atomic(options.out_dir + "/pareto.md", fronts);
 
   summary.elapsed_s = ms_since(start) / 1000.0;
   char buf[512];
-  std::snprintf(buf, sizeof buf,
-                "relieflab: done in %s: %zu cells, %zu new rows, %zu already done; traced truth "
-                "%zu times, built %zu assets; wrote %s/rows.csv and %zu table(s)",
-                hms(summary.elapsed_s).c_str(), summary.cells, summary.new_rows,
-                summary.already_done, summary.truth_traces, summary.asset_builds,
-                options.out_dir.c_str(), config.tables.size());
+  std::snprintf(
+      buf, sizeof buf,
+      "relieflab: done in %s: %zu cells, %zu new rows, %zu already done; traced truth "
+      "%zu times, built %zu assets; wrote %s/rows.csv, %zu table(s), pareto.md and plots/",
+      hms(summary.elapsed_s).c_str(), summary.cells, summary.new_rows, summary.already_done,
+      summary.truth_traces, summary.asset_builds, options.out_dir.c_str(), config.tables.size());
   log.line(buf);
   return summary;
 }

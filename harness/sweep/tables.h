@@ -5,13 +5,10 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "sweep/config.h"
+#include "sweep/row.h"
 
 namespace rl {
-
-using Row = nlohmann::ordered_json;
 
 // Column order: the given leading columns, then every other key in order of first appearance.
 std::vector<std::string> csv_columns(const std::vector<Row>& rows,

@@ -1,0 +1,37 @@
+#pragma once
+// What accuracy costs: for each group of rows (e.g. one scene at one elevation), the points
+// (cost, error) of every technique and setting, and their Pareto front, the settings that no
+// other setting beats on both. Written as SVG plots and as a Markdown list of the fronts.
+#include <string>
+#include <vector>
+
+#include "sweep/row.h"
+
+namespace rl {
+
+struct PlotSpec {
+  std::string x = "fetches_mean";  // cost (lower is better)
+  std::string y = "pos_err_rmse";  // error (lower is better)
+  std::vector<std::string> group = {"scene", "elevation_deg"};
+  bool log_y = true;
+};
+
+struct ParetoPoint {
+  double x = 0, y = 0;
+  std::string label;   // technique and parameters
+  std::string series;  // technique (one colour each)
+};
+
+// Indices of the points on the Pareto front (minimising x and y), ordered by x. A point is on
+// it when no other point is at least as good on both and strictly better on one.
+std::vector<size_t> pareto_front(const std::vector<ParetoPoint>& points);
+
+std::string format_svg_plot(const std::vector<ParetoPoint>& points, const std::string& title,
+                            const std::string& x_name, const std::string& y_name, bool log_y);
+
+// Writes <out>/plots/<y>_vs_<x>__<group>.svg per group and returns the Markdown of the fronts.
+std::string write_pareto_plots(const std::vector<Row>& rows, const PlotSpec& spec,
+                               const std::vector<std::string>& parameter_columns,
+                               const std::string& out_dir);
+
+}  // namespace rl
