@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/grid_walk.h"
+
 namespace rl {
 namespace {
 
@@ -48,20 +50,7 @@ ReferenceHit intersect_heightfield(const ReliefMap& map, const glm::dvec3& origi
   const double dX = direction.x * w, dY = direction.y * h;
   const double z0 = origin.z, dz = direction.z;
 
-  long i = static_cast<long>(std::floor(X0)), j = static_cast<long>(std::floor(Y0));
-  const int step_i = dX > 0 ? 1 : (dX < 0 ? -1 : 0);
-  const int step_j = dY > 0 ? 1 : (dY < 0 ? -1 : 0);
-  const double inf = std::numeric_limits<double>::infinity();
-  const double delta_i = step_i ? 1.0 / std::abs(dX) : inf;
-  const double delta_j = step_j ? 1.0 / std::abs(dY) : inf;
-  double next_i = step_i > 0 ? (i + 1 - X0) / dX : (step_i < 0 ? (X0 - i) / -dX : inf);
-  double next_j = step_j > 0 ? (j + 1 - Y0) / dY : (step_j < 0 ? (Y0 - j) / -dY : inf);
-
-  double t_enter = 0;
-  // Bounded walk: a ray crosses at most |dX| + |dY| cell boundaries per unit t.
-  const long max_cells = static_cast<long>((std::abs(dX) + std::abs(dY)) * t_max) + 4;
-  for (long n = 0; n <= max_cells && t_enter <= t_max; ++n) {
-    const double t_exit = std::min({next_i, next_j, t_max});
+  walk_grid_2d(X0, Y0, dX, dY, 0.0, t_max, [&](long i, long j, double t_enter, double t_exit) {
     ++result.cells;
     const int xi = static_cast<int>(((i % w) + w) % w), yj = static_cast<int>(((j % h) + h) % h);
     const double d00 = map.depth_texel(xi, yj), d10 = map.depth_texel(xi + 1, yj);
@@ -75,29 +64,14 @@ ReferenceHit intersect_heightfield(const ReliefMap& map, const glm::dvec3& origi
     const double qb = dz - A * dX - B * dY - C * (px * dY + py * dX);
     const double qc = z0 - d00 - A * px - B * py - C * px * py;
     const double f_enter = qa * t_enter * t_enter + qb * t_enter + qc;
-    double t_hit = std::numeric_limits<double>::quiet_NaN();
-    if (f_enter >= 0) {
-      t_hit = t_enter;
-    } else {
-      t_hit = smallest_root_in(qa, qb, qc, t_enter, t_exit);
-    }
-    if (!std::isnan(t_hit)) {
-      result.hit = true;
-      result.t = t_hit;
-      result.uv = glm::dvec2(origin.x + direction.x * t_hit, origin.y + direction.y * t_hit);
-      result.depth = z0 + dz * t_hit;
-      return result;
-    }
-    if (t_exit >= t_max) break;
-    t_enter = t_exit;
-    if (next_i <= next_j) {
-      i += step_i;
-      next_i += delta_i;
-    } else {
-      j += step_j;
-      next_j += delta_j;
-    }
-  }
+    const double t_hit = f_enter >= 0 ? t_enter : smallest_root_in(qa, qb, qc, t_enter, t_exit);
+    if (std::isnan(t_hit)) return false;
+    result.hit = true;
+    result.t = t_hit;
+    result.uv = glm::dvec2(origin.x + direction.x * t_hit, origin.y + direction.y * t_hit);
+    result.depth = z0 + dz * t_hit;
+    return true;
+  });
   return result;
 }
 

@@ -79,6 +79,18 @@ class Technique {
   ParamValues params_;
 };
 
+// Implements info() from the technique's static describe(), which the registrar also reads:
+//   class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> { ... };
+template <typename Self, typename Base>
+class Described : public Base {
+ public:
+  using Base::Base;
+  const TechniqueInfo& info() const override {
+    static const TechniqueInfo i = Self::describe();
+    return i;
+  }
+};
+
 struct TechniqueEntry {
   TechniqueInfo info;
   std::function<std::unique_ptr<Technique>(const ParamValues&)> create;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/grid_walk.h"
 #include "core/parallel.h"
 
 namespace rl {
@@ -103,44 +104,15 @@ template <typename CellQuery>
 bool HeightfieldTruth::walk(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,
                             double t_max, CellQuery&& query) const {
   // Tile cell (I, J) covers u in [offset + I, offset + I + 1); the tile geometry sits at I = J = 0.
-  const glm::dvec3 start = origin + direction * t_min;
-  double cu = start.x - offset_.x, cv = start.y - offset_.y;
-  long I = static_cast<long>(std::floor(cu)), J = static_cast<long>(std::floor(cv));
-  const double inf = std::numeric_limits<double>::infinity();
-  const int si = direction.x > 0 ? 1 : (direction.x < 0 ? -1 : 0);
-  const int sj = direction.y > 0 ? 1 : (direction.y < 0 ? -1 : 0);
-  auto boundary_t = [&](double o, double d, long cell, int s) {
-    if (s == 0) return inf;
-    const double edge = s > 0 ? double(cell + 1) : double(cell);
-    return t_min + (edge - o) / d;
-  };
-  double next_i = boundary_t(cu, direction.x, I, si);
-  double next_j = boundary_t(cv, direction.y, J, sj);
-  const double delta_i = si ? 1.0 / std::abs(direction.x) : inf;
-  const double delta_j = sj ? 1.0 / std::abs(direction.y) : inf;
-  double t_enter = t_min;
-  // A ray crosses at most |du| + |dv| tile edges per unit t: the walk is bounded.
-  const double span = (std::abs(direction.x) + std::abs(direction.y)) * (t_max - t_min);
-  const long max_cells = static_cast<long>(std::min(span, 1e7)) + 3;
-  for (long n = 0; n < max_cells && t_enter <= t_max; ++n) {
-    const double t_exit = std::min({next_i, next_j, t_max});
-    // Slightly overlapping intervals: a hit exactly on a tile edge is found from either side.
-    const double eps = 1e-7 * (1.0 + t_exit);
-    const glm::dvec3 local = origin - glm::dvec3(double(I), double(J), 0.0);
-    if (query(local, std::max(t_min, t_enter - eps), std::min(t_max, t_exit + eps),
-              glm::dvec2(double(I), double(J))))
-      return true;
-    if (t_exit >= t_max) break;
-    t_enter = t_exit;
-    if (next_i <= next_j) {
-      I += si;
-      next_i += delta_i;
-    } else {
-      J += sj;
-      next_j += delta_j;
-    }
-  }
-  return false;
+  return walk_grid_2d(origin.x - offset_.x, origin.y - offset_.y, direction.x, direction.y, t_min,
+                      t_max, [&](long I, long J, double t_enter, double t_exit) {
+                        // Slightly overlapping intervals: a hit exactly on a tile edge is found
+                        // from either side.
+                        const double eps = 1e-7 * (1.0 + t_exit);
+                        const glm::dvec3 local = origin - glm::dvec3(double(I), double(J), 0.0);
+                        return query(local, std::max(t_min, t_enter - eps),
+                                     std::min(t_max, t_exit + eps));
+                      });
 }
 
 TruthHit HeightfieldTruth::intersect(const glm::dvec3& origin, const glm::dvec3& direction,
@@ -149,27 +121,25 @@ TruthHit HeightfieldTruth::intersect(const glm::dvec3& origin, const glm::dvec3&
   TruthHit result;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  walk(origin, direction, t_min, t_max,
-       [&](const glm::dvec3& local, double t0, double t1, glm::dvec2 cell) {
-         RTCRayHit rh{};
-         rh.ray.org_x = float(local.x);
-         rh.ray.org_y = float(local.y);
-         rh.ray.org_z = float(local.z);
-         rh.ray.dir_x = float(direction.x);
-         rh.ray.dir_y = float(direction.y);
-         rh.ray.dir_z = float(direction.z);
-         rh.ray.tnear = float(t0);
-         rh.ray.tfar = float(t1);
-         rh.ray.mask = 0xFFFFFFFFu;
-         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-         rtcIntersect1(scene_, &context, &rh);
-         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-         result.hit = true;
-         result.t = rh.ray.tfar;
-         result.point = origin + direction * result.t;
-         (void)cell;
-         return true;
-       });
+  walk(origin, direction, t_min, t_max, [&](const glm::dvec3& local, double t0, double t1) {
+    RTCRayHit rh{};
+    rh.ray.org_x = float(local.x);
+    rh.ray.org_y = float(local.y);
+    rh.ray.org_z = float(local.z);
+    rh.ray.dir_x = float(direction.x);
+    rh.ray.dir_y = float(direction.y);
+    rh.ray.dir_z = float(direction.z);
+    rh.ray.tnear = float(t0);
+    rh.ray.tfar = float(t1);
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    result.hit = true;
+    result.t = rh.ray.tfar;
+    result.point = origin + direction * result.t;
+    return true;
+  });
   return result;
 }
 
@@ -178,21 +148,20 @@ bool HeightfieldTruth::occluded(const glm::dvec3& origin, const glm::dvec3& dire
   ++shadow_rays_;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  return walk(origin, direction, t_min, t_max,
-              [&](const glm::dvec3& local, double t0, double t1, glm::dvec2) {
-                RTCRay ray{};
-                ray.org_x = float(local.x);
-                ray.org_y = float(local.y);
-                ray.org_z = float(local.z);
-                ray.dir_x = float(direction.x);
-                ray.dir_y = float(direction.y);
-                ray.dir_z = float(direction.z);
-                ray.tnear = float(t0);
-                ray.tfar = float(t1);
-                ray.mask = 0xFFFFFFFFu;
-                rtcOccluded1(scene_, &context, &ray);
-                return ray.tfar < 0;  // Embree sets tfar = -inf on occlusion
-              });
+  return walk(origin, direction, t_min, t_max, [&](const glm::dvec3& local, double t0, double t1) {
+    RTCRay ray{};
+    ray.org_x = float(local.x);
+    ray.org_y = float(local.y);
+    ray.org_z = float(local.z);
+    ray.dir_x = float(direction.x);
+    ray.dir_y = float(direction.y);
+    ray.dir_z = float(direction.z);
+    ray.tnear = float(t0);
+    ray.tfar = float(t1);
+    ray.mask = 0xFFFFFFFFu;
+    rtcOccluded1(scene_, &context, &ray);
+    return ray.tfar < 0;  // Embree sets tfar = -inf on occlusion
+  });
 }
 
 }  // namespace rl

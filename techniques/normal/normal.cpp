@@ -3,9 +3,9 @@
 
 namespace rl {
 
-class NormalMapping final : public ShaderTechnique {
+class NormalMapping final : public Described<NormalMapping, ShaderTechnique> {
  public:
-  using ShaderTechnique::ShaderTechnique;
+  using Described::Described;
   static TechniqueInfo describe() {
     return {"normal",
             "Normal mapping",
@@ -13,10 +13,6 @@ class NormalMapping final : public ShaderTechnique {
             "Chapter 3 bump mapping",
             {},
             {}};
-  }
-  const TechniqueInfo& info() const override {
-    static const TechniqueInfo i = describe();
-    return i;
   }
 
  protected:

@@ -3,9 +3,9 @@
 
 namespace rl {
 
-class ParallaxMapping final : public ShaderTechnique {
+class ParallaxMapping final : public Described<ParallaxMapping, ShaderTechnique> {
  public:
-  using ShaderTechnique::ShaderTechnique;
+  using Described::Described;
   static TechniqueInfo describe() {
     return {"parallax",
             "Parallax (offset) mapping",
@@ -17,10 +17,6 @@ class ParallaxMapping final : public ShaderTechnique {
              {"bias", ParamKind::Float, 0, -1, 1,
               "depth subtracted before shifting (Listing 5.1 uses half the scale because its "
               "polygon sits mid-relief; ReliefLab's base is the top, so 0)"}}};
-  }
-  const TechniqueInfo& info() const override {
-    static const TechniqueInfo i = describe();
-    return i;
   }
 
  protected:

@@ -3,9 +3,9 @@
 
 namespace rl {
 
-class ReliefMapping final : public ShaderTechnique {
+class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
  public:
-  using ShaderTechnique::ShaderTechnique;
+  using Described::Described;
   static TechniqueInfo describe() {
     return {"relief",
             "Relief mapping (linear + binary search)",
@@ -17,10 +17,6 @@ class ReliefMapping final : public ShaderTechnique {
               "double-precision variant)"},
              {"binary_steps", ParamKind::Int, 5, 0, 32,
               "binary search refinements after the linear search (Listing 5.3: 5)"}}};
-  }
-  const TechniqueInfo& info() const override {
-    static const TechniqueInfo i = describe();
-    return i;
   }
 
  protected:
