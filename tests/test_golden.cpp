@@ -36,6 +36,12 @@ std::vector<GoldenCell> golden_cells() {
                        "parallax",
                        {},
                        View{el, 30}});
+      for (const char* exact : {"relief_exact", "relief_exact_bilinear"})
+        cells.push_back({std::string(kind) + "/" + exact + "/el" + std::to_string(int(el)),
+                         kind,
+                         exact,
+                         {},
+                         View{el, 30}});
     }
   return cells;
 }

@@ -26,13 +26,13 @@ SceneDesc procedural_scene(const std::string& kind, int resolution, double depth
 }
 
 Measured measure(const SceneDesc& scene, const std::string& technique, const ParamValues& params,
-                 const View& view, int size) {
+                 const View& view, int size, double truth_tolerance) {
   GlContext::shared();
   const int res = scene.relief.native_resolution;
   ReliefMap map = build_relief_asset(scene, res);
   GpuRelief relief(map);
   GpuBase base(make_base_geometry(scene));
-  HeightfieldTruth truth(map);
+  HeightfieldTruth truth(map, truth_tolerance);
   const Camera camera = make_camera(scene, view, size, size);
   Measured m;
   m.truth = render_truth(truth, map, scene, camera, scene.effects, &m.truth_stats);

@@ -27,8 +27,9 @@ struct Measured {
 
 // Renders `technique` with `params` on `scene` at `view` into a size x size G-buffer and
 // measures it against a freshly traced truth.
+// `truth_tolerance` is the truth's stated tessellation tolerance (depth units).
 Measured measure(const SceneDesc& scene, const std::string& technique, const ParamValues& params,
-                 const View& view, int size = 96);
+                 const View& view, int size = 96, double truth_tolerance = 2e-3);
 
 // A fresh, empty folder under the build's temporary directory.
 std::string scratch_dir(const std::string& name);

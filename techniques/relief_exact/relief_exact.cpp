@@ -1,0 +1,26 @@
+// Exact texel traversal, Baboud & Decoret 2006 Section 3.3.
+#include "technique/shader_technique.h"
+
+namespace rl {
+
+class ReliefExact final : public Described<ReliefExact, ShaderTechnique> {
+ public:
+  using Described::Described;
+  static TechniqueInfo describe() {
+    return {"relief_exact",
+            "Exact texel traversal (centerline to centerline)",
+            "Baboud & Decoret 2006, Section 3.3 'Rasterization-based intersection' "
+            "(2D Amanatides & Woo 1987)",
+            {Effect::SelfShadow},
+            {}};
+  }
+
+ protected:
+  std::string intersect_file() const override {
+    return "techniques/relief_exact/relief_exact.glsl";
+  }
+};
+
+RL_REGISTER_TECHNIQUE(ReliefExact);
+
+}  // namespace rl

@@ -1,0 +1,26 @@
+// Exact bilinear traversal: Baboud & Decoret's centerline walk with an exact ray-patch solve.
+#include "technique/shader_technique.h"
+
+namespace rl {
+
+class ReliefExactBilinear final : public Described<ReliefExactBilinear, ShaderTechnique> {
+ public:
+  using Described::Described;
+  static TechniqueInfo describe() {
+    return {"relief_exact_bilinear",
+            "Exact bilinear traversal (centerline walk, exact ray-patch solve per cell)",
+            "Beyond Baboud & Decoret 2006, Section 3.3: solves the saddle case of their "
+            "Figure 3 exactly",
+            {Effect::SelfShadow},
+            {}};
+  }
+
+ protected:
+  std::string intersect_file() const override {
+    return "techniques/relief_exact_bilinear/relief_exact_bilinear.glsl";
+  }
+};
+
+RL_REGISTER_TECHNIQUE(ReliefExactBilinear);
+
+}  // namespace rl
