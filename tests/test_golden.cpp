@@ -36,7 +36,7 @@ std::vector<GoldenCell> golden_cells() {
                        "parallax",
                        {},
                        View{el, 30}});
-      for (const char* exact : {"relief_exact", "relief_exact_bilinear"})
+      for (const char* exact : {"relief_exact", "relief_exact_bilinear", "relief_robust"})
         cells.push_back({std::string(kind) + "/" + exact + "/el" + std::to_string(int(el)),
                          kind,
                          exact,
@@ -46,10 +46,17 @@ std::vector<GoldenCell> golden_cells() {
   return cells;
 }
 
-// Metrics pinned, and whether larger is worse.
-const std::vector<std::pair<std::string, bool>> kPinned = {
-    {"pos_err_rmse", true},        {"pos_err_p99", true}, {"artifact_pct", true},
-    {"normal_err_mean_deg", true}, {"psnr_db", false},    {"fetches_mean", true}};
+// Metrics pinned: whether larger is worse, and the absolute difference that is float noise
+// rather than a change in the technique (depth units, %, degrees, dB, fetches). A one-step
+// change of relief's binary search moves pos_err_rmse by ~2e-3, far above these floors.
+struct Pinned {
+  const char* name;
+  bool larger_is_worse;
+  double noise;
+};
+const std::vector<Pinned> kPinned = {
+    {"pos_err_rmse", true, 1e-4},        {"pos_err_p99", true, 1e-4}, {"artifact_pct", true, 0.012},
+    {"normal_err_mean_deg", true, 0.01}, {"psnr_db", false, 0.05},    {"fetches_mean", true, 0.01}};
 
 TEST(Golden, TechniquesAreNoWorseThanTheirGoldenFigures) {
   const std::string path = std::string(RELIEFLAB_TEST_DIR) + "/golden/golden.json";
@@ -68,18 +75,18 @@ TEST(Golden, TechniquesAreNoWorseThanTheirGoldenFigures) {
     if (update) continue;
     SCOPED_TRACE(c.label);
     ASSERT_TRUE(golden.contains(c.label)) << "no golden figures for this cell";
-    for (const auto& [metric, larger_is_worse] : kPinned) {
-      const double now = measured[c.label][metric], then = golden[c.label][metric];
-      // 1% relative (and a small absolute floor) for differences across Mesa versions.
-      const double slack = 0.01 * std::abs(then) + 1e-6;
-      if (larger_is_worse)
-        EXPECT_LE(now, then + slack) << metric << " got worse: " << then << " -> " << now;
+    for (const Pinned& p : kPinned) {
+      const double now = measured[c.label][p.name], then = golden[c.label][p.name];
+      // 1% relative, or the noise floor, whichever is larger.
+      const double slack = std::max(0.01 * std::abs(then), p.noise);
+      if (p.larger_is_worse)
+        EXPECT_LE(now, then + slack) << p.name << " got worse: " << then << " -> " << now;
       else
-        EXPECT_GE(now, then - slack) << metric << " got worse: " << then << " -> " << now;
-      const bool better = larger_is_worse ? now < then - slack : now > then + slack;
+        EXPECT_GE(now, then - slack) << p.name << " got worse: " << then << " -> " << now;
+      const bool better = p.larger_is_worse ? now < then - slack : now > then + slack;
       if (better)
         std::printf("note: %s %s improved %g -> %g; update the golden file\n", c.label.c_str(),
-                    metric.c_str(), then, now);
+                    p.name, then, now);
     }
   }
   if (update) {

@@ -213,6 +213,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     row["frame_ms_min"] = timing.min_ms;
     row["timing"] = timing.method;
     row["precompute_ms"] = slot.second;
+    row["precompute_cached"] = technique.prepared_from_cache();
     row["memory_bytes"] = double(asset->relief->bytes() + technique.memory_bytes());
     row["truth_subdivision"] = asset->truth->subdivision();
     row["truth_bound"] = asset->truth->tessellation_bound();

@@ -58,6 +58,7 @@ void ShaderTechnique::render(const FrameInput& frame, RenderTarget::Kind target)
   set_float(p, "rl_shininess", s.material.shininess);
   set_float(p, "rl_shadow_intensity", s.material.shadow_intensity);
   frame.relief.bind();
+  bind_resources(p);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDisable(GL_CULL_FACE);
@@ -94,6 +95,7 @@ std::vector<ProbeHit> ShaderTechnique::probe(const ReliefMap& map, const GpuReli
   glUseProgram(p);
   set_float(p, "rl_depth_aspect", depth_aspect);
   relief.bind();
+  bind_resources(p);
   glBindTextureUnit(2, inputs[0]);
   glBindTextureUnit(3, inputs[1]);
   glDisable(GL_DEPTH_TEST);

@@ -27,6 +27,9 @@ class ShaderTechnique : public Technique {
   virtual std::string intersect_file() const = 0;
   // #defines for the parameters, e.g. {"RL_LINEAR_STEPS", "32"}.
   virtual Defines parameter_defines() const { return {}; }
+  // Binds the technique's own textures (precomputed maps) for a draw with `program`; units
+  // 0-3 are the harness's (relief, colour, probe rays).
+  virtual void bind_resources(GLuint program) const { (void)program; }
 };
 
 }  // namespace rl

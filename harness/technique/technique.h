@@ -71,6 +71,8 @@ class Technique {
                                       const std::vector<ProbeRay>& rays, double depth_aspect) = 0;
   // Bytes of the technique's own textures and buffers, beyond the shared relief + colour maps.
   virtual size_t memory_bytes() const { return 0; }
+  // True when prepare() loaded its precomputation from a cache instead of computing it.
+  virtual bool prepared_from_cache() const { return false; }
 
   const ParamValues& params() const { return params_; }
   double param(const std::string& name) const { return params_.at(name); }

@@ -1,62 +1,11 @@
-// Exact bilinear traversal (ReliefLab, beyond Baboud & Decoret 2006): the same centerline
-// walk as relief_exact, but inside every cell the ray is solved against the cell's bilinear
-// patch exactly. Along the ray the patch depth is quadratic in t:
-//   D(t) = d00 + A fx + B fy + C fx fy,  fx = px + dX t,  fy = py + dY t,
-// so f = ray depth - D is a quadratic in t and its first root in the cell is the hit.
-// This finds the saddle intersections of the paper's Figure 3 that linear profiles miss;
-// it reconstructs exactly the surface the truth (and GL_LINEAR) defines.
-// One textureGather of the depth channel per cell reads the patch's four corners.
-#include "harness/glsl/centerline_walk.glsl"
-
-#define RL_GATHER_DEPTH(uv) (rl_fetches++, textureGather(rl_relief, uv, 3))
-
-// Smallest root of a t^2 + b t + c in [lo, hi], or -1. Stable form (Numerical Recipes 5.6).
-float rl_smallest_root(float a, float b, float c, float lo, float hi) {
-  float best = -1.0;
-  float scale = max(max(abs(a), abs(b)), max(abs(c), 1e-30));
-  if (abs(a) <= 1e-7 * scale) {
-    if (b != 0.0) {
-      float r = -c / b;
-      if (r >= lo && r <= hi) best = r;
-    }
-    return best;
-  }
-  float disc = b * b - 4.0 * a * c;
-  if (disc < 0.0) {
-    if (disc < -1e-6 * b * b) return -1.0;
-    disc = 0.0;  // tangency lost to rounding
-  }
-  float q = -0.5 * (b + (b >= 0.0 ? sqrt(disc) : -sqrt(disc)));
-  float r1 = q / a;
-  float r2 = q != 0.0 ? c / q : r1;
-  float lo_r = min(r1, r2), hi_r = max(r1, r2);
-  if (lo_r >= lo && lo_r <= hi) return lo_r;
-  if (hi_r >= lo && hi_r <= hi) return hi_r;
-  return -1.0;
-}
+// Exact bilinear traversal (ReliefLab, beyond Baboud & Decoret 2006): the centerline walk of
+// relief_exact, with every cell's bilinear patch solved exactly (harness/glsl/bilinear_walk.glsl).
+// It finds the saddle intersections of the paper's Figure 3 that linear profiles miss, and
+// reconstructs exactly the surface the truth (and GL_LINEAR) defines.
+#include "harness/glsl/bilinear_walk.glsl"
 
 RlHit rl_intersect(vec3 p, vec3 s) {
-  const float t_end = 1.0 - p.z;
-  RlWalk w = rl_walk_begin(p, s);
-  vec2 size = vec2(textureSize(rl_relief, 0));
-  float t_enter = 0.0;
-  for (int n = 0; n < RL_MAX_CELLS; n++) {
-    float t_exit = min(min(w.next.x, w.next.y), t_end);
-    // Corners of cell (i, j): gather at the point between texel centres i and i + 1.
-    vec4 g = RL_GATHER_DEPTH((vec2(w.cell) + 1.0) / size);
-    float d00 = g.w, d10 = g.z, d01 = g.x, d11 = g.y;
-    float A = d10 - d00, B = d01 - d00, C = d00 - d10 - d01 + d11;
-    // Solve in tau = t - t_enter with the entry point in the cell's own coordinates (both in
-    // [0, 1]): no cancellation between large coordinates on long, grazing rays.
-    vec2 local = w.start + w.dir * t_enter - vec2(w.cell);
-    float z = p.z + t_enter;
-    float qa = -C * w.dir.x * w.dir.y;
-    float qb = s.z - A * w.dir.x - B * w.dir.y - C * (local.x * w.dir.y + local.y * w.dir.x);
-    float qc = z - d00 - A * local.x - B * local.y - C * local.x * local.y;
-    float tau = qc >= 0.0 ? 0.0 : rl_smallest_root(qa, qb, qc, 0.0, t_exit - t_enter);
-    if (tau >= 0.0) return rl_hit_on_ray(p, s, t_enter + tau, true);
-    if (t_exit >= t_end) break;
-    t_enter = rl_walk_advance(w);
-  }
-  return rl_hit_on_ray(p, s, t_end, false);
+  float t_hit;
+  bool found = rl_bilinear_walk(p, s, 0.0, 1.0 - p.z, t_hit);
+  return rl_hit_on_ray(p, s, t_hit, found);
 }

@@ -1,0 +1,69 @@
+// Robust binary search with precomputed safety radii, Baboud & Decoret 2006 Sections 3.4-3.5.
+#include "safety_radius.h"
+#include "technique/shader_technique.h"
+
+namespace rl {
+
+class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
+ public:
+  using Described::Described;
+  ~ReliefRobust() override {
+    if (texture_) glDeleteTextures(1, &texture_);
+  }
+  static TechniqueInfo describe() {
+    return {
+        "relief_robust",
+        "Robust binary search with safety radii",
+        "Baboud & Decoret 2006, Sections 3.4-3.5 (safety radius, robust binary search, "
+        "Figures 5-8, 12)",
+        {Effect::SelfShadow},
+        {{"binary_steps", ParamKind::Int, 8, 1, 32, "binary search steps once the ray is below"},
+         {"exact_zero_radius", ParamKind::Bool, 0, 0, 1,
+          "solve zero-radius columns exactly instead of clamping the radius to 1"},
+         {"error_allowed", ParamKind::Float, 0, 0, 1,
+          "depth a ray may dip into a feature unseen: larger radii, faster, silhouette "
+          "errors up to this depth (Figure 12)"},
+         {"directions", ParamKind::Int, 16, 4, 256, "ray azimuths sampled by the precompute"},
+         {"max_radius", ParamKind::Int, 16, 1, 255, "largest radius stored, texels"}}};
+  }
+
+  void prepare(const ReliefMap& map) override {
+    SafetyRadiusOptions o;
+    o.error_allowed = param("error_allowed");
+    o.directions = int(param("directions"));
+    o.max_radius = int(param("max_radius"));
+    radii_ = cached_safety_radii(map, o);
+    if (texture_) glDeleteTextures(1, &texture_);
+    glCreateTextures(GL_TEXTURE_2D, 1, &texture_);
+    glTextureStorage2D(texture_, 1, GL_R8UI, radii_.width, radii_.height);
+    // Integer textures are incomplete (texelFetch reads 0) under any filter but NEAREST.
+    glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(texture_, 0, 0, 0, radii_.width, radii_.height, GL_RED_INTEGER,
+                        GL_UNSIGNED_BYTE, radii_.radius.data());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  }
+  size_t memory_bytes() const override { return radii_.radius.size(); }
+  bool prepared_from_cache() const override { return radii_.from_cache; }
+  const SafetyRadii& radii() const { return radii_; }
+
+ protected:
+  std::string intersect_file() const override {
+    return "techniques/relief_robust/relief_robust.glsl";
+  }
+  Defines parameter_defines() const override {
+    Defines d = {{"RL_BINARY_STEPS", std::to_string(int(param("binary_steps")))}};
+    if (param("exact_zero_radius") != 0) d["RL_EXACT_ZERO_RADIUS"] = "1";
+    return d;
+  }
+  void bind_resources(GLuint) const override { glBindTextureUnit(4, texture_); }
+
+ private:
+  SafetyRadii radii_;
+  GLuint texture_ = 0;
+};
+
+RL_REGISTER_TECHNIQUE(ReliefRobust);
+
+}  // namespace rl
