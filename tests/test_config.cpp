@@ -47,6 +47,10 @@ struct BadCase {
 };
 
 TEST(ConfigErrors, EachNamesTheProblemAndWritesNothing) {
+  // Normal mapping only shades the base; the scene draws its bounding box.
+  const std::string normal_on_box_scene = replace(
+      replace(replace(kGood, "name = \"relief\"", "name = \"normal\""), "linear_steps = [4]", ""),
+      "[[technique]]", "proxy = \"box\"\n[[technique]]");
   // Parallax cannot self-shadow; the scene asks for it.
   const std::string parallax_on_shadowed_scene = replace(
       replace(replace(kGood, "name = \"relief\"", "name = \"parallax\""), "linear_steps = [4]", ""),
@@ -88,6 +92,9 @@ TEST(ConfigErrors, EachNamesTheProblemAndWritesNothing) {
       {"bad_plot_axis",
        std::string(kGood) + "[[plot]]\nx = \"fetches\"\n",
        {"[[plot]] axis 'fetches'"}},
+      {"box_unsupported",
+       normal_on_box_scene,
+       {"technique 'normal' cannot render scene 'flat' with proxy = \"box\""}},
       {"toml_syntax",
        replace(kGood, "frames = 1", "frames = = 1"),
        {"sweep.toml:6", "TOML syntax error"}},

@@ -4,6 +4,7 @@ layout(location = 1) in vec2 a_uv;
 layout(location = 2) in vec3 a_dpdu;
 layout(location = 3) in vec3 a_dpdv;
 layout(location = 4) in vec3 a_normal;
+layout(location = 5) in float a_entry_depth;
 
 uniform mat4 rl_view_projection;
 
@@ -12,6 +13,7 @@ out vec2 v_uv;
 out vec3 v_dpdu;
 out vec3 v_dpdv;
 out vec3 v_normal;
+out float v_entry_depth;
 
 void main() {
   v_world = a_position;
@@ -19,5 +21,6 @@ void main() {
   v_dpdu = a_dpdu;
   v_dpdv = a_dpdv;
   v_normal = a_normal;
+  v_entry_depth = a_entry_depth;
   gl_Position = rl_view_projection * vec4(a_position, 1.0);
 }

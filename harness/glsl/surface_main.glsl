@@ -10,10 +10,14 @@ in vec2 v_uv;
 in vec3 v_dpdu;
 in vec3 v_dpdv;
 in vec3 v_normal;
+in float v_entry_depth;
 
 uniform vec3 rl_eye;
 uniform vec3 rl_light;
 uniform float rl_depth_scale;  // world depth of depth 1
+#ifdef RL_PROXY_BOX
+uniform vec2 rl_uv_max;  // the box spans [0, rl_uv_max] in u and v
+#endif
 #ifdef RL_SELF_SHADOW
 uniform float rl_shadow_bias;  // depth units (Listing 5.3's shadow_threshold)
 #endif
@@ -37,11 +41,16 @@ void main() {
   vec3 tv = rl_texture_direction(V, N);
   if (tv.z <= 0.0) discard;  // base seen from below: no relief there
   vec3 s = tv / tv.z;
-  RlHit h = rl_intersect(vec3(v_uv, 0.0), s);
+  RlHit h = rl_intersect(vec3(v_uv, v_entry_depth), s);
+#ifdef RL_PROXY_BOX
+  // A hit outside the box means the ray left it first (the box is convex, rays straight).
+  const float eps = 1e-5;
+  if (!h.hit || any(lessThan(h.uv, vec2(-eps))) || any(greaterThan(h.uv, rl_uv_max + eps))) discard;
+#endif
 
   // The point the technique claims: its hit uv at its hit depth, in the base's frame.
   vec3 hit_world = v_world + v_dpdu * (h.uv.x - v_uv.x) + v_dpdv * (h.uv.y - v_uv.y) -
-                   N * (h.depth * rl_depth_scale);
+                   N * ((h.depth - v_entry_depth) * rl_depth_scale);
   vec3 tn = rl_decode_normal(RL_FETCH(rl_relief, h.uv));
   vec3 n = normalize(tn.x * normalize(v_dpdu) + tn.y * normalize(v_dpdv) + tn.z * N);
   vec3 albedo = RL_FETCH(rl_color, h.uv).rgb;

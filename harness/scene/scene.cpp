@@ -18,17 +18,39 @@ PlanarBase planar_base(const SceneDesc& scene) {
 BaseGeometry make_base_geometry(const SceneDesc& scene) {
   const PlanarBase base = planar_base(scene);
   BaseGeometry g;
-  const glm::vec2 corners[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  for (const glm::vec2& c : corners) {
+  auto vertex = [&](const glm::dvec3& uvd) {
     BaseVertex v;
-    glm::dvec3 uvd(c.x * scene.tile, c.y * scene.tile, 0);
     v.position = glm::vec3(base.world_from_texture(uvd));
     v.uv = glm::vec2(uvd);
     v.dpdu = glm::vec3(base.dpdu());
     v.dpdv = glm::vec3(base.dpdv());
     v.normal = glm::vec3(base.normal());
-    g.vertices.push_back(v);
+    v.entry_depth = float(uvd.z);
+    return v;
+  };
+  if (scene.proxy == Proxy::Box) {
+    // Corners in texture space (u, v, depth); depth grows downward (world -z).
+    const double t = scene.tile;
+    auto corner = [&](int i) {
+      return glm::dvec3((i & 1) ? t : 0, (i & 2) ? t : 0, (i & 4) ? 1 : 0);
+    };
+    // Each face as four corner indices, counter-clockwise seen from outside in world space.
+    const int faces[6][4] = {{0, 1, 3, 2},   // top (depth 0, world +z)
+                             {4, 6, 7, 5},   // bottom
+                             {0, 4, 5, 1},   // v = 0
+                             {2, 3, 7, 6},   // v = tile
+                             {0, 2, 6, 4},   // u = 0
+                             {1, 5, 7, 3}};  // u = tile
+    for (const auto& f : faces) {
+      const unsigned first = unsigned(g.vertices.size());
+      for (int c : f) g.vertices.push_back(vertex(corner(c)));
+      for (unsigned k : {0u, 1u, 2u, 0u, 2u, 3u}) g.indices.push_back(first + k);
+    }
+    return g;
   }
+  const glm::vec2 corners[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (const glm::vec2& c : corners)
+    g.vertices.push_back(vertex({c.x * scene.tile, c.y * scene.tile, 0}));
   g.indices = {0, 1, 2, 0, 2, 3};
   return g;
 }

@@ -36,8 +36,14 @@ struct Material {
   double shadow_intensity = 0.4;  // colour factor in shadow (Listing 5.3)
 };
 
+// What the rasteriser draws for a relief: the base surface itself (rays enter at the top),
+// or the relief volume's bounding box (Baboud & Decoret, Section 3): rays also enter through
+// the sides, misses are discarded, and the silhouette comes from the search.
+enum class Proxy { Base, Box };
+
 struct SceneDesc {
   std::string name;
+  Proxy proxy = Proxy::Base;
   ReliefSourceDesc relief;
   double size = 1.0;     // world side of the quad
   double tile = 1.0;     // texture repeats across the quad
@@ -80,6 +86,7 @@ struct BaseVertex {
   glm::vec3 dpdu;  // world change per unit u (tangent scaled by the mapping)
   glm::vec3 dpdv;
   glm::vec3 normal;
+  float entry_depth;  // depth at which a ray entering here starts (0 on the base / box top)
 };
 
 struct BaseGeometry {
@@ -87,6 +94,8 @@ struct BaseGeometry {
   std::vector<unsigned> indices;
 };
 
+// The base quad, or for Proxy::Box the closed box [0, tile]^2 x [0, 1] in texture space with
+// outward faces (counter-clockwise seen from outside).
 BaseGeometry make_base_geometry(const SceneDesc& scene);
 
 struct Camera {

@@ -200,11 +200,11 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
 
 SceneDesc parse_scene(const toml::table& t, const Src& src, const std::string& base_dir,
                       const toml::node& node, json& canon) {
-  check_keys(
-      t,
-      {"name", "relief", "size", "tile", "depth", "quantize", "effects", "light", "fov", "distance",
-       "shadow_bias", "ambient", "diffuse", "specular", "shininess", "shadow_intensity"},
-      src, "[[scene]]");
+  check_keys(t,
+             {"name", "relief", "proxy", "size", "tile", "depth", "quantize", "effects", "light",
+              "fov", "distance", "shadow_bias", "ambient", "diffuse", "specular", "shininess",
+              "shadow_intensity"},
+             src, "[[scene]]");
   SceneDesc s;
   if (!t.contains("name")) fail(src.at(node), "[[scene]] needs a 'name'");
   s.name = string_of(*t.get("name"), src, "name");
@@ -235,6 +235,15 @@ SceneDesc parse_scene(const toml::table& t, const Src& src, const std::string& b
     s.quantize = n->value<bool>().value();
   }
   if (auto* n = t.get("light")) s.light_position = vec3_of(*n, src, "light");
+  if (auto* n = t.get("proxy")) {
+    const std::string p = string_of(*n, src, "proxy");
+    if (p != "base" && p != "box")
+      fail(src.at(*n),
+           "'proxy' must be \"base\" (draw the base surface) or \"box\" (draw the "
+           "relief's bounding box), got \"" +
+               p + "\"");
+    s.proxy = p == "box" ? Proxy::Box : Proxy::Base;
+  }
   if (auto* n = t.get("ambient")) s.material.ambient = vec3_of(*n, src, "ambient");
   if (auto* n = t.get("diffuse")) s.material.diffuse = vec3_of(*n, src, "diffuse");
   if (auto* n = t.get("specular")) s.material.specular = vec3_of(*n, src, "specular");
@@ -250,6 +259,7 @@ SceneDesc parse_scene(const toml::table& t, const Src& src, const std::string& b
     }
   }
   canon["name"] = s.name;
+  canon["proxy"] = s.proxy == Proxy::Box ? "box" : "base";
   canon["size"] = s.size;
   canon["tile"] = s.tile;
   canon["depth"] = s.depth;
@@ -419,7 +429,8 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
       if (!scene_names.count(s))
         fail(ts.where, "technique '" + ts.name + "' names unknown scene '" + s + "'");
     // Effects: every scene this technique runs on must ask only for effects it simulates.
-    const EffectSet supported = TechniqueRegistry::instance().find(ts.name)->info.effects;
+    const TechniqueInfo& tinfo = TechniqueRegistry::instance().find(ts.name)->info;
+    const EffectSet supported = tinfo.effects;
     for (const SceneDesc& s : c.scenes) {
       const bool runs = ts.scenes.empty() ||
                         std::find(ts.scenes.begin(), ts.scenes.end(), s.name) != ts.scenes.end();
@@ -429,6 +440,10 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
                            " requested by scene '" + s.name +
                            "' (it supports: " + join_effects(supported) +
                            "); restrict it with scenes = [...] or drop the effect");
+      if (runs && s.proxy == Proxy::Box && !tinfo.box_proxy)
+        fail(ts.where, "technique '" + ts.name + "' cannot render scene '" + s.name +
+                           "' with proxy = \"box\" (it only shades the base surface); restrict "
+                           "it with scenes = [...]");
     }
     c.techniques.push_back(ts);
   }

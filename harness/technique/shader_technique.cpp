@@ -18,7 +18,8 @@ void set_float(GLuint p, const char* name, double v) {
 
 }  // namespace
 
-ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Kind target) const {
+ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Kind target,
+                                             Proxy proxy) const {
   ProgramDesc d;
   d.owner = info().name;
   d.vertex_file = "harness/glsl/base.vert";
@@ -26,6 +27,7 @@ ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Ki
   d.defines = parameter_defines();
   for (Effect e : effects.list()) d.defines[effect_define(e)] = "1";
   if (target == RenderTarget::Kind::GBuffer) d.defines["RL_GBUFFER"] = "1";
+  if (proxy == Proxy::Box) d.defines["RL_PROXY_BOX"] = "1";
   return d;
 }
 
@@ -40,13 +42,14 @@ ProgramDesc ShaderTechnique::probe_program() const {
 }
 
 void ShaderTechnique::render(const FrameInput& frame, RenderTarget::Kind target) {
-  const GLuint p = ShaderLibrary::shared().program(surface_program(frame.effects, target));
+  const SceneDesc& s = frame.scene;
+  const GLuint p = ShaderLibrary::shared().program(surface_program(frame.effects, target, s.proxy));
   glUseProgram(p);
   const glm::mat4 view_proj(frame.camera.projection_matrix() * frame.camera.view_matrix());
   glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "rl_view_projection"), 1, GL_FALSE,
                             glm::value_ptr(view_proj));
-  const SceneDesc& s = frame.scene;
   const PlanarBase base = planar_base(s);
+  glProgramUniform2f(p, glGetUniformLocation(p, "rl_uv_max"), float(s.tile), float(s.tile));
   set_vec3(p, "rl_eye", frame.camera.eye);
   set_vec3(p, "rl_light", s.light_position);
   set_float(p, "rl_depth_scale", s.depth);
@@ -61,8 +64,15 @@ void ShaderTechnique::render(const FrameInput& frame, RenderTarget::Kind target)
   bind_resources(p);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-  glDisable(GL_CULL_FACE);
+  // A box proxy is drawn front faces only: each pixel's ray enters the box once.
+  if (s.proxy == Proxy::Box) {
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+  } else {
+    glDisable(GL_CULL_FACE);
+  }
   frame.base.draw();
+  glDisable(GL_CULL_FACE);
 }
 
 std::vector<ProbeHit> ShaderTechnique::probe(const ReliefMap& map, const GpuRelief& relief,

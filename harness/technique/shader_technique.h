@@ -19,7 +19,8 @@ class ShaderTechnique : public Technique {
                               const std::vector<ProbeRay>& rays, double depth_aspect) override;
 
   // The program a render with these effects and this target uses (tests inspect its source).
-  ProgramDesc surface_program(EffectSet effects, RenderTarget::Kind target) const;
+  ProgramDesc surface_program(EffectSet effects, RenderTarget::Kind target,
+                              Proxy proxy = Proxy::Base) const;
   ProgramDesc probe_program() const;
 
  protected:

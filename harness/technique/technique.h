@@ -27,6 +27,7 @@ struct TechniqueInfo {
   std::string citation;  // paper and section
   EffectSet effects;     // effects it can simulate when a scene asks for them
   std::vector<ParamSpec> params;
+  bool box_proxy = false;  // can render a scene's bounding-box proxy (Proxy::Box)
 };
 
 // What render() draws with: the scene, its GPU resources and the view.

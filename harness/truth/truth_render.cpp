@@ -3,12 +3,76 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "core/parallel.h"
 
 namespace rl {
 namespace {
+
 constexpr double kAboveTop = 1e-6;  // depth units above the top plane where truth rays start
+
+// Slab test of the ray o + t d against the texture-space box [0, tile]^2 x [0, 1].
+bool clip_to_box(const glm::dvec3& o, const glm::dvec3& d, double tile, double& t_in,
+                 double& t_out) {
+  t_in = 0;
+  t_out = std::numeric_limits<double>::infinity();
+  const double lo[3] = {0, 0, 0}, hi[3] = {tile, tile, 1};
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] == 0) {
+      if (o[a] < lo[a] || o[a] > hi[a]) return false;
+      continue;
+    }
+    double t0 = (lo[a] - o[a]) / d[a], t1 = (hi[a] - o[a]) / d[a];
+    if (t0 > t1) std::swap(t0, t1);
+    t_in = std::max(t_in, t0);
+    t_out = std::min(t_out, t1);
+  }
+  return t_in < t_out;
+}
+
+// The first surface point along the camera ray o + t d (texture space, t = world distance)
+// for the scene's proxy; false when the pixel shows background. On return the hit is at
+// t = t_start + h.t.
+bool trace_primary(const HeightfieldTruth& truth, const ReliefMap& map, const SceneDesc& scene,
+                   const glm::dvec3& o, const glm::dvec3& d, double bottom, double& t_start,
+                   TruthHit& h, std::atomic<long>& unresolved) {
+  if (d.z <= 0) return false;  // never descends into the relief
+  if (scene.proxy == Proxy::Box) {
+    // The solid under the heightfield, clipped to the box [0, tile]^2 x [0, 1].
+    double t_in = 0, t_out = 0;
+    if (!clip_to_box(o, d, scene.tile, t_in, t_out)) return false;
+    const glm::dvec3 entry = o + d * t_in;
+    if (entry.z > kAboveTop && entry.z >= map.sample_depth(entry.x, entry.y)) {
+      t_start = t_in;  // entered through a side below the surface: the box's wall
+      h.hit = true;
+      h.t = 0;
+      h.point = entry;
+      return true;
+    }
+    t_start = t_in - kAboveTop / d.z;
+    h = truth.intersect(o + d * t_start, d, 0.0, t_out - t_start);
+    return h.hit;  // a ray leaving the box without meeting the relief shows background
+  }
+  const double t_top = -o.z / d.z;
+  const glm::dvec3 entry = o + d * t_top;
+  if (t_top <= 0 || entry.x < 0 || entry.y < 0 || entry.x > scene.tile || entry.y > scene.tile)
+    return false;  // misses the base: background
+  // Start a hair above the top plane: a ray starting exactly on a flat top (depth 0) would
+  // miss it at t = 0 and continue inside the solid.
+  t_start = t_top - kAboveTop / d.z;
+  const glm::dvec3 start = o + d * t_start;
+  const double t_bottom = (bottom - start.z) / d.z;
+  h = truth.intersect(start, d, 0.0, t_bottom);
+  if (!h.hit) {
+    // Rounding let the ray through the floor; it is inside the relief there.
+    ++unresolved;
+    h.point = start + d * t_bottom;
+    h.t = t_bottom;
+  }
+  return true;
+}
+
 }  // namespace
 
 glm::dvec3 shade(const Material& m, const glm::dvec3& albedo, const glm::dvec3& n,
@@ -44,24 +108,9 @@ GBuffer render_truth(const HeightfieldTruth& truth, const ReliefMap& map, const 
           camera.pixel_ray(x, y, eye, dir);
           const glm::dvec3 o = base.texture_from_world(eye);
           const glm::dvec3 d = base.texture_direction(dir);  // t stays the world distance
-          if (d.z <= 0) continue;                            // never descends into the relief
-          const double t_top = -o.z / d.z;
-          const glm::dvec3 entry = o + d * t_top;
-          if (t_top <= 0 || entry.x < 0 || entry.y < 0 || entry.x > scene.tile ||
-              entry.y > scene.tile)
-            continue;  // misses the base: background
-          // Start a hair above the top plane: a ray starting exactly on a flat top (depth 0)
-          // would miss it at t = 0 and continue inside the solid.
-          const double t_start = t_top - kAboveTop / d.z;
-          const glm::dvec3 start = o + d * t_start;
-          const double t_bottom = (bottom - start.z) / d.z;
-          TruthHit h = truth.intersect(start, d, 0.0, t_bottom);
-          if (!h.hit) {
-            // Rounding let the ray through the floor; it is inside the relief there.
-            ++unresolved;
-            h.point = start + d * t_bottom;
-            h.t = t_bottom;
-          }
+          double t_start = 0;
+          TruthHit h;
+          if (!trace_primary(truth, map, scene, o, d, bottom, t_start, h, unresolved)) continue;
           const glm::dvec3 world = eye + dir * (t_start + h.t);
           const glm::dvec2 uv(h.point.x, h.point.y);
           const glm::dvec3 tn = decode_normal(map.sample_relief(uv.x, uv.y));

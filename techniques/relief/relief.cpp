@@ -16,7 +16,8 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
               "linear search steps through the depth range (Listing 5.3: 10, or 20 in its "
               "double-precision variant)"},
              {"binary_steps", ParamKind::Int, 5, 0, 32,
-              "binary search refinements after the linear search (Listing 5.3: 5)"}}};
+              "binary search refinements after the linear search (Listing 5.3: 5)"}},
+            true};
   }
 
  protected:

@@ -12,7 +12,8 @@ class ReliefExact final : public Described<ReliefExact, ShaderTechnique> {
             "Baboud & Decoret 2006, Section 3.3 'Rasterization-based intersection' "
             "(2D Amanatides & Woo 1987)",
             {Effect::SelfShadow},
-            {}};
+            {},
+            true};
   }
 
  protected:

@@ -12,7 +12,8 @@ class ReliefExactBilinear final : public Described<ReliefExactBilinear, ShaderTe
             "Beyond Baboud & Decoret 2006, Section 3.3: solves the saddle case of their "
             "Figure 3 exactly",
             {Effect::SelfShadow},
-            {}};
+            {},
+            true};
   }
 
  protected:

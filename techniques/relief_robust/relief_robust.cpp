@@ -24,7 +24,8 @@ class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
           "depth a ray may dip into a feature unseen: larger radii, faster, silhouette "
           "errors up to this depth (Figure 12)"},
          {"directions", ParamKind::Int, 16, 4, 256, "ray azimuths sampled by the precompute"},
-         {"max_radius", ParamKind::Int, 16, 1, 255, "largest radius stored, texels"}}};
+         {"max_radius", ParamKind::Int, 16, 1, 255, "largest radius stored, texels"}},
+        true};
   }
 
   void prepare(const ReliefMap& map) override {
