@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Regenerates one committed reproduction: runs CONFIG from an empty folder and copies its
+# tables, rows.csv, Pareto fronts and plots into results/<sweep name>/ (images stay in the
+# scratch run folder, out/<sweep name>-reproduction/images).
+#   scripts/reproduce.sh                                        # the built-in default sweep
+#   scripts/reproduce.sh configs/papers/baboud2006-table1.toml
+set -euo pipefail
+cd "$(dirname "$0")/.."
+config="${1:-configs/default.toml}"
+[ -f "$config" ] || { echo "reproduce: no such config: $config" >&2; exit 2; }
+[ -x build/relieflab ] || { cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && cmake --build build -j"$(nproc)"; }
+name=$(sed -n 's/^name *= *"\([^"]*\)".*/\1/p' "$config" | head -1)
+[ -n "$name" ] || { echo "reproduce: $config has no [sweep] name" >&2; exit 2; }
+run="out/$name-reproduction"
+rm -rf "$run"
+./build/relieflab run "$config" --out "$run" -q
+dest="results/$name"
+mkdir -p "$dest"
+rm -rf "$dest/plots"
+cp "$run"/*.md "$run"/rows.csv "$dest/"
+cp -r "$run"/plots "$dest/"
+cp "$run"/run.log "$dest/run.log"
+echo "$dest regenerated from $run"
