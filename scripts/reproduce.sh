@@ -2,10 +2,14 @@
 # Regenerates one committed reproduction: runs CONFIG from an empty folder and copies its
 # tables, rows.csv, Pareto fronts and plots into results/<sweep name>/ (images stay in the
 # scratch run folder, out/<sweep name>-reproduction/images).
+# With --images the run's images come along too (for figure reproductions with few cells).
 #   scripts/reproduce.sh                                        # the built-in default sweep
 #   scripts/reproduce.sh configs/papers/baboud2006-table1.toml
+#   scripts/reproduce.sh --images configs/papers/baboud2006-fig11.toml
 set -euo pipefail
 cd "$(dirname "$0")/.."
+images=false
+if [ "${1:-}" = "--images" ]; then images=true; shift; fi
 config="${1:-configs/default.toml}"
 [ -f "$config" ] || { echo "reproduce: no such config: $config" >&2; exit 2; }
 [ -x build/relieflab ] || { cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && cmake --build build -j"$(nproc)"; }
@@ -20,4 +24,5 @@ rm -rf "$dest/plots"
 cp "$run"/*.md "$run"/rows.csv "$dest/"
 cp -r "$run"/plots "$dest/"
 cp "$run"/run.log "$dest/run.log"
+if $images; then rm -rf "$dest/images" && cp -r "$run"/images "$dest/"; fi
 echo "$dest regenerated from $run"
