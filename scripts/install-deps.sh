@@ -14,6 +14,7 @@ packages=(
   libcli11-dev                        # command line
   nlohmann-json3-dev                  # run manifests
   libsqlite3-dev                      # result store (atomic, resumable)
+  libassimp-dev                       # meshes (OBJ, PLY) to bake into relief maps
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 

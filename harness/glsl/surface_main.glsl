@@ -45,7 +45,14 @@ void main() {
 #ifdef RL_PROXY_BOX
   // A hit outside the box means the ray left it first (the box is convex, rays straight).
   const float eps = 1e-5;
-  if (!h.hit || any(lessThan(h.uv, vec2(-eps))) || any(greaterThan(h.uv, rl_uv_max + eps))) discard;
+  if (any(lessThan(h.uv, vec2(-eps))) || any(greaterThan(h.uv, rl_uv_max + eps))) discard;
+  // Reaching depth 1 is the floor: a hit on a solid floor (a search may end there without
+  // a root, by rounding), or leaving the box through an empty one.
+  bool on_floor = h.depth >= 1.0 - 1e-4;
+#ifdef RL_EMPTY_FLOOR
+  if (on_floor) discard;
+#endif
+  if (!h.hit && !on_floor) discard;  // a walk stopped by its cell cap
 #endif
 
   // The point the technique claims: its hit uv at its hit depth, in the base's frame.

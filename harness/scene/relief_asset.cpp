@@ -1,6 +1,7 @@
 #include "scene/relief_asset.h"
 
 #include "relief/image_io.h"
+#include "relief/mesh_bake.h"
 #include "relief/procedural.h"
 
 namespace rl {
@@ -8,7 +9,10 @@ namespace rl {
 ReliefMap build_relief_asset(const SceneDesc& scene, int resolution) {
   const PlanarBase base = planar_base(scene);
   ReliefMap map;
-  if (!scene.relief.procedural.empty()) {
+  if (!scene.relief.mesh_path.empty()) {
+    const TriangleMesh mesh = load_mesh(scene.relief.mesh_path);
+    map = bake_mesh(mesh, bake_frame(mesh, scene.relief.mesh_up), resolution);
+  } else if (!scene.relief.procedural.empty()) {
     map = make_procedural(scene.relief.procedural, resolution, scene.relief.options,
                           scene.depth / base.texel_world(resolution), "scene '" + scene.name + "'");
   } else {

@@ -25,6 +25,8 @@ struct ReliefSourceDesc {
   bool height_convention = true;  // image stores height (1 = top)
   bool flip_green = false;
   bool normalize = false;       // remap image depths to [0, 1]
+  std::string mesh_path;        // a mesh baked into the map (Baboud & Decoret)
+  int mesh_up = 1;              // its up axis: 0, 1, 2 = x, y, z
   int native_resolution = 256;  // resolution when texture_res = 0 ("native")
 };
 
@@ -41,9 +43,18 @@ struct Material {
 // the sides, misses are discarded, and the silhouette comes from the search.
 enum class Proxy { Base, Box };
 
+// What the truth traces: the relief as the technique samples it (the bilinear heightfield of
+// the map), or, for a baked mesh, the mesh itself (includes representation error).
+enum class TruthLevel { Sampled, Mesh };
+
 struct SceneDesc {
   std::string name;
   Proxy proxy = Proxy::Base;
+  TruthLevel truth = TruthLevel::Sampled;
+  // With a box proxy, is depth 1 (the box's bottom) a floor, or empty (an object baked from a
+  // mesh: chapter 5's "alpha = d < 1", Baboud & Decoret's objects)? Rays reaching it hit the
+  // floor, or leave the box.
+  bool empty_floor = false;
   ReliefSourceDesc relief;
   double size = 1.0;     // world side of the quad
   double tile = 1.0;     // texture repeats across the quad

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/hash.h"
 #include "gl/embedded_files.h"
+#include "relief/mesh_bake.h"
 #include "relief/procedural.h"
 #include "sweep/cells.h"
 #include "technique/technique.h"
@@ -131,13 +132,37 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
   if (!t) fail(src.at(node), "'relief' must be a table, e.g. { procedural = \"bricks\" }");
   check_keys(*t,
              {"procedural", "resolution", "options", "normal", "depth", "color", "convention",
-              "flip_green", "normalize"},
+              "flip_green", "normalize", "mesh", "up"},
              src, "relief");
   ReliefSourceDesc r;
   const bool procedural = t->contains("procedural");
   const bool images = t->contains("normal") || t->contains("depth");
-  if (procedural == images)
-    fail(src.at(node), "relief needs either 'procedural' or image files ('normal' and/or 'depth')");
+  const bool mesh = t->contains("mesh");
+  if (int(procedural) + int(images) + int(mesh) != 1)
+    fail(src.at(node),
+         "relief needs exactly one of 'procedural', image files ('normal' and/or "
+         "'depth') or 'mesh'");
+  if (mesh) {
+    for (const char* k : {"color", "convention", "flip_green", "normalize", "options"})
+      if (t->contains(k))
+        fail(src.at(node), std::string("'") + k + "' does not apply to a mesh relief");
+    const toml::node& mn = *t->get("mesh");
+    r.mesh_path = resolve_path(string_of(mn, src, "mesh"), base_dir, src, mn);
+    if (auto* n = t->get("up")) {
+      const std::string up = string_of(*n, src, "up");
+      if (up != "x" && up != "y" && up != "z")
+        fail(src.at(*n), "'up' must be \"x\", \"y\" or \"z\"");
+      r.mesh_up = up[0] - 'x';
+    }
+    r.native_resolution = 256;
+    if (auto* n = t->get("resolution"))
+      r.native_resolution = positive_int(*n, src, "resolution", 2, 8192);
+    canon["mesh"] = fs::path(r.mesh_path).filename().string() + ":" + hex64(file_hash(r.mesh_path));
+    canon["up"] = r.mesh_up;
+    canon["resolution"] = r.native_resolution;
+    return r;
+  }
+  if (t->contains("up")) fail(src.at(node), "'up' applies to mesh reliefs only");
   if (procedural) {
     r.procedural = string_of(*t->get("procedural"), src, "procedural");
     bool known = false;
@@ -201,9 +226,9 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
 SceneDesc parse_scene(const toml::table& t, const Src& src, const std::string& base_dir,
                       const toml::node& node, json& canon) {
   check_keys(t,
-             {"name", "relief", "proxy", "size", "tile", "depth", "quantize", "effects", "light",
-              "fov", "distance", "shadow_bias", "ambient", "diffuse", "specular", "shininess",
-              "shadow_intensity"},
+             {"name", "relief", "proxy", "truth", "floor", "size", "tile", "depth", "quantize",
+              "effects", "light", "fov", "distance", "shadow_bias", "ambient", "diffuse",
+              "specular", "shininess", "shadow_intensity"},
              src, "[[scene]]");
   SceneDesc s;
   if (!t.contains("name")) fail(src.at(node), "[[scene]] needs a 'name'");
@@ -218,6 +243,17 @@ SceneDesc parse_scene(const toml::table& t, const Src& src, const std::string& b
     }
   };
   positive("size", s.size);
+  if (!s.relief.mesh_path.empty()) {
+    // A baked mesh keeps its proportions: the relief depth follows from the footprint.
+    if (t.contains("depth"))
+      fail(src.at(*t.get("depth")),
+           "scene '" + s.name + "': 'depth' comes from the mesh's proportions; set 'size' instead");
+    if (t.contains("tile"))
+      fail(src.at(*t.get("tile")), "scene '" + s.name + "': a baked mesh is not tiled");
+    const TriangleMesh mesh = load_mesh(s.relief.mesh_path);
+    const BakeFrame frame = bake_frame(mesh, s.relief.mesh_up);
+    s.depth = s.size * frame.height / frame.side;
+  }
   positive("tile", s.tile);
   positive("depth", s.depth);
   positive("fov", s.fov_deg);
@@ -235,6 +271,22 @@ SceneDesc parse_scene(const toml::table& t, const Src& src, const std::string& b
     s.quantize = n->value<bool>().value();
   }
   if (auto* n = t.get("light")) s.light_position = vec3_of(*n, src, "light");
+  if (auto* n = t.get("truth")) {
+    const std::string level = string_of(*n, src, "truth");
+    if (level != "sampled" && level != "mesh")
+      fail(src.at(*n),
+           "'truth' must be \"sampled\" (the map's heightfield) or \"mesh\" (the baked mesh)");
+    s.truth = level == "mesh" ? TruthLevel::Mesh : TruthLevel::Sampled;
+    if (s.truth == TruthLevel::Mesh && s.relief.mesh_path.empty())
+      fail(src.at(*n), "truth = \"mesh\" needs a mesh relief (relief = { mesh = \"...\" })");
+  }
+  s.empty_floor = !s.relief.mesh_path.empty();
+  if (auto* n = t.get("floor")) {
+    const std::string f = string_of(*n, src, "floor");
+    if (f != "solid" && f != "empty")
+      fail(src.at(*n), "'floor' must be \"solid\" or \"empty\" (default: empty for baked meshes)");
+    s.empty_floor = f == "empty";
+  }
   if (auto* n = t.get("proxy")) {
     const std::string p = string_of(*n, src, "proxy");
     if (p != "base" && p != "box")
@@ -260,6 +312,12 @@ SceneDesc parse_scene(const toml::table& t, const Src& src, const std::string& b
   }
   canon["name"] = s.name;
   canon["proxy"] = s.proxy == Proxy::Box ? "box" : "base";
+  canon["truth"] = s.truth == TruthLevel::Mesh ? "mesh" : "sampled";
+  canon["floor"] = s.empty_floor ? "empty" : "solid";
+  if (s.truth == TruthLevel::Mesh && s.proxy != Proxy::Box)
+    fail(src.at(node),
+         "scene '" + s.name +
+             "': truth = \"mesh\" needs proxy = \"box\" (the mesh is an object in its box)");
   canon["size"] = s.size;
   canon["tile"] = s.tile;
   canon["depth"] = s.depth;

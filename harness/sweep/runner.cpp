@@ -19,6 +19,7 @@
 #include "sweep/result_store.h"
 #include "sweep/tables.h"
 #include "technique/technique.h"
+#include "truth/make_truth.h"
 #include "truth/truth_render.h"
 
 namespace rl {
@@ -63,7 +64,7 @@ struct Asset {
   ReliefMap map;
   std::unique_ptr<GpuRelief> relief;
   std::unique_ptr<GpuBase> base;
-  std::unique_ptr<HeightfieldTruth> truth;
+  std::unique_ptr<TruthSurface> truth;
   double build_ms = 0;
   // Prepared technique instances by (technique, parameters): prepare() runs once per asset.
   std::map<std::string, std::pair<std::unique_ptr<Technique>, double>> prepared;
@@ -140,7 +141,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       asset->map = build_relief_asset(scene, cell.texture_res);
       asset->relief = std::make_unique<GpuRelief>(asset->map);
       asset->base = std::make_unique<GpuBase>(make_base_geometry(scene));
-      asset->truth = std::make_unique<HeightfieldTruth>(asset->map, config.truth_tolerance);
+      asset->truth = make_truth(scene, asset->map, config.truth_tolerance);
       asset->build_ms = ms_since(t0);
       asset_key = cell.asset_key;
       truth_key.clear();
@@ -220,6 +221,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     row["truth_ms"] = truth_stats.trace_ms;
     row["truth_unresolved_px"] = double(truth_stats.unresolved);
     row["effects"] = join_effects(scene.effects);
+    row["truth"] = scene.truth == TruthLevel::Mesh ? "mesh" : "sampled";
     row["renderer"] = gl.renderer();
     row["key"] = cell.key;
     if (config.write_images) {

@@ -19,7 +19,7 @@ void set_float(GLuint p, const char* name, double v) {
 }  // namespace
 
 ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Kind target,
-                                             Proxy proxy) const {
+                                             Proxy proxy, bool empty_floor) const {
   ProgramDesc d;
   d.owner = info().name;
   d.vertex_file = "harness/glsl/base.vert";
@@ -28,6 +28,7 @@ ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Ki
   for (Effect e : effects.list()) d.defines[effect_define(e)] = "1";
   if (target == RenderTarget::Kind::GBuffer) d.defines["RL_GBUFFER"] = "1";
   if (proxy == Proxy::Box) d.defines["RL_PROXY_BOX"] = "1";
+  if (proxy == Proxy::Box && empty_floor) d.defines["RL_EMPTY_FLOOR"] = "1";
   return d;
 }
 
@@ -43,7 +44,8 @@ ProgramDesc ShaderTechnique::probe_program() const {
 
 void ShaderTechnique::render(const FrameInput& frame, RenderTarget::Kind target) {
   const SceneDesc& s = frame.scene;
-  const GLuint p = ShaderLibrary::shared().program(surface_program(frame.effects, target, s.proxy));
+  const GLuint p = ShaderLibrary::shared().program(
+      surface_program(frame.effects, target, s.proxy, s.empty_floor));
   glUseProgram(p);
   const glm::mat4 view_proj(frame.camera.projection_matrix() * frame.camera.view_matrix());
   glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "rl_view_projection"), 1, GL_FALSE,

@@ -20,7 +20,7 @@ class ShaderTechnique : public Technique {
 
   // The program a render with these effects and this target uses (tests inspect its source).
   ProgramDesc surface_program(EffectSet effects, RenderTarget::Kind target,
-                              Proxy proxy = Proxy::Base) const;
+                              Proxy proxy = Proxy::Base, bool empty_floor = false) const;
   ProgramDesc probe_program() const;
 
  protected:

@@ -8,23 +8,14 @@
 // Space: (u, v, depth), depth growing downward, exactly the shaders' texture space. One tile
 // is built; rays walk the tiles they cross (2D DDA over tile cells), so tiling and grazing
 // rays cost no memory.
-#include <atomic>
-#include <cstdint>
-
 #include <embree3/rtcore.h>
-#include <glm/glm.hpp>
 
 #include "relief/relief_map.h"
+#include "truth/truth_surface.h"
 
 namespace rl {
 
-struct TruthHit {
-  bool hit = false;
-  double t = 0;      // ray parameter (same units as the direction given)
-  glm::dvec3 point;  // (u, v, depth) of the hit, u and v not wrapped
-};
-
-class HeightfieldTruth {
+class HeightfieldTruth final : public TruthSurface {
  public:
   // `tolerance` in depth units; `max_vertices` caps memory (the achieved bound is reported).
   HeightfieldTruth(const ReliefMap& map, double tolerance = 2e-3, size_t max_vertices = 1u << 24,
@@ -35,18 +26,16 @@ class HeightfieldTruth {
 
   // First hit along origin + t direction, t in [t_min, t_max].
   TruthHit intersect(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,
-                     double t_max) const;
+                     double t_max) const override;
   // Is anything hit along origin + t direction, t in [t_min, t_max]? (shadow rays)
   bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,
-                double t_max) const;
+                double t_max) const override;
 
-  int subdivision() const { return subdivision_; }
+  int subdivision() const override { return subdivision_; }
   // Largest deviation of the tessellation from the bilinear surface, in depth units.
-  double tessellation_bound() const { return bound_; }
-  double build_ms() const { return build_ms_; }
-  float max_depth() const { return max_depth_; }
-  uint64_t primary_rays() const { return primary_rays_.load(); }
-  uint64_t shadow_rays() const { return shadow_rays_.load(); }
+  double tessellation_bound() const override { return bound_; }
+  double build_ms() const override { return build_ms_; }
+  float max_depth() const override { return max_depth_; }
   RTCScene scene() const { return scene_; }  // one tile, for benchmarks against raw Embree
 
  private:
@@ -61,8 +50,6 @@ class HeightfieldTruth {
   double build_ms_ = 0;
   float max_depth_ = 1;
   glm::dvec2 offset_{0};  // tile origin: half a texel, so tile edges run through texel centres
-  mutable std::atomic<uint64_t> primary_rays_{0};
-  mutable std::atomic<uint64_t> shadow_rays_{0};
 };
 
 }  // namespace rl

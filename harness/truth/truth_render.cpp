@@ -11,6 +11,7 @@ namespace rl {
 namespace {
 
 constexpr double kAboveTop = 1e-6;  // depth units above the top plane where truth rays start
+constexpr double kFloor = 1e-4;     // depth units within which a hit counts as on the floor
 
 // Slab test of the ray o + t d against the texture-space box [0, tile]^2 x [0, 1].
 bool clip_to_box(const glm::dvec3& o, const glm::dvec3& d, double tile, double& t_in,
@@ -34,7 +35,7 @@ bool clip_to_box(const glm::dvec3& o, const glm::dvec3& d, double tile, double& 
 // The first surface point along the camera ray o + t d (texture space, t = world distance)
 // for the scene's proxy; false when the pixel shows background. On return the hit is at
 // t = t_start + h.t.
-bool trace_primary(const HeightfieldTruth& truth, const ReliefMap& map, const SceneDesc& scene,
+bool trace_primary(const TruthSurface& truth, const ReliefMap& map, const SceneDesc& scene,
                    const glm::dvec3& o, const glm::dvec3& d, double bottom, double& t_start,
                    TruthHit& h, std::atomic<long>& unresolved) {
   if (d.z <= 0) return false;  // never descends into the relief
@@ -52,7 +53,17 @@ bool trace_primary(const HeightfieldTruth& truth, const ReliefMap& map, const Sc
     }
     t_start = t_in - kAboveTop / d.z;
     h = truth.intersect(o + d * t_start, d, 0.0, t_out - t_start);
-    return h.hit;  // a ray leaving the box without meeting the relief shows background
+    const glm::dvec3 exit = o + d * t_out;
+    const bool through_floor = exit.z >= 1.0 - kFloor;
+    if (h.hit && h.point.z >= 1.0 - kFloor) h.hit = false;  // on the floor: decided below
+    if (h.hit) return true;
+    if (!through_floor || scene.empty_floor) return false;  // left the box: background
+    // A solid floor: the ray meets it where it leaves through the bottom.
+    h.hit = true;
+    h.has_normal = false;
+    h.t = t_out - t_start;
+    h.point = exit;
+    return true;
   }
   const double t_top = -o.z / d.z;
   const glm::dvec3 entry = o + d * t_top;
@@ -85,7 +96,7 @@ glm::dvec3 shade(const Material& m, const glm::dvec3& albedo, const glm::dvec3& 
   return m.ambient * albedo + lit;
 }
 
-GBuffer render_truth(const HeightfieldTruth& truth, const ReliefMap& map, const SceneDesc& scene,
+GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const SceneDesc& scene,
                      const Camera& camera, EffectSet effects, TruthStats* stats) {
   const auto start = std::chrono::steady_clock::now();
   const uint64_t primary0 = truth.primary_rays(), shadow0 = truth.shadow_rays();
@@ -114,9 +125,16 @@ GBuffer render_truth(const HeightfieldTruth& truth, const ReliefMap& map, const 
           const glm::dvec3 world = eye + dir * (t_start + h.t);
           const glm::dvec2 uv(h.point.x, h.point.y);
           const glm::dvec3 tn = decode_normal(map.sample_relief(uv.x, uv.y));
-          const glm::dvec3 n =
-              glm::normalize(tn.x * glm::normalize(base.dpdu()) +
-                             tn.y * glm::normalize(base.dpdv()) + tn.z * base.normal());
+          glm::dvec3 n = glm::normalize(tn.x * glm::normalize(base.dpdu()) +
+                                        tn.y * glm::normalize(base.dpdv()) + tn.z * base.normal());
+          if (h.has_normal) {
+            // The surface's own normal (mesh truth), from texture space (u, v, depth) to world
+            // by the inverse transpose of the base's scaling; facing the viewer.
+            const glm::dvec3 m = h.normal;
+            n = glm::normalize(glm::dvec3(m.x / glm::length(base.dpdu()),
+                                          m.y / glm::length(base.dpdv()), -m.z / base.depth));
+            if (glm::dot(n, dir) > 0) n = -n;
+          }
           const glm::dvec3 albedo(map.sample_color(uv.x, uv.y));
           const glm::dvec3 to_light = glm::normalize(scene.light_position - world);
           bool in_shadow = false;

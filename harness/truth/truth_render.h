@@ -8,7 +8,7 @@
 #include "core/gbuffer.h"
 #include "relief/relief_map.h"
 #include "scene/scene.h"
-#include "truth/heightfield_truth.h"
+#include "truth/truth_surface.h"
 
 namespace rl {
 
@@ -23,7 +23,7 @@ struct TruthStats {
 glm::dvec3 shade(const Material& m, const glm::dvec3& albedo, const glm::dvec3& n,
                  const glm::dvec3& to_light, const glm::dvec3& to_eye, bool in_shadow);
 
-GBuffer render_truth(const HeightfieldTruth& truth, const ReliefMap& map, const SceneDesc& scene,
+GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const SceneDesc& scene,
                      const Camera& camera, EffectSet effects, TruthStats* stats = nullptr);
 
 }  // namespace rl

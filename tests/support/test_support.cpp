@@ -10,6 +10,7 @@
 #include "gl/render_target.h"
 #include "scene/relief_asset.h"
 #include "technique/gpu_scene.h"
+#include "truth/heightfield_truth.h"
 
 namespace rl::test {
 

@@ -1,0 +1,135 @@
+#include "relief/mesh_bake.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <embree3/rtcore.h>
+#include <assimp/Importer.hpp>
+
+#include "core/error.h"
+#include "core/parallel.h"
+
+namespace rl {
+
+TriangleMesh load_mesh(const std::string& path) {
+  Assimp::Importer importer;
+  const aiScene* scene =
+      importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                  aiProcess_PreTransformVertices);
+  if (!scene) throw ConfigError("cannot read mesh " + path + ": " + importer.GetErrorString());
+  TriangleMesh m;
+  m.name = path;
+  for (unsigned mi = 0; mi < scene->mNumMeshes; ++mi) {
+    const aiMesh* am = scene->mMeshes[mi];
+    const unsigned base = unsigned(m.positions.size());
+    for (unsigned v = 0; v < am->mNumVertices; ++v)
+      m.positions.push_back(glm::vec3(am->mVertices[v].x, am->mVertices[v].y, am->mVertices[v].z));
+    for (unsigned f = 0; f < am->mNumFaces; ++f)
+      if (am->mFaces[f].mNumIndices == 3)
+        m.triangles.push_back(glm::uvec3(base + am->mFaces[f].mIndices[0],
+                                         base + am->mFaces[f].mIndices[1],
+                                         base + am->mFaces[f].mIndices[2]));
+  }
+  if (m.triangles.empty()) throw ConfigError("mesh " + path + " holds no triangles");
+  m.lo = m.hi = glm::dvec3(m.positions[0]);
+  for (const auto& p : m.positions) {
+    m.lo = glm::min(m.lo, glm::dvec3(p));
+    m.hi = glm::max(m.hi, glm::dvec3(p));
+  }
+  return m;
+}
+
+glm::dvec3 BakeFrame::texture_from_mesh(const glm::dvec3& p) const {
+  return {(p[axis_u] - origin[axis_u]) / side, (p[axis_v] - origin[axis_v]) / side,
+          (origin[up] - p[up]) / height};
+}
+
+glm::dvec3 BakeFrame::texture_normal(const glm::dvec3& n) const {
+  // Normals transform by the inverse transpose of the (diagonal, flipped-depth) map.
+  return glm::normalize(glm::dvec3(n[axis_u] * side, n[axis_v] * side, -n[up] * height));
+}
+
+BakeFrame bake_frame(const TriangleMesh& mesh, int up, double margin) {
+  if (up < 0 || up > 2) throw ConfigError("mesh up axis must be x, y or z");
+  BakeFrame f;
+  f.up = up;
+  // Cyclic order keeps (u, v, up) right-handed: the baked object is not mirrored.
+  f.axis_u = (up + 1) % 3;
+  f.axis_v = (up + 2) % 3;
+  const glm::dvec3 extent = mesh.hi - mesh.lo;
+  f.side = std::max(extent[f.axis_u], extent[f.axis_v]) * (1 + 2 * margin);
+  f.height = std::max(extent[up], 1e-9);
+  const glm::dvec3 centre = 0.5 * (mesh.lo + mesh.hi);
+  f.origin[f.axis_u] = centre[f.axis_u] - 0.5 * f.side;
+  f.origin[f.axis_v] = centre[f.axis_v] - 0.5 * f.side;
+  f.origin[up] = mesh.hi[up];
+  return f;
+}
+
+ReliefMap bake_mesh(const TriangleMesh& mesh, const BakeFrame& frame, int resolution) {
+  RTCDevice device = rtcNewDevice(nullptr);
+  RTCScene scene = rtcNewScene(device);
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                        RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                        mesh.positions.size()));
+  for (size_t i = 0; i < mesh.positions.size(); ++i)
+    for (int c = 0; c < 3; ++c) v[3 * i + c] = mesh.positions[i][c];
+  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0,
+                                                             RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
+                                                             mesh.triangles.size()));
+  for (size_t i = 0; i < mesh.triangles.size(); ++i)
+    for (int c = 0; c < 3; ++c) idx[3 * i + c] = mesh.triangles[i][c];
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(scene, geom);
+  rtcReleaseGeometry(geom);
+  rtcCommitScene(scene);
+
+  ReliefMap map;
+  map.name = mesh.name;
+  map.width = map.height = resolution;
+  map.relief.resize(size_t(resolution) * resolution);
+  map.color.assign(map.relief.size(), glm::vec4(0.78f, 0.74f, 0.70f, 1.0f));
+  parallel_for(map.relief.size(), [&](size_t begin, size_t end) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    for (size_t i = begin; i < end; ++i) {
+      const int x = int(i % resolution), y = int(i / resolution);
+      glm::dvec3 o = frame.origin;
+      o[frame.axis_u] += (x + 0.5) / resolution * frame.side;
+      o[frame.axis_v] += (y + 0.5) / resolution * frame.side;
+      o[frame.up] += 1e-6 * frame.height;  // just above the top
+      RTCRayHit rh{};
+      rh.ray.org_x = float(o.x);
+      rh.ray.org_y = float(o.y);
+      rh.ray.org_z = float(o.z);
+      glm::dvec3 d(0);
+      d[frame.up] = -1;
+      rh.ray.dir_x = float(d.x);
+      rh.ray.dir_y = float(d.y);
+      rh.ray.dir_z = float(d.z);
+      rh.ray.tnear = 0;
+      rh.ray.tfar = float(frame.height * (1 + 2e-6));
+      rh.ray.mask = 0xFFFFFFFFu;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(scene, &ctx, &rh);
+      glm::vec4 texel(0.5f, 0.5f, 1.0f, 1.0f);  // floor, facing up
+      if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+        glm::dvec3 n = glm::normalize(glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
+        if (n[frame.up] < 0) n = -n;  // face the viewer above
+        const glm::dvec3 tn(n[frame.axis_u], n[frame.axis_v], n[frame.up]);
+        const double depth =
+            std::clamp((rh.ray.tfar - 1e-6 * frame.height) / frame.height, 0.0, 1.0);
+        texel = glm::vec4(glm::vec3(tn * 0.5 + 0.5), float(depth));
+      }
+      map.relief[i] = texel;
+    }
+  });
+  rtcReleaseScene(scene);
+  rtcReleaseDevice(device);
+  return map;
+}
+
+}  // namespace rl

@@ -1,0 +1,45 @@
+#pragma once
+// Meshes as heightfields (Baboud & Decoret 2006, Section 3; book chapter 5, Figure 5.1): a
+// mesh is baked into a single-layer relief map by orthographic ray casting (Embree) from the
+// top of its bounding box: depth, normal and colour per texel.
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "relief/relief_map.h"
+
+namespace rl {
+
+struct TriangleMesh {
+  std::string name;
+  std::vector<glm::vec3> positions;
+  std::vector<glm::uvec3> triangles;
+  glm::dvec3 lo{0}, hi{0};  // bounding box
+};
+
+// Loads OBJ, PLY and other formats Assimp reads, triangulated, as one mesh. Throws
+// ConfigError naming the file if it cannot be read or holds no triangles.
+TriangleMesh load_mesh(const std::string& path);
+
+// The bake's box: the mesh's footprint, squared and padded by `margin` (a fraction of its
+// side) so the border texels are floor, seen from `up` (0, 1, 2 = x, y, z).
+// Texture space: u along axis_u, v along axis_v, depth = (top - position[up]) / height.
+struct BakeFrame {
+  int up = 1, axis_u = 2, axis_v = 0;
+  glm::dvec3 origin{0};  // mesh-space point at (u, v, depth) = (0, 0, 0)
+  double side = 1;       // mesh units per unit of u and v
+  double height = 1;     // mesh units per unit of depth
+  glm::dvec3 texture_from_mesh(const glm::dvec3& p) const;
+  // A mesh-space normal as a normal of the texture-space surface (u, v, depth).
+  glm::dvec3 texture_normal(const glm::dvec3& n) const;
+};
+
+BakeFrame bake_frame(const TriangleMesh& mesh, int up, double margin = 0.04);
+
+// Orthographic bake at resolution^2: per texel centre a ray from the box top straight down;
+// depth of the first hit (1 where the ray misses), its geometric normal (facing up) in the
+// tangent frame (u, v, up), and a neutral albedo.
+ReliefMap bake_mesh(const TriangleMesh& mesh, const BakeFrame& frame, int resolution);
+
+}  // namespace rl

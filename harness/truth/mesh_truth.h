@@ -1,0 +1,33 @@
+#pragma once
+// The "source" truth of a baked relief: the original mesh, mapped into the bake's texture
+// space and traced by Embree. Against it a technique's error includes the representation
+// error of the heightfield (overhangs, resolution, quantisation), not only its search error.
+#include <embree3/rtcore.h>
+
+#include "relief/mesh_bake.h"
+#include "truth/truth_surface.h"
+
+namespace rl {
+
+class MeshTruth final : public TruthSurface {
+ public:
+  MeshTruth(const TriangleMesh& mesh, const BakeFrame& frame);
+  ~MeshTruth() override;
+  MeshTruth(const MeshTruth&) = delete;
+  MeshTruth& operator=(const MeshTruth&) = delete;
+
+  TruthHit intersect(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,
+                     double t_max) const override;
+  bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,
+                double t_max) const override;
+  float max_depth() const override { return 1.0f; }
+  double tessellation_bound() const override { return 0.0; }  // the mesh is the surface
+  double build_ms() const override { return build_ms_; }
+
+ private:
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  double build_ms_ = 0;
+};
+
+}  // namespace rl

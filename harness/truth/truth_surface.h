@@ -1,0 +1,43 @@
+#pragma once
+// What the truth traces, in texture space (u, v, depth): the bilinear heightfield the map
+// stands for (HeightfieldTruth), or the mesh it was baked from (MeshTruth) -- the "sampled"
+// and "source" truth levels of DESIGN.md, so a table can split search error from
+// representation error.
+#include <atomic>
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+namespace rl {
+
+struct TruthHit {
+  bool hit = false;
+  double t = 0;      // ray parameter (same units as the direction given)
+  glm::dvec3 point;  // (u, v, depth) of the hit, u and v not wrapped
+  bool has_normal = false;
+  glm::dvec3 normal{0, 0, -1};  // texture-space surface normal (toward the viewer), if known
+};
+
+class TruthSurface {
+ public:
+  virtual ~TruthSurface() = default;
+  // First hit along origin + t direction, t in [t_min, t_max].
+  virtual TruthHit intersect(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,
+                             double t_max) const = 0;
+  // Is anything hit along origin + t direction, t in [t_min, t_max]? (shadow rays)
+  virtual bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,
+                        double t_max) const = 0;
+  virtual float max_depth() const = 0;
+  // Largest deviation from the surface it stands for, in depth units.
+  virtual double tessellation_bound() const = 0;
+  virtual int subdivision() const { return 1; }
+  virtual double build_ms() const = 0;
+  uint64_t primary_rays() const { return primary_rays_.load(); }
+  uint64_t shadow_rays() const { return shadow_rays_.load(); }
+
+ protected:
+  mutable std::atomic<uint64_t> primary_rays_{0};
+  mutable std::atomic<uint64_t> shadow_rays_{0};
+};
+
+}  // namespace rl
