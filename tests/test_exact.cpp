@@ -15,14 +15,7 @@ namespace rl {
 namespace {
 
 ReliefMap from_depths(int w, int h, const std::vector<float>& d) {
-  ReliefMap m;
-  m.width = w;
-  m.height = h;
-  for (float v : d) {
-    m.relief.push_back(glm::vec4(0.5f, 0.5f, 1.0f, v));
-    m.color.push_back(glm::vec4(1));
-  }
-  return m;
+  return test::map_from_depths(w, h, d);
 }
 
 // Saddles everywhere: a checker of 0 and 1 (every cell's twist is 2).

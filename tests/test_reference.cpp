@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/test_support.h"
+
 #include "relief/heightfield_reference.h"
 #include "relief/procedural.h"
 
@@ -11,14 +13,7 @@ namespace rl {
 namespace {
 
 ReliefMap from_depths(int w, int h, const std::vector<float>& d) {
-  ReliefMap m;
-  m.width = w;
-  m.height = h;
-  for (float v : d) {
-    m.relief.push_back(glm::vec4(0.5f, 0.5f, 1.0f, v));
-    m.color.push_back(glm::vec4(1));
-  }
-  return m;
+  return test::map_from_depths(w, h, d);
 }
 
 // f(t) = ray depth - surface depth; brute force checks that the reference's t is the first

@@ -31,14 +31,10 @@ TEST(SafetyRadius, ProfileCriterionOnHandWorkedProfiles) {
 }
 
 ReliefMap from_depths(int n, const std::function<float(int, int)>& f) {
-  ReliefMap m;
-  m.width = m.height = n;
+  std::vector<float> d;
   for (int y = 0; y < n; ++y)
-    for (int x = 0; x < n; ++x) {
-      m.relief.push_back(glm::vec4(0.5f, 0.5f, 1.0f, f(x, y)));
-      m.color.push_back(glm::vec4(1));
-    }
-  return m;
+    for (int x = 0; x < n; ++x) d.push_back(f(x, y));
+  return test::map_from_depths(n, n, d);
 }
 
 TEST(SafetyRadius, FlatIsMaximalAndAFieldOfPeaksIsZero) {

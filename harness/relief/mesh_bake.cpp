@@ -8,6 +8,7 @@
 #include <embree3/rtcore.h>
 #include <assimp/Importer.hpp>
 
+#include "core/embree_util.h"
 #include "core/error.h"
 #include "core/parallel.h"
 
@@ -70,22 +71,7 @@ BakeFrame bake_frame(const TriangleMesh& mesh, int up, double margin) {
 
 ReliefMap bake_mesh(const TriangleMesh& mesh, const BakeFrame& frame, int resolution) {
   RTCDevice device = rtcNewDevice(nullptr);
-  RTCScene scene = rtcNewScene(device);
-  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                        RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                        mesh.positions.size()));
-  for (size_t i = 0; i < mesh.positions.size(); ++i)
-    for (int c = 0; c < 3; ++c) v[3 * i + c] = mesh.positions[i][c];
-  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0,
-                                                             RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-                                                             mesh.triangles.size()));
-  for (size_t i = 0; i < mesh.triangles.size(); ++i)
-    for (int c = 0; c < 3; ++c) idx[3 * i + c] = mesh.triangles[i][c];
-  rtcCommitGeometry(geom);
-  rtcAttachGeometry(scene, geom);
-  rtcReleaseGeometry(geom);
-  rtcCommitScene(scene);
+  RTCScene scene = embree_triangle_scene(device, mesh);
 
   ReliefMap map;
   map.name = mesh.name;
@@ -101,19 +87,9 @@ ReliefMap bake_mesh(const TriangleMesh& mesh, const BakeFrame& frame, int resolu
       o[frame.axis_u] += (x + 0.5) / resolution * frame.side;
       o[frame.axis_v] += (y + 0.5) / resolution * frame.side;
       o[frame.up] += 1e-6 * frame.height;  // just above the top
-      RTCRayHit rh{};
-      rh.ray.org_x = float(o.x);
-      rh.ray.org_y = float(o.y);
-      rh.ray.org_z = float(o.z);
-      glm::dvec3 d(0);
-      d[frame.up] = -1;
-      rh.ray.dir_x = float(d.x);
-      rh.ray.dir_y = float(d.y);
-      rh.ray.dir_z = float(d.z);
-      rh.ray.tnear = 0;
-      rh.ray.tfar = float(frame.height * (1 + 2e-6));
-      rh.ray.mask = 0xFFFFFFFFu;
-      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      glm::dvec3 down(0);
+      down[frame.up] = -1;
+      RTCRayHit rh = embree_ray(o, down, 0, frame.height * (1 + 2e-6));
       rtcIntersect1(scene, &ctx, &rh);
       glm::vec4 texel(0.5f, 0.5f, 1.0f, 1.0f);  // floor, facing up
       if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {

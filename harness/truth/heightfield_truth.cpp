@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/embree_util.h"
 #include "core/grid_walk.h"
 #include "core/parallel.h"
 
@@ -122,17 +123,7 @@ TruthHit HeightfieldTruth::intersect(const glm::dvec3& origin, const glm::dvec3&
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   walk(origin, direction, t_min, t_max, [&](const glm::dvec3& local, double t0, double t1) {
-    RTCRayHit rh{};
-    rh.ray.org_x = float(local.x);
-    rh.ray.org_y = float(local.y);
-    rh.ray.org_z = float(local.z);
-    rh.ray.dir_x = float(direction.x);
-    rh.ray.dir_y = float(direction.y);
-    rh.ray.dir_z = float(direction.z);
-    rh.ray.tnear = float(t0);
-    rh.ray.tfar = float(t1);
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit rh = embree_ray(local, direction, t0, t1);
     rtcIntersect1(scene_, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
     result.hit = true;
@@ -149,16 +140,7 @@ bool HeightfieldTruth::occluded(const glm::dvec3& origin, const glm::dvec3& dire
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   return walk(origin, direction, t_min, t_max, [&](const glm::dvec3& local, double t0, double t1) {
-    RTCRay ray{};
-    ray.org_x = float(local.x);
-    ray.org_y = float(local.y);
-    ray.org_z = float(local.z);
-    ray.dir_x = float(direction.x);
-    ray.dir_y = float(direction.y);
-    ray.dir_z = float(direction.z);
-    ray.tnear = float(t0);
-    ray.tfar = float(t1);
-    ray.mask = 0xFFFFFFFFu;
+    RTCRay ray = embree_ray(local, direction, t0, t1).ray;
     rtcOccluded1(scene_, &context, &ray);
     return ray.tfar < 0;  // Embree sets tfar = -inf on occlusion
   });

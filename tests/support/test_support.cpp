@@ -49,6 +49,17 @@ Measured measure(const SceneDesc& scene, const std::string& technique, const Par
   return m;
 }
 
+ReliefMap map_from_depths(int w, int h, const std::vector<float>& depths) {
+  ReliefMap m;
+  m.width = w;
+  m.height = h;
+  for (float v : depths) {
+    m.relief.push_back(glm::vec4(0.5f, 0.5f, 1.0f, v));
+    m.color.push_back(glm::vec4(1));
+  }
+  return m;
+}
+
 std::string scratch_dir(const std::string& name) {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::filesystem::path dir =

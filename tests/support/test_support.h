@@ -31,6 +31,9 @@ struct Measured {
 Measured measure(const SceneDesc& scene, const std::string& technique, const ParamValues& params,
                  const View& view, int size = 96, double truth_tolerance = 2e-3);
 
+// A w x h map with these depths (row 0 first), flat normals and white colour.
+ReliefMap map_from_depths(int w, int h, const std::vector<float>& depths);
+
 // A fresh, empty folder under the build's temporary directory.
 std::string scratch_dir(const std::string& name);
 
