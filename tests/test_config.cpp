@@ -103,6 +103,16 @@ TEST(ConfigErrors, EachNamesTheProblemAndWritesNothing) {
                "relief = { mesh = \"" RELIEFLAB_SOURCE_DIR
                "/assets/meshes/teapot.obj\" }\ndepth = 0.2"),
        {"'depth' comes from the mesh's proportions"}},
+      {"reverse_on_base",
+       replace(kGood, "relief = { procedural = \"flat\", resolution = 8 }",
+               "relief = { mesh = \"" RELIEFLAB_SOURCE_DIR
+               "/assets/meshes/teapot.obj\", reverse_perspective = 2 }"),
+       {"reverse_perspective needs proxy = \"box\""}},
+      {"reverse_too_shallow",
+       replace(kGood, "relief = { procedural = \"flat\", resolution = 8 }",
+               "relief = { mesh = \"" RELIEFLAB_SOURCE_DIR
+               "/assets/meshes/teapot.obj\", reverse_perspective = 0.5 }\nproxy = \"box\""),
+       {"'reverse_perspective'", "must be > 1"}},
       {"toml_syntax",
        replace(kGood, "frames = 1", "frames = = 1"),
        {"sweep.toml:6", "TOML syntax error"}},

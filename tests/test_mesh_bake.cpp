@@ -12,11 +12,12 @@
 namespace rl {
 namespace {
 
-// A square pyramid: base [-1, 1]^2 at y = 0, apex (0, 1, 0), y up; height = 1 - max(|x|, |z|).
+// A square pyramid: base [-1, 1]^2 at y = 0, apex (0, 2, 0), y up: height = 2 (1 - max(|x|, |z|)).
+// Its height is not 1 on purpose, so a depth that is not normalised by it shows.
 std::string pyramid_obj() {
   const std::string path = test::scratch_dir("mesh") + "/pyramid.obj";
   std::filesystem::create_directories(std::filesystem::path(path).parent_path());
-  std::ofstream(path) << "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 1 0\n"
+  std::ofstream(path) << "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 2 0\n"
                          "f 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\nf 1 3 2\nf 1 4 3\n";
   return path;
 }
@@ -25,7 +26,7 @@ TEST(MeshBake, PyramidDepthsAndNormalsAreAnalytic) {
   const TriangleMesh mesh = load_mesh(pyramid_obj());
   ASSERT_EQ(mesh.triangles.size(), 6u);
   const BakeFrame frame = bake_frame(mesh, 1);
-  EXPECT_DOUBLE_EQ(frame.height, 1.0);
+  EXPECT_DOUBLE_EQ(frame.height, 2.0);
   EXPECT_NEAR(frame.side, 2.0 * 1.08, 1e-12);  // footprint + 4% margin each side
   const int res = 32;
   const ReliefMap map = bake_mesh(mesh, frame, res);
@@ -35,28 +36,31 @@ TEST(MeshBake, PyramidDepthsAndNormalsAreAnalytic) {
       const double z = frame.origin.z + (x + 0.5) / res * frame.side;
       const double px = frame.origin.x + (y + 0.5) / res * frame.side;
       const double r = std::max(std::abs(px), std::abs(z));
-      const double expected = r <= 1 ? r : 1.0;  // depth = 1 - height; outside: the floor
+      const double expected = r <= 1 ? r : 1.0;  // depth = 1 - height / 2; outside: the floor
       ASSERT_NEAR(map.depth_texel(x, y), expected, 1e-5) << x << ", " << y;
     }
-  // On the face towards +x the normal is (1, 1, 0) / sqrt 2; in (u, v, up) = (z, x, y).
+  // On the face towards +x (y = 2 - 2x) the normal is (2, 1, 0) / sqrt 5; in (u, v, up) = (z, x,
+  // y).
   const int x = res / 2, y = int(0.75 * res);  // z ~ 0, x ~ +0.5
   const glm::dvec3 n = decode_normal(glm::dvec4(map.relief[map.index(x, y)]));
   EXPECT_NEAR(n.x, 0.0, 1e-5);
-  EXPECT_NEAR(n.y, std::sqrt(0.5), 1e-5);
-  EXPECT_NEAR(n.z, std::sqrt(0.5), 1e-5);
+  EXPECT_NEAR(n.y, 2 / std::sqrt(5.0), 1e-5);
+  EXPECT_NEAR(n.z, 1 / std::sqrt(5.0), 1e-5);
 }
 
 TEST(MeshBake, MeshTruthHitsTheMeshItself) {
   const TriangleMesh mesh = load_mesh(pyramid_obj());
   const BakeFrame frame = bake_frame(mesh, 1);
   MeshTruth truth(mesh, frame);
-  // A vertical ray above mesh point (x, z) = (0.3, -0.2) meets height 0.7: depth 0.3.
-  const glm::dvec3 top = frame.texture_from_mesh({0.3, 1.0, -0.2});
+  // A vertical ray above mesh point (x, z) = (0.3, -0.2) meets height 1.4: depth 0.3.
+  const glm::dvec3 top = frame.texture_from_mesh({0.3, 2.0, -0.2});
   TruthHit h = truth.intersect(top - glm::dvec3(0, 0, 0.01), {0, 0, 1}, 0, 2);
   ASSERT_TRUE(h.hit);
   EXPECT_NEAR(h.point.z, 0.3, 1e-6);
   ASSERT_TRUE(h.has_normal);
-  EXPECT_LT(h.normal.z, 0);  // faces up (towards smaller depth), i.e. towards the ray's origin
+  // The face towards +x, as an affine-space normal (orientation is render_truth's to choose).
+  const glm::dvec3 expected = frame.texture_normal({2 / std::sqrt(5.0), 1 / std::sqrt(5.0), 0});
+  EXPECT_NEAR(std::abs(glm::dot(glm::normalize(h.normal), expected)), 1.0, 1e-9);
   // Beside the pyramid there is nothing: no floor in a mesh.
   EXPECT_FALSE(truth.intersect({0.01, 0.01, -0.01}, {0, 0, 1}, 0, 2).hit);
   EXPECT_EQ(truth.primary_rays(), 2u);
@@ -67,6 +71,65 @@ TEST(MeshBake, UnreadableMeshIsAConfigError) {
   const std::string empty = test::scratch_dir("empty") + ".obj";
   std::ofstream(empty) << "# no faces\nv 0 0 0\n";
   EXPECT_THROW(load_mesh(empty), ConfigError);
+}
+
+}  // namespace
+}  // namespace rl
+
+namespace rl {
+namespace {
+
+TEST(ReverseProjection, RoundTripsAndKeepsLinesStraight) {
+  const ReverseProjection p{3.0};
+  const glm::dvec3 a(0.2, 0.7, 0.4);
+  const glm::dvec3 back = p.affine_from_texture(p.texture_from_affine(a));
+  EXPECT_NEAR(glm::distance(a, back), 0.0, 1e-12);
+  // The top is unchanged; the bottom of the frustum spans the whole texture.
+  EXPECT_NEAR(glm::distance(p.texture_from_affine({0.3, 0.6, 0}), glm::dvec3(0.3, 0.6, 0)), 0,
+              1e-15);
+  EXPECT_NEAR(p.texture_from_affine(p.affine_from_texture({1, 0, 1})).x, 1.0, 1e-12);
+  // Three collinear affine points stay collinear (a projective map).
+  const glm::dvec3 q0(0.1, 0.2, -0.5), q1(0.4, 0.9, 0.8);
+  const glm::dvec3 t0 = p.texture_from_affine(q0), t1 = p.texture_from_affine(q1);
+  const glm::dvec3 tm = p.texture_from_affine(0.3 * q0 + 0.7 * q1);
+  EXPECT_NEAR(glm::length(glm::cross(tm - t0, t1 - t0)), 0.0, 1e-12);
+}
+
+SceneDesc teapot_scene(double cop, TruthLevel truth) {
+  SceneDesc s;
+  s.name = "teapot";
+  s.proxy = Proxy::Box;
+  s.truth = truth;
+  s.empty_floor = true;
+  s.relief.mesh_path = std::string(RELIEFLAB_SOURCE_DIR) + "/assets/meshes/teapot.obj";
+  s.relief.native_resolution = 128;
+  s.projection.cop = cop;
+  const TriangleMesh mesh = load_mesh(s.relief.mesh_path);
+  const BakeFrame frame = bake_frame(mesh, 1);
+  s.depth = s.size * frame.height / frame.side;
+  s.distance = 1.7;
+  return s;
+}
+
+TEST(ReverseProjection, ShaderAndTruthProjectAlike) {
+  // Against the truth of its own (reverse-perspective) heightfield, the exact walk must agree
+  // as it does orthographically: the shader's projection and the truth's are the same map.
+  test::Measured m = test::measure(teapot_scene(2.0, TruthLevel::Sampled), "relief_exact_bilinear",
+                                   {}, View{30, 30}, 128);
+  EXPECT_GT(m.metrics.truth_covered_px, 1000);
+  EXPECT_LE(m.metrics.missed_pct + m.metrics.false_pct, 0.5);
+  EXPECT_LE(m.metrics.pos_err.p99, 5e-3);
+}
+
+TEST(ReverseProjection, CapturesMoreOfTheTeapotThanAnOrthographicBake) {
+  // Section 4's claim, against the mesh itself: less of the overhangs is extruded to the floor.
+  test::Measured ortho = test::measure(teapot_scene(0.0, TruthLevel::Mesh), "relief_exact_bilinear",
+                                       {}, View{30, 30}, 128);
+  test::Measured reverse = test::measure(teapot_scene(2.0, TruthLevel::Mesh),
+                                         "relief_exact_bilinear", {}, View{30, 30}, 128);
+  std::printf("false coverage against the mesh: orthographic %.2f%%, reverse perspective %.2f%%\n",
+              ortho.metrics.false_pct, reverse.metrics.false_pct);
+  EXPECT_LT(reverse.metrics.false_pct, 0.6 * ortho.metrics.false_pct);
 }
 
 }  // namespace

@@ -18,6 +18,21 @@ uniform float rl_depth_scale;  // world depth of depth 1
 #ifdef RL_PROXY_BOX
 uniform vec2 rl_uv_max;  // the box spans [0, rl_uv_max] in u and v
 #endif
+#ifdef RL_REVERSE_PERSPECTIVE
+// Reverse-perspective texture space (Baboud & Decoret, Section 4; scene.h ReverseProjection):
+// the base's affine coordinates a map projectively to texture space, centre of projection at
+// depth rl_cop under the box's centre. The vertices carry affine coordinates.
+uniform float rl_cop;
+uniform vec3 rl_eye_affine;
+vec3 rl_project(vec3 a) {
+  float k = rl_cop / (rl_cop - a.z);
+  return vec3(0.5 + (a.xy - 0.5) * k, a.z * (rl_cop - 1.0) / (rl_cop - a.z));
+}
+vec3 rl_unproject(vec3 t) {
+  float z = t.z * rl_cop / (rl_cop - 1.0 + t.z);
+  return vec3(0.5 + (t.xy - 0.5) * ((rl_cop - z) / rl_cop), z);
+}
+#endif
 #ifdef RL_SELF_SHADOW
 uniform float rl_shadow_bias;  // depth units (Listing 5.3's shadow_threshold)
 #endif
@@ -40,8 +55,17 @@ void main() {
   vec3 V = normalize(v_world - rl_eye);
   vec3 tv = rl_texture_direction(V, N);
   if (tv.z <= 0.0) discard;  // base seen from below: no relief there
+#ifdef RL_REVERSE_PERSPECTIVE
+  // Lines stay lines: the ray through the projected eye and the projected fragment.
+  vec3 a_frag = vec3(v_uv, v_entry_depth);
+  vec3 p_tex = rl_project(a_frag);
+  vec3 e_tex = rl_project(rl_eye_affine);
+  vec3 s = (p_tex - e_tex) / (p_tex.z - e_tex.z);
+  RlHit h = rl_intersect(p_tex, s);
+#else
   vec3 s = tv / tv.z;
   RlHit h = rl_intersect(vec3(v_uv, v_entry_depth), s);
+#endif
 #ifdef RL_PROXY_BOX
   // A hit outside the box means the ray left it first (the box is convex, rays straight).
   const float eps = 1e-5;
@@ -56,8 +80,13 @@ void main() {
 #endif
 
   // The point the technique claims: its hit uv at its hit depth, in the base's frame.
-  vec3 hit_world = v_world + v_dpdu * (h.uv.x - v_uv.x) + v_dpdv * (h.uv.y - v_uv.y) -
-                   N * ((h.depth - v_entry_depth) * rl_depth_scale);
+#ifdef RL_REVERSE_PERSPECTIVE
+  vec3 a_hit = rl_unproject(vec3(h.uv, h.depth));
+#else
+  vec3 a_hit = vec3(h.uv, h.depth);
+#endif
+  vec3 hit_world = v_world + v_dpdu * (a_hit.x - v_uv.x) + v_dpdv * (a_hit.y - v_uv.y) -
+                   N * ((a_hit.z - v_entry_depth) * rl_depth_scale);
   vec3 tn = rl_decode_normal(RL_FETCH(rl_relief, h.uv));
   vec3 n = normalize(tn.x * normalize(v_dpdu) + tn.y * normalize(v_dpdv) + tn.z * N);
   vec3 albedo = RL_FETCH(rl_color, h.uv).rgb;

@@ -47,6 +47,14 @@ glm::dvec3 BakeFrame::texture_from_mesh(const glm::dvec3& p) const {
           (origin[up] - p[up]) / height};
 }
 
+glm::dvec3 BakeFrame::mesh_from_texture(const glm::dvec3& t) const {
+  glm::dvec3 p;
+  p[axis_u] = origin[axis_u] + t.x * side;
+  p[axis_v] = origin[axis_v] + t.y * side;
+  p[up] = origin[up] - t.z * height;
+  return p;
+}
+
 glm::dvec3 BakeFrame::texture_normal(const glm::dvec3& n) const {
   // Normals transform by the inverse transpose of the (diagonal, flipped-depth) map.
   return glm::normalize(glm::dvec3(n[axis_u] * side, n[axis_v] * side, -n[up] * height));
@@ -69,7 +77,8 @@ BakeFrame bake_frame(const TriangleMesh& mesh, int up, double margin) {
   return f;
 }
 
-ReliefMap bake_mesh(const TriangleMesh& mesh, const BakeFrame& frame, int resolution) {
+ReliefMap bake_mesh(const TriangleMesh& mesh, const BakeFrame& frame, int resolution,
+                    const ReverseProjection& projection) {
   RTCDevice device = rtcNewDevice(nullptr);
   RTCScene scene = embree_triangle_scene(device, mesh);
 
@@ -83,21 +92,25 @@ ReliefMap bake_mesh(const TriangleMesh& mesh, const BakeFrame& frame, int resolu
     rtcInitIntersectContext(&ctx);
     for (size_t i = begin; i < end; ++i) {
       const int x = int(i % resolution), y = int(i / resolution);
-      glm::dvec3 o = frame.origin;
-      o[frame.axis_u] += (x + 0.5) / resolution * frame.side;
-      o[frame.axis_v] += (y + 0.5) / resolution * frame.side;
-      o[frame.up] += 1e-6 * frame.height;  // just above the top
-      glm::dvec3 down(0);
-      down[frame.up] = -1;
-      RTCRayHit rh = embree_ray(o, down, 0, frame.height * (1 + 2e-6));
+      // In the bake box's affine space (u, v, depth): from just above the texel on the top
+      // face, down (orthographic) or towards the centre of projection (reverse perspective),
+      // for t in [0, 1] to the bottom.
+      const glm::dvec3 a0((x + 0.5) / resolution, (y + 0.5) / resolution, -1e-6);
+      const glm::dvec3 da =
+          projection.active() ? glm::dvec3(0.5 - a0.x, 0.5 - a0.y, projection.cop) / projection.cop
+                              : glm::dvec3(0, 0, 1);
+      const glm::dvec3 o = frame.mesh_from_texture(a0);
+      const glm::dvec3 d = frame.mesh_from_texture(a0 + da) - o;
+      RTCRayHit rh = embree_ray(o, d, 0, 1.0 + 2e-6);
       rtcIntersect1(scene, &ctx, &rh);
       glm::vec4 texel(0.5f, 0.5f, 1.0f, 1.0f);  // floor, facing up
       if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
         glm::dvec3 n = glm::normalize(glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
         if (n[frame.up] < 0) n = -n;  // face the viewer above
         const glm::dvec3 tn(n[frame.axis_u], n[frame.axis_v], n[frame.up]);
-        const double depth =
-            std::clamp((rh.ray.tfar - 1e-6 * frame.height) / frame.height, 0.0, 1.0);
+        // Texture-space depth of the hit (t counts box depths along the affine ray).
+        const glm::dvec3 hit = projection.texture_from_affine(a0 + da * double(rh.ray.tfar));
+        const double depth = std::clamp(hit.z, 0.0, 1.0);
         texel = glm::vec4(glm::vec3(tn * 0.5 + 0.5), float(depth));
       }
       map.relief[i] = texel;

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "relief/relief_map.h"
+#include "scene/scene.h"
 
 namespace rl {
 
@@ -31,15 +32,18 @@ struct BakeFrame {
   double side = 1;       // mesh units per unit of u and v
   double height = 1;     // mesh units per unit of depth
   glm::dvec3 texture_from_mesh(const glm::dvec3& p) const;
+  glm::dvec3 mesh_from_texture(const glm::dvec3& t) const;
   // A mesh-space normal as a normal of the texture-space surface (u, v, depth).
   glm::dvec3 texture_normal(const glm::dvec3& n) const;
 };
 
 BakeFrame bake_frame(const TriangleMesh& mesh, int up, double margin = 0.04);
 
-// Orthographic bake at resolution^2: per texel centre a ray from the box top straight down;
-// depth of the first hit (1 where the ray misses), its geometric normal (facing up) in the
-// tangent frame (u, v, up), and a neutral albedo.
-ReliefMap bake_mesh(const TriangleMesh& mesh, const BakeFrame& frame, int resolution);
+// Bake at resolution^2: per texel centre a ray from the box top, straight down, or with a
+// reverse projection towards its centre of projection (Section 4); the texture-space depth
+// of the first hit (1 where the ray misses), its geometric normal (facing up) in the frame
+// (u, v, up), and a neutral albedo.
+ReliefMap bake_mesh(const TriangleMesh& mesh, const BakeFrame& frame, int resolution,
+                    const ReverseProjection& projection = {});
 
 }  // namespace rl

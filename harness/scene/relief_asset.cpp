@@ -11,7 +11,7 @@ ReliefMap build_relief_asset(const SceneDesc& scene, int resolution) {
   ReliefMap map;
   if (!scene.relief.mesh_path.empty()) {
     const TriangleMesh mesh = load_mesh(scene.relief.mesh_path);
-    map = bake_mesh(mesh, bake_frame(mesh, scene.relief.mesh_up), resolution);
+    map = bake_mesh(mesh, bake_frame(mesh, scene.relief.mesh_up), resolution, scene.projection);
   } else if (!scene.relief.procedural.empty()) {
     map = make_procedural(scene.relief.procedural, resolution, scene.relief.options,
                           scene.depth / base.texel_world(resolution), "scene '" + scene.name + "'");

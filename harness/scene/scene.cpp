@@ -31,8 +31,11 @@ BaseGeometry make_base_geometry(const SceneDesc& scene) {
   if (scene.proxy == Proxy::Box) {
     // Corners in texture space (u, v, depth); depth grows downward (world -z).
     const double t = scene.tile;
+    // With a reverse projection the box is a frustum in the base's affine space; vertices
+    // carry affine coordinates, which interpolate correctly across the (planar) faces.
     auto corner = [&](int i) {
-      return glm::dvec3((i & 1) ? t : 0, (i & 2) ? t : 0, (i & 4) ? 1 : 0);
+      return scene.projection.affine_from_texture(
+          glm::dvec3((i & 1) ? t : 0, (i & 2) ? t : 0, (i & 4) ? 1 : 0));
     };
     // Each face as four corner indices, counter-clockwise seen from outside in world space.
     const int faces[6][4] = {{0, 1, 3, 2},   // top (depth 0, world +z)

@@ -132,7 +132,7 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
   if (!t) fail(src.at(node), "'relief' must be a table, e.g. { procedural = \"bricks\" }");
   check_keys(*t,
              {"procedural", "resolution", "options", "normal", "depth", "color", "convention",
-              "flip_green", "normalize", "mesh", "up"},
+              "flip_green", "normalize", "mesh", "up", "reverse_perspective"},
              src, "relief");
   ReliefSourceDesc r;
   const bool procedural = t->contains("procedural");
@@ -159,10 +159,20 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
       r.native_resolution = positive_int(*n, src, "resolution", 2, 8192);
     canon["mesh"] = fs::path(r.mesh_path).filename().string() + ":" + hex64(file_hash(r.mesh_path));
     canon["up"] = r.mesh_up;
+    if (auto* n = t->get("reverse_perspective")) {
+      r.reverse_cop = number(*n, src, "reverse_perspective");
+      if (!(r.reverse_cop > 1) || !std::isfinite(r.reverse_cop))
+        fail(src.at(*n),
+             "'reverse_perspective' is the depth of the centre of projection below the "
+             "top, in box depths: it must be > 1, got " +
+                 std::to_string(r.reverse_cop));
+      canon["reverse_perspective"] = r.reverse_cop;
+    }
     canon["resolution"] = r.native_resolution;
     return r;
   }
-  if (t->contains("up")) fail(src.at(node), "'up' applies to mesh reliefs only");
+  if (t->contains("up") || t->contains("reverse_perspective"))
+    fail(src.at(node), "'up' and 'reverse_perspective' apply to mesh reliefs only");
   if (procedural) {
     r.procedural = string_of(*t->get("procedural"), src, "procedural");
     bool known = false;
@@ -314,6 +324,13 @@ SceneDesc parse_scene(const toml::table& t, const Src& src, const std::string& b
   canon["proxy"] = s.proxy == Proxy::Box ? "box" : "base";
   canon["truth"] = s.truth == TruthLevel::Mesh ? "mesh" : "sampled";
   canon["floor"] = s.empty_floor ? "empty" : "solid";
+  s.projection.cop = s.relief.reverse_cop;
+  if (s.projection.active() && s.proxy != Proxy::Box)
+    fail(src.at(node), "scene '" + s.name +
+                           "': reverse_perspective needs proxy = \"box\" (the frustum is drawn)");
+  if (s.projection.active() && s.effects.has(Effect::SelfShadow))
+    fail(src.at(node),
+         "scene '" + s.name + "': self_shadow is not supported with reverse_perspective yet");
   if (s.truth == TruthLevel::Mesh && s.proxy != Proxy::Box)
     fail(src.at(node),
          "scene '" + s.name +

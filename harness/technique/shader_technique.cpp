@@ -18,8 +18,12 @@ void set_float(GLuint p, const char* name, double v) {
 
 }  // namespace
 
+SurfaceVariant ShaderTechnique::variant_of(const SceneDesc& scene) {
+  return {scene.proxy, scene.empty_floor, scene.projection.active()};
+}
+
 ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Kind target,
-                                             Proxy proxy, bool empty_floor) const {
+                                             SurfaceVariant variant) const {
   ProgramDesc d;
   d.owner = info().name;
   d.vertex_file = "harness/glsl/base.vert";
@@ -27,8 +31,9 @@ ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Ki
   d.defines = parameter_defines();
   for (Effect e : effects.list()) d.defines[effect_define(e)] = "1";
   if (target == RenderTarget::Kind::GBuffer) d.defines["RL_GBUFFER"] = "1";
-  if (proxy == Proxy::Box) d.defines["RL_PROXY_BOX"] = "1";
-  if (proxy == Proxy::Box && empty_floor) d.defines["RL_EMPTY_FLOOR"] = "1";
+  if (variant.proxy == Proxy::Box) d.defines["RL_PROXY_BOX"] = "1";
+  if (variant.proxy == Proxy::Box && variant.empty_floor) d.defines["RL_EMPTY_FLOOR"] = "1";
+  if (variant.reverse_perspective) d.defines["RL_REVERSE_PERSPECTIVE"] = "1";
   return d;
 }
 
@@ -44,8 +49,8 @@ ProgramDesc ShaderTechnique::probe_program() const {
 
 void ShaderTechnique::render(const FrameInput& frame, RenderTarget::Kind target) {
   const SceneDesc& s = frame.scene;
-  const GLuint p = ShaderLibrary::shared().program(
-      surface_program(frame.effects, target, s.proxy, s.empty_floor));
+  const GLuint p =
+      ShaderLibrary::shared().program(surface_program(frame.effects, target, variant_of(s)));
   glUseProgram(p);
   const glm::mat4 view_proj(frame.camera.projection_matrix() * frame.camera.view_matrix());
   glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "rl_view_projection"), 1, GL_FALSE,
@@ -53,6 +58,8 @@ void ShaderTechnique::render(const FrameInput& frame, RenderTarget::Kind target)
   const PlanarBase base = planar_base(s);
   glProgramUniform2f(p, glGetUniformLocation(p, "rl_uv_max"), float(s.tile), float(s.tile));
   set_vec3(p, "rl_eye", frame.camera.eye);
+  set_vec3(p, "rl_eye_affine", base.texture_from_world(frame.camera.eye));
+  set_float(p, "rl_cop", s.projection.cop);
   set_vec3(p, "rl_light", s.light_position);
   set_float(p, "rl_depth_scale", s.depth);
   set_float(p, "rl_depth_aspect", s.depth / glm::length(base.dpdu()));

@@ -10,6 +10,13 @@
 
 namespace rl {
 
+// How a scene's relief is drawn, as far as the surface shader is concerned.
+struct SurfaceVariant {
+  Proxy proxy = Proxy::Base;
+  bool empty_floor = false;
+  bool reverse_perspective = false;
+};
+
 class ShaderTechnique : public Technique {
  public:
   using Technique::Technique;
@@ -19,8 +26,9 @@ class ShaderTechnique : public Technique {
                               const std::vector<ProbeRay>& rays, double depth_aspect) override;
 
   // The program a render with these effects and this target uses (tests inspect its source).
+  static SurfaceVariant variant_of(const SceneDesc& scene);
   ProgramDesc surface_program(EffectSet effects, RenderTarget::Kind target,
-                              Proxy proxy = Proxy::Base, bool empty_floor = false) const;
+                              SurfaceVariant variant = {}) const;
   ProgramDesc probe_program() const;
 
  protected:

@@ -10,7 +10,8 @@ std::unique_ptr<TruthSurface> make_truth(const SceneDesc& scene, const ReliefMap
                                          double tolerance) {
   if (scene.truth == TruthLevel::Mesh) {
     const TriangleMesh mesh = load_mesh(scene.relief.mesh_path);
-    return std::make_unique<MeshTruth>(mesh, bake_frame(mesh, scene.relief.mesh_up));
+    return std::make_unique<MeshTruth>(mesh, bake_frame(mesh, scene.relief.mesh_up),
+                                       scene.projection);
   }
   return std::make_unique<HeightfieldTruth>(map, tolerance);
 }

@@ -6,11 +6,23 @@
 
 namespace rl {
 
-MeshTruth::MeshTruth(const TriangleMesh& mesh, const BakeFrame& frame) {
+MeshTruth::MeshTruth(const TriangleMesh& mesh, const BakeFrame& frame,
+                     const ReverseProjection& projection) {
   const auto start = std::chrono::steady_clock::now();
   device_ = rtcNewDevice(nullptr);
-  scene_ = embree_triangle_scene(device_, mesh,
-                                 [&](const glm::dvec3& p) { return frame.texture_from_mesh(p); });
+  scene_ = embree_triangle_scene(device_, mesh, [&](const glm::dvec3& p) {
+    return projection.texture_from_affine(frame.texture_from_mesh(p));
+  });
+  // Normals in the affine space (the projection would bend them): render_truth maps those
+  // to world with the base's scaling alone.
+  for (const auto& tri : mesh.triangles) {
+    const glm::dvec3 a = frame.texture_from_mesh(glm::dvec3(mesh.positions[tri.x]));
+    const glm::dvec3 b = frame.texture_from_mesh(glm::dvec3(mesh.positions[tri.y]));
+    const glm::dvec3 c = frame.texture_from_mesh(glm::dvec3(mesh.positions[tri.z]));
+    const glm::dvec3 n = glm::cross(b - a, c - a);
+    const double len = glm::length(n);
+    affine_normals_.push_back(len > 0 ? n / len : glm::dvec3(0, 0, -1));
+  }
   build_ms_ =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
@@ -33,8 +45,7 @@ TruthHit MeshTruth::intersect(const glm::dvec3& origin, const glm::dvec3& direct
   h.t = rh.ray.tfar;
   h.point = origin + direction * h.t;
   h.has_normal = true;
-  h.normal = glm::normalize(glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
-  if (glm::dot(h.normal, direction) > 0) h.normal = -h.normal;  // face the ray
+  h.normal = affine_normals_[rh.hit.primID];  // oriented towards the viewer by render_truth
   return h;
 }
 

@@ -2,6 +2,8 @@
 // The "source" truth of a baked relief: the original mesh, mapped into the bake's texture
 // space and traced by Embree. Against it a technique's error includes the representation
 // error of the heightfield (overhangs, resolution, quantisation), not only its search error.
+#include <vector>
+
 #include <embree3/rtcore.h>
 
 #include "relief/mesh_bake.h"
@@ -11,7 +13,8 @@ namespace rl {
 
 class MeshTruth final : public TruthSurface {
  public:
-  MeshTruth(const TriangleMesh& mesh, const BakeFrame& frame);
+  MeshTruth(const TriangleMesh& mesh, const BakeFrame& frame,
+            const ReverseProjection& projection = {});
   ~MeshTruth() override;
   MeshTruth(const MeshTruth&) = delete;
   MeshTruth& operator=(const MeshTruth&) = delete;
@@ -28,6 +31,7 @@ class MeshTruth final : public TruthSurface {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   double build_ms_ = 0;
+  std::vector<glm::dvec3> affine_normals_;  // per triangle, in the bake box's affine space
 };
 
 }  // namespace rl

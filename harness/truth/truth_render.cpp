@@ -117,12 +117,22 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
           const int x = int(i % camera.width), y = int(i / camera.width);
           glm::dvec3 eye, dir;
           camera.pixel_ray(x, y, eye, dir);
-          const glm::dvec3 o = base.texture_from_world(eye);
-          const glm::dvec3 d = base.texture_direction(dir);  // t stays the world distance
+          glm::dvec3 o = base.texture_from_world(eye);
+          glm::dvec3 d = base.texture_direction(dir);  // t stays the world distance
+          const ReverseProjection& projection = scene.projection;
+          if (projection.active()) {
+            // Lines stay lines: the ray through the eye and its point at depth 1, projected.
+            if (d.z <= 0) continue;
+            const glm::dvec3 far = o + d * ((1.0 - o.z) / d.z);
+            o = projection.texture_from_affine(o);
+            d = projection.texture_from_affine(far) - o;
+          }
           double t_start = 0;
           TruthHit h;
           if (!trace_primary(truth, map, scene, o, d, bottom, t_start, h, unresolved)) continue;
-          const glm::dvec3 world = eye + dir * (t_start + h.t);
+          const glm::dvec3 world =
+              projection.active() ? base.world_from_texture(projection.affine_from_texture(h.point))
+                                  : eye + dir * (t_start + h.t);
           const glm::dvec2 uv(h.point.x, h.point.y);
           const glm::dvec3 tn = decode_normal(map.sample_relief(uv.x, uv.y));
           glm::dvec3 n = glm::normalize(tn.x * glm::normalize(base.dpdu()) +

@@ -15,7 +15,7 @@ struct TruthHit {
   double t = 0;      // ray parameter (same units as the direction given)
   glm::dvec3 point;  // (u, v, depth) of the hit, u and v not wrapped
   bool has_normal = false;
-  glm::dvec3 normal{0, 0, -1};  // texture-space surface normal (toward the viewer), if known
+  glm::dvec3 normal{0, 0, -1};  // surface normal in the base's affine (u, v, depth) space, if known
 };
 
 class TruthSurface {

@@ -10,7 +10,7 @@
 #include "gl/render_target.h"
 #include "scene/relief_asset.h"
 #include "technique/gpu_scene.h"
-#include "truth/heightfield_truth.h"
+#include "truth/make_truth.h"
 
 namespace rl::test {
 
@@ -33,10 +33,10 @@ Measured measure(const SceneDesc& scene, const std::string& technique, const Par
   ReliefMap map = build_relief_asset(scene, res);
   GpuRelief relief(map);
   GpuBase base(make_base_geometry(scene));
-  HeightfieldTruth truth(map, truth_tolerance);
+  const std::unique_ptr<TruthSurface> truth = make_truth(scene, map, truth_tolerance);
   const Camera camera = make_camera(scene, view, size, size);
   Measured m;
-  m.truth = render_truth(truth, map, scene, camera, scene.effects, &m.truth_stats);
+  m.truth = render_truth(*truth, map, scene, camera, scene.effects, &m.truth_stats);
   auto t = TechniqueRegistry::instance().create(technique, params, "test");
   t->prepare(map);
   FrameInput frame{scene, map, relief, base, camera, scene.effects};
