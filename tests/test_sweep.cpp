@@ -161,7 +161,11 @@ linear_steps = [16, 32, 64, 128]
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   while (std::chrono::steady_clock::now() < deadline) {
     if (fs::exists(out + "/results.sqlite")) {
-      before = ResultStore(out + "/results.sqlite").keys().size();
+      try {
+        before = ResultStore(out + "/results.sqlite").keys().size();
+      } catch (const std::exception&) {
+        before = 0;  // the sweep is still creating the store: look again
+      }
       if (before >= 3) break;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));

@@ -2,7 +2,9 @@
 
 #include <sqlite3.h>
 
+#include <chrono>
 #include <stdexcept>
+#include <thread>
 
 namespace rl {
 namespace {
@@ -10,6 +12,19 @@ namespace {
 void check(int rc, sqlite3* db, const std::string& what) {
   if (rc != SQLITE_OK && rc != SQLITE_DONE && rc != SQLITE_ROW)
     throw std::runtime_error("result store: " + what + ": " + sqlite3_errmsg(db));
+}
+
+// Runs setup SQL, retrying while another process holds the lock: a store being created or
+// switched to WAL by one process answers SQLITE_BUSY to the others, and some of those paths
+// bypass the busy handler. Up to about 5 s.
+void exec_with_retry(sqlite3* db, const char* sql, const std::string& what) {
+  int rc = SQLITE_OK;
+  for (int attempt = 0; attempt < 500; ++attempt) {
+    rc = sqlite3_exec(db, sql, nullptr, nullptr, nullptr);
+    if (rc != SQLITE_BUSY && rc != SQLITE_LOCKED) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  check(rc, db, what);
 }
 
 struct Statement {
@@ -29,16 +44,13 @@ ResultStore::ResultStore(const std::string& path) : path_(path) {
     throw std::runtime_error("cannot open result store " + path + ": " + msg);
   }
   sqlite3_busy_timeout(db_, 5000);
-  check(sqlite3_exec(db_, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;", nullptr, nullptr,
-                     nullptr),
-        db_, "pragmas");
-  check(sqlite3_exec(db_,
-                     "CREATE TABLE IF NOT EXISTS rows ("
-                     " key TEXT PRIMARY KEY,"
-                     " row TEXT NOT NULL,"
-                     " written_at TEXT DEFAULT CURRENT_TIMESTAMP)",
-                     nullptr, nullptr, nullptr),
-        db_, "create table");
+  exec_with_retry(db_, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;", "pragmas");
+  exec_with_retry(db_,
+                  "CREATE TABLE IF NOT EXISTS rows ("
+                  " key TEXT PRIMARY KEY,"
+                  " row TEXT NOT NULL,"
+                  " written_at TEXT DEFAULT CURRENT_TIMESTAMP)",
+                  "create table");
 }
 
 ResultStore::~ResultStore() {
