@@ -34,20 +34,6 @@ ReliefMap random_map(int n, unsigned seed) {
   return from_depths(n, n, d);
 }
 
-std::vector<ProbeRay> rays_over(int n, double min_el, double max_el, double aspect, unsigned seed,
-                                float start_depth = -1e-4f) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 2), el(min_el, max_el), az(0, 360);
-  std::vector<ProbeRay> rays;
-  for (int i = 0; i < n; ++i) {
-    const double e = glm::radians(el(rng)), a = glm::radians(az(rng));
-    const double lateral = aspect / std::tan(e);
-    rays.push_back({glm::vec3(u(rng), u(rng), start_depth),
-                    glm::vec3(lateral * std::cos(a), lateral * std::sin(a), 1.0)});
-  }
-  return rays;
-}
-
 struct Comparison {
   int rays = 0, missed = 0;  // missed: the hit is not the reference's first crossing
   double max_residual = 0;   // worst |ray depth - surface depth| at the hit, over rays not missed
@@ -99,7 +85,8 @@ TEST(ExactBilinear, MatchesTheReferenceAtFloatLevelOnAdversarialSaddles) {
   for (int n : {4, 16}) {
     SCOPED_TRACE(n);
     Comparison c =
-        compare("relief_exact_bilinear", checker(n), rays_over(4096, 2, 85, 0.08, 1), 1e-3);
+        compare("relief_exact_bilinear", checker(n),
+                test::as_probe_rays(test::random_tangent_rays(4096, 2, 85, 0.08, 1, -1e-4)), 1e-3);
     EXPECT_EQ(c.missed, 0);
     EXPECT_LE(c.max_residual, c.max_residual_bound);
   }
@@ -113,7 +100,9 @@ TEST(ExactBilinear, MatchesTheReferenceOnRandomAndProceduralMaps) {
       {"walls", make_procedural("walls", 64, {{"spacing", 8}}, 10.0, "test")}};
   for (const auto& [name, map] : maps) {
     SCOPED_TRACE(name);
-    Comparison c = compare("relief_exact_bilinear", map, rays_over(4096, 2, 85, 0.08, 2), 1e-3);
+    Comparison c =
+        compare("relief_exact_bilinear", map,
+                test::as_probe_rays(test::random_tangent_rays(4096, 2, 85, 0.08, 2, -1e-4)), 1e-3);
     EXPECT_EQ(c.missed, 0);
     EXPECT_LE(c.max_residual, c.max_residual_bound);
   }
@@ -123,7 +112,8 @@ TEST(Exact, MissesSaddlesThatTheBilinearWalkFinds) {
   // The paper's Figure 3: between two centerline crossings above the surface, a ray can dip
   // below a saddle; linear profiles cannot see it. On a checker of saddles some rays do.
   ReliefMap map = checker(8);
-  std::vector<ProbeRay> rays = rays_over(4096, 2, 60, 0.08, 3);
+  std::vector<ProbeRay> rays =
+      test::as_probe_rays(test::random_tangent_rays(4096, 2, 60, 0.08, 3, -1e-4));
   Comparison exact = compare("relief_exact", map, rays, 1e-3);
   Comparison bilinear = compare("relief_exact_bilinear", map, rays, 1e-3);
   EXPECT_GT(exact.missed, 0);

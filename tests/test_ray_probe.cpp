@@ -8,25 +8,12 @@
 #include "gl/context.h"
 #include "relief/heightfield_reference.h"
 #include "relief/procedural.h"
+#include "support/test_support.h"
 #include "technique/gpu_scene.h"
 #include "technique/technique.h"
 
 namespace rl {
 namespace {
-
-std::vector<ProbeRay> random_rays(int n, double min_el, double max_el, double aspect,
-                                  unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 2), el(min_el, max_el), az(0, 360);
-  std::vector<ProbeRay> rays;
-  for (int i = 0; i < n; ++i) {
-    const double e = glm::radians(el(rng)), a = glm::radians(az(rng));
-    const double lateral = aspect / std::tan(e);
-    rays.push_back({glm::vec3(u(rng), u(rng), 0.0f),
-                    glm::vec3(lateral * std::cos(a), lateral * std::sin(a), 1.0)});
-  }
-  return rays;
-}
 
 std::vector<ProbeHit> probe(const std::string& technique, const ParamValues& params,
                             const ReliefMap& map, const std::vector<ProbeRay>& rays,
@@ -43,7 +30,8 @@ TEST(RayProbe, ReliefMatchesTheReferenceWithinItsSearchInterval) {
   // these rays, so the search finds the reference's crossing to within its binary interval.
   ReliefMap map = make_procedural("sines", 64, {{"frequency", 2}}, 10.0, "test");
   const int linear = 64, binary = 8;
-  std::vector<ProbeRay> rays = random_rays(4096, 30, 85, 0.08, 21);
+  std::vector<ProbeRay> rays =
+      test::as_probe_rays(test::random_tangent_rays(4096, 30, 85, 0.08, 21, 0.0));
   std::vector<ProbeHit> hits =
       probe("relief", {{"linear_steps", linear}, {"binary_steps", binary}}, map, rays);
   const double interval = 1.0 / linear / std::pow(2.0, binary);
@@ -75,7 +63,8 @@ TEST(RayProbe, ReliefFetchCountFollowsTheListing) {
 
 TEST(RayProbe, ParallaxIsItsClosedForm) {
   ReliefMap map = make_procedural("sines", 32, {}, 10.0, "test");
-  std::vector<ProbeRay> rays = random_rays(512, 10, 80, 0.08, 4);
+  std::vector<ProbeRay> rays =
+      test::as_probe_rays(test::random_tangent_rays(512, 10, 80, 0.08, 4, 0.0));
   for (double limiting : {0.0, 1.0}) {
     std::vector<ProbeHit> hits = probe("parallax", {{"offset_limiting", limiting}}, map, rays);
     for (size_t i = 0; i < rays.size(); ++i) {
@@ -95,7 +84,8 @@ TEST(RayProbe, ParallaxIsItsClosedForm) {
 
 TEST(RayProbe, NormalMappingReturnsTheEntryPoint) {
   ReliefMap map = make_procedural("bricks", 32, {}, 10.0, "test");
-  std::vector<ProbeRay> rays = random_rays(64, 10, 80, 0.08, 9);
+  std::vector<ProbeRay> rays =
+      test::as_probe_rays(test::random_tangent_rays(64, 10, 80, 0.08, 9, 0.0));
   std::vector<ProbeHit> hits = probe("normal", {}, map, rays);
   for (size_t i = 0; i < rays.size(); ++i) {
     EXPECT_FLOAT_EQ(hits[i].uv.x, rays[i].origin.x);

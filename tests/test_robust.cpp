@@ -82,18 +82,6 @@ TEST(SafetyRadius, CachedOnDiskByContentAndOptions) {
   unsetenv("RELIEFLAB_CACHE_DIR");
 }
 
-std::vector<ProbeRay> grazing_rays(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 2), el(3, 30), az(0, 360);
-  std::vector<ProbeRay> rays;
-  for (int i = 0; i < n; ++i) {
-    const double e = glm::radians(el(rng)), a = glm::radians(az(rng)), lateral = 0.08 / std::tan(e);
-    rays.push_back({glm::vec3(u(rng), u(rng), -1e-4f),
-                    glm::vec3(lateral * std::cos(a), lateral * std::sin(a), 1.0)});
-  }
-  return rays;
-}
-
 // Rays whose hit differs from the reference's first hit by more than `threshold` in t.
 int misses(const std::string& technique, const ParamValues& params, const ReliefMap& map,
            const std::vector<ProbeRay>& rays, double threshold, double* fetches_mean = nullptr) {
@@ -122,7 +110,8 @@ TEST(RobustSearch, MissesFarFewerIntersectionsThanBinarySearchAtGrazingAngles) {
     SCOPED_TRACE(kind);
     ReliefMap map = make_procedural(kind, 64, {}, 10.0, "test");
     quantize_8bit(map);
-    const std::vector<ProbeRay> rays = grazing_rays(2048, 17);
+    const std::vector<ProbeRay> rays =
+        test::as_probe_rays(test::random_tangent_rays(2048, 3, 30, 0.08, 17, -1e-4));
     const int binary =
         misses("relief", {{"linear_steps", 10}, {"binary_steps", 5}}, map, rays, 0.01);
     const int robust = misses("relief_robust", {}, map, rays, 0.01);
@@ -138,7 +127,8 @@ TEST(RobustSearch, MissesFarFewerIntersectionsThanBinarySearchAtGrazingAngles) {
 TEST(RobustSearch, ErrorAllowedTradesFetchesForAccuracy) {
   ReliefMap map = make_procedural("sines", 64, {}, 10.0, "test");
   quantize_8bit(map);
-  const std::vector<ProbeRay> rays = grazing_rays(2048, 5);
+  const std::vector<ProbeRay> rays =
+      test::as_probe_rays(test::random_tangent_rays(2048, 3, 30, 0.08, 5, -1e-4));
   double f0 = 0, f1 = 0;
   const int m0 = misses("relief_robust", {{"error_allowed", 0.0}}, map, rays, 0.01, &f0);
   const int m1 = misses("relief_robust", {{"error_allowed", 0.1}}, map, rays, 0.01, &f1);

@@ -15,26 +15,6 @@
 namespace rl {
 namespace {
 
-struct Ray {
-  glm::dvec3 o, d;
-};
-
-// Rays entering at the top (depth 0, a hair above) at random points, with elevations from
-// `min_el` to 85 degrees; direction scaled so that t counts depth units.
-std::vector<Ray> random_rays(int n, double min_el_deg, double aspect, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 2), el(min_el_deg, 85), az(0, 360);
-  std::vector<Ray> rays;
-  for (int i = 0; i < n; ++i) {
-    const double e = glm::radians(el(rng)), a = glm::radians(az(rng));
-    // Unit world-space direction in the tangent frame; lateral texture units per depth unit
-    // = cot(elevation) * aspect, aspect = world depth / world length of one u.
-    const double lateral = aspect / std::tan(e);
-    rays.push_back({{u(rng), u(rng), -1e-6}, {lateral * std::cos(a), lateral * std::sin(a), 1.0}});
-  }
-  return rays;
-}
-
 // Stated tolerance: every truth hit lies within the tessellation bound (vertically) of the
 // bilinear surface the shaders sample, plus float rounding of the stored vertices.
 TEST(Truth, EveryHitLiesWithinTheStatedBoundOfTheBilinearSurface) {
@@ -43,8 +23,9 @@ TEST(Truth, EveryHitLiesWithinTheStatedBoundOfTheBilinearSurface) {
     HeightfieldTruth truth(m, 2e-3);
     EXPECT_LE(truth.tessellation_bound(), 2e-3 + 1e-12) << kind;
     int hits = 0;
-    for (const Ray& r : random_rays(3000, 10, 0.08 * 64 / 64.0, 11)) {
-      TruthHit h = truth.intersect(r.o, r.d, 0, 1.0 + 1e-6);
+    for (const test::TangentRay& r :
+         test::random_tangent_rays(3000, 10, 85, 0.08 * 64 / 64.0, 11, -1e-6)) {
+      TruthHit h = truth.intersect(r.origin, r.direction, 0, 1.0 + 1e-6);
       if (!h.hit) continue;
       ++hits;
       const double surface = m.sample_depth(h.point.x, h.point.y);
@@ -66,9 +47,9 @@ TEST(Truth, DoublingTheTessellationMovesHitsWithinTolerance) {
     HeightfieldTruth fine(m, tolerance, 1u << 24, 2 * coarse.subdivision());
     int moved = 0, total = 0;
     double worst = 0;
-    for (const Ray& r : random_rays(4000, 20, 0.08, 5)) {
-      TruthHit a = coarse.intersect(r.o, r.d, 0, 1.0 + 1e-6);
-      TruthHit b = fine.intersect(r.o, r.d, 0, 1.0 + 1e-6);
+    for (const test::TangentRay& r : test::random_tangent_rays(4000, 20, 85, 0.08, 5, -1e-6)) {
+      TruthHit a = coarse.intersect(r.origin, r.direction, 0, 1.0 + 1e-6);
+      TruthHit b = fine.intersect(r.origin, r.direction, 0, 1.0 + 1e-6);
       ASSERT_TRUE(a.hit && b.hit);
       ++total;
       const double dz = std::abs(a.point.z - b.point.z);
@@ -89,9 +70,9 @@ TEST(Truth, AgreesWithTheExactReferenceAcrossTileSeams) {
   ReliefMap m = make_procedural("sines", 32, {}, 10.0, "test");
   HeightfieldTruth truth(m, 5e-4);
   std::vector<double> err;
-  for (const Ray& r : random_rays(2000, 5, 0.5, 3)) {
-    TruthHit h = truth.intersect(r.o, r.d, 0, 1.0 + 1e-6);
-    ReferenceHit ref = intersect_heightfield(m, r.o, r.d, 1.0 + 1e-6);
+  for (const test::TangentRay& r : test::random_tangent_rays(2000, 5, 85, 0.5, 3, -1e-6)) {
+    TruthHit h = truth.intersect(r.origin, r.direction, 0, 1.0 + 1e-6);
+    ReferenceHit ref = intersect_heightfield(m, r.origin, r.direction, 1.0 + 1e-6);
     ASSERT_TRUE(h.hit && ref.hit);
     err.push_back(std::abs(h.point.z - ref.depth));
   }

@@ -1,6 +1,5 @@
 #include "gl/context.h"
 
-#include <atomic>
 #include <cstdio>
 #include <cstring>
 #include <vector>
@@ -13,13 +12,10 @@
 namespace rl {
 namespace {
 
-std::atomic<int> g_gl_errors{0};
-
 void GLAPIENTRY debug_callback(GLenum, GLenum type, GLuint, GLenum severity, GLsizei,
                                const GLchar* message, const void*) {
   if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
   if (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH) {
-    ++g_gl_errors;
     std::fprintf(stderr, "GL error: %s\n", message);
   } else if (severity == GL_DEBUG_SEVERITY_MEDIUM) {
     std::fprintf(stderr, "GL warning: %s\n", message);
@@ -71,10 +67,6 @@ bool try_display(EGLDisplay display, std::string& why) {
 GlContext& GlContext::shared() {
   static GlContext context;
   return context;
-}
-
-int GlContext::error_count() const {
-  return g_gl_errors.load();
 }
 
 GlContext::GlContext() {

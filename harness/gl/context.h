@@ -17,8 +17,6 @@ class GlContext {
   // True on software rasterisers, where GL_TIME_ELAPSED is meaningless and frames are
   // timed with glFinish and the wall clock instead.
   bool is_software() const { return software_; }
-  // Number of GL debug messages of high severity seen so far (they are also printed).
-  int error_count() const;
 
  private:
   GlContext();

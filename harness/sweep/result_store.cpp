@@ -57,12 +57,6 @@ ResultStore::~ResultStore() {
   sqlite3_close(db_);
 }
 
-bool ResultStore::contains(const std::string& key) const {
-  Statement st(db_, "SELECT 1 FROM rows WHERE key = ?");
-  sqlite3_bind_text(st.s, 1, key.c_str(), -1, SQLITE_TRANSIENT);
-  return sqlite3_step(st.s) == SQLITE_ROW;
-}
-
 std::set<std::string> ResultStore::keys() const {
   std::set<std::string> out;
   Statement st(db_, "SELECT key FROM rows");

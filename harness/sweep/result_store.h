@@ -22,7 +22,6 @@ class ResultStore {
   ResultStore(const ResultStore&) = delete;
   ResultStore& operator=(const ResultStore&) = delete;
 
-  bool contains(const std::string& key) const;
   std::set<std::string> keys() const;
   std::optional<nlohmann::ordered_json> row(const std::string& key) const;
   // Inserts the row; an existing key is left untouched (first result wins).

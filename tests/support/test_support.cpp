@@ -3,8 +3,10 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <random>
 
 #include <gtest/gtest.h>
+#include <glm/gtc/constants.hpp>
 
 #include "gl/context.h"
 #include "gl/render_target.h"
@@ -47,6 +49,26 @@ Measured measure(const SceneDesc& scene, const std::string& technique, const Par
   m.metrics =
       compare_gbuffers(m.technique, m.truth, scene.depth, planar_base(scene).texel_world(res));
   return m;
+}
+
+std::vector<TangentRay> random_tangent_rays(int n, double min_el, double max_el, double aspect,
+                                            unsigned seed, double start_depth) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 2), el(min_el, max_el), az(0, 360);
+  std::vector<TangentRay> rays;
+  for (int i = 0; i < n; ++i) {
+    const double e = glm::radians(el(rng)), a = glm::radians(az(rng));
+    const double lateral = aspect / std::tan(e);
+    const double x = u(rng), y = u(rng);
+    rays.push_back({{x, y, start_depth}, {lateral * std::cos(a), lateral * std::sin(a), 1.0}});
+  }
+  return rays;
+}
+
+std::vector<ProbeRay> as_probe_rays(const std::vector<TangentRay>& rays) {
+  std::vector<ProbeRay> out;
+  for (const TangentRay& r : rays) out.push_back({glm::vec3(r.origin), glm::vec3(r.direction)});
+  return out;
 }
 
 ReliefMap map_from_depths(int w, int h, const std::vector<float>& depths) {

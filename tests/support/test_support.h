@@ -31,6 +31,17 @@ struct Measured {
 Measured measure(const SceneDesc& scene, const std::string& technique, const ParamValues& params,
                  const View& view, int size = 96, double truth_tolerance = 2e-3);
 
+// Random tangent-space rays (u, v, depth)(t) = origin + t direction with direction.z = 1:
+// origins u, v in [-1, 2) at depth `start_depth`, elevations in [min_el, max_el] degrees,
+// any azimuth; `aspect` = world relief depth / world length of one u (lateral texture units
+// per depth unit = aspect / tan(elevation)).
+struct TangentRay {
+  glm::dvec3 origin, direction;
+};
+std::vector<TangentRay> random_tangent_rays(int n, double min_el, double max_el, double aspect,
+                                            unsigned seed, double start_depth);
+std::vector<ProbeRay> as_probe_rays(const std::vector<TangentRay>& rays);
+
 // A w x h map with these depths (row 0 first), flat normals and white colour.
 ReliefMap map_from_depths(int w, int h, const std::vector<float>& depths);
 
