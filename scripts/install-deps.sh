@@ -14,7 +14,8 @@ packages=(
   libcli11-dev                        # command line
   nlohmann-json3-dev                  # run manifests
   libsqlite3-dev                      # result store (atomic, resumable)
-  libassimp-dev                       # meshes (OBJ, PLY) to bake into relief maps
+  libassimp-dev                       # meshes (OBJ, PLY) to bake into relief maps and as bases
+  libeigen3-dev                       # least squares (per-vertex curvature, chapter 5 Listing 5.8)
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 

@@ -5,6 +5,7 @@ layout(location = 2) in vec3 a_dpdu;
 layout(location = 3) in vec3 a_dpdv;
 layout(location = 4) in vec3 a_normal;
 layout(location = 5) in float a_entry_depth;
+layout(location = 6) in vec2 a_curvature;  // quadric (A, B) of the base (chapter 5)
 
 uniform mat4 rl_view_projection;
 
@@ -14,6 +15,7 @@ out vec3 v_dpdu;
 out vec3 v_dpdv;
 out vec3 v_normal;
 out float v_entry_depth;
+out vec2 v_curvature;
 
 void main() {
   v_world = a_position;
@@ -22,5 +24,6 @@ void main() {
   v_dpdv = a_dpdv;
   v_normal = a_normal;
   v_entry_depth = a_entry_depth;
+  v_curvature = a_curvature;
   gl_Position = rl_view_projection * vec4(a_position, 1.0);
 }

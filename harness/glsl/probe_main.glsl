@@ -10,8 +10,10 @@ layout(location = 1) out vec4 o_probe_extra;
 
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
-  vec3 origin = texelFetch(rl_probe_origin, px, 0).xyz;
-  vec3 direction = texelFetch(rl_probe_direction, px, 0).xyz;
+  vec4 origin_q = texelFetch(rl_probe_origin, px, 0);
+  vec4 direction_q = texelFetch(rl_probe_direction, px, 0);
+  vec3 origin = origin_q.xyz, direction = direction_q.xyz;
+  rl_probe_quadric = vec2(origin_q.w, direction_q.w);
   RlHit h = rl_intersect(origin, direction);
   o_probe_hit = vec4(h.t, h.uv, float(rl_fetches));
   o_probe_extra = vec4(h.depth, float(h.layer), h.hit ? 1.0 : 0.0, 0.0);

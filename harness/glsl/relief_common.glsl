@@ -12,6 +12,12 @@ uniform float rl_depth_aspect;
 // techniques. Level 0 explicitly: searches run in non-uniform control flow, where implicit
 // derivatives are undefined, and the truth reconstructs the level-0 bilinear surface.
 int rl_fetches = 0;
+
+#ifdef RL_PROBE
+// Probe rays may carry a base quadric (A, B) for techniques that bend rays (chapter 5
+// silhouettes); zero for the planar tangent space.
+vec2 rl_probe_quadric = vec2(0.0);
+#endif
 #define RL_FETCH(tex, uv) (rl_fetches++, textureLod(tex, uv, 0.0))
 
 // A found hit. The ray is (u, v, depth)(t) = p + t * s with s.z = 1, so depth = p.z + t.

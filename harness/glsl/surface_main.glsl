@@ -11,10 +11,14 @@ in vec3 v_dpdu;
 in vec3 v_dpdv;
 in vec3 v_normal;
 in float v_entry_depth;
+in vec2 v_curvature;
 
 uniform vec3 rl_eye;
 uniform vec3 rl_light;
 uniform float rl_depth_scale;  // world depth of depth 1
+#ifdef RL_DEPTH_CORRECT
+uniform mat4 rl_view_projection;
+#endif
 #ifdef RL_PROXY_BOX
 uniform vec2 rl_uv_max;  // the box spans [0, rl_uv_max] in u and v
 #endif
@@ -44,10 +48,11 @@ layout(location = 2) out vec4 o_normal;
 layout(location = 3) out vec4 o_hit;
 #endif
 
-// A world direction in texture units per world unit: (du, dv, d depth).
+// A world direction in texture units per world unit: (du, dv, d depth). The floor keeps a
+// collapsed mapping (a sphere's pole) finite.
 vec3 rl_texture_direction(vec3 d, vec3 n) {
-  return vec3(dot(d, v_dpdu) / dot(v_dpdu, v_dpdu), dot(d, v_dpdv) / dot(v_dpdv, v_dpdv),
-              -dot(d, n) / rl_depth_scale);
+  return vec3(dot(d, v_dpdu) / max(dot(v_dpdu, v_dpdu), 1e-30),
+              dot(d, v_dpdv) / max(dot(v_dpdv, v_dpdv), 1e-30), -dot(d, n) / rl_depth_scale);
 }
 
 void main() {
@@ -62,6 +67,13 @@ void main() {
   vec3 e_tex = rl_project(rl_eye_affine);
   vec3 s = (p_tex - e_tex) / (p_tex.z - e_tex.z);
   RlHit h = rl_intersect(p_tex, s);
+#elif defined(RL_SILHOUETTE)
+  // Chapter 5, "Silhouette edges": the base bends away from the fragment's tangent plane as
+  // the quadric of its interpolated curvature; the technique searches the bent ray (t in world
+  // units along V) and reports a miss where the ray leaves the relief: outside the silhouette.
+  vec3 metric = vec3(length(v_dpdu), length(v_dpdv), rl_depth_scale);
+  RlHit h = rl_intersect_curved(vec3(v_uv, 0.0), tv, v_curvature, metric);
+  if (!h.hit) discard;
 #else
   vec3 s = tv / tv.z;
   RlHit h = rl_intersect(vec3(v_uv, v_entry_depth), s);
@@ -85,8 +97,18 @@ void main() {
 #else
   vec3 a_hit = vec3(h.uv, h.depth);
 #endif
+#ifdef RL_SILHOUETTE
+  vec3 hit_world = v_world + V * h.t;  // the view ray is straight in world space
+#else
   vec3 hit_world = v_world + v_dpdu * (a_hit.x - v_uv.x) + v_dpdv * (a_hit.y - v_uv.y) -
                    N * ((a_hit.z - v_entry_depth) * rl_depth_scale);
+#endif
+#ifdef RL_DEPTH_CORRECT
+  // Chapter 5, "Depth Correct": the depth of the found hit, so that other geometry (and other
+  // relief objects) resolve visibility per pixel against the relief, not against its base.
+  vec4 hit_clip = rl_view_projection * vec4(hit_world, 1.0);
+  gl_FragDepth = clamp(0.5 * hit_clip.z / hit_clip.w + 0.5, 0.0, 1.0);
+#endif
   vec3 tn = rl_decode_normal(RL_FETCH(rl_relief, h.uv));
   vec3 n = normalize(tn.x * normalize(v_dpdu) + tn.y * normalize(v_dpdv) + tn.z * N);
   vec3 albedo = RL_FETCH(rl_color, h.uv).rgb;

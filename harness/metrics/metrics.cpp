@@ -91,10 +91,15 @@ std::vector<float> position_error_texels(const GBuffer& t, const GBuffer& r, dou
   return e;
 }
 
+// A plain scene object's pixel (layer -1), not the relief's.
+bool is_object(const GBuffer& g, size_t i) {
+  return g.hit[i].z < -0.5f;
+}
+
 ImageMetrics compare_gbuffers(const GBuffer& t, const GBuffer& r, double depth_world,
                               double texel_world) {
   ImageMetrics m;
-  long both = 0, missed = 0, false_hits = 0, artifacts = 0, shadow_diff = 0;
+  long both = 0, missed = 0, false_hits = 0, artifacts = 0, shadow_diff = 0, object_diff = 0;
   std::vector<double> pos, pos_texels, normal_deg, fetches;
   for (size_t i = 0; i < t.size(); ++i) {
     const bool tc = t.covered(i), rc = r.covered(i);
@@ -104,7 +109,7 @@ ImageMetrics compare_gbuffers(const GBuffer& t, const GBuffer& r, double depth_w
     if (rc) ++m.truth_covered_px;
     if (rc && !tc) ++missed;
     if (tc && !rc) ++false_hits;
-    if (tc) fetches.push_back(t.hit[i].w);
+    if (tc && !is_object(t, i)) fetches.push_back(t.hit[i].w);
     if (!(tc && rc)) continue;
     ++both;
     const double d = glm::distance(glm::dvec3(t.position[i]), glm::dvec3(r.position[i]));
@@ -117,6 +122,7 @@ ImageMetrics compare_gbuffers(const GBuffer& t, const GBuffer& r, double depth_w
     normal_deg.push_back(std::isfinite(c) ? glm::degrees(std::acos(std::clamp(c, -1.0, 1.0)))
                                           : 180.0);
     if (t.shadowed(i) != r.shadowed(i)) ++shadow_diff;
+    if (is_object(t, i) != is_object(r, i)) ++object_diff;
   }
   const double covered = std::max<long>(1, m.truth_covered_px);
   m.missed_pct = 100.0 * missed / covered;
@@ -130,6 +136,7 @@ ImageMetrics compare_gbuffers(const GBuffer& t, const GBuffer& r, double depth_w
   m.psnr_db = psnr_db(t, r);
   m.ssim = ssim(t, r);
   m.shadow_disagree_pct = both ? 100.0 * shadow_diff / both : 0;
+  m.object_disagree_pct = both ? 100.0 * object_diff / both : 0;
   m.fetches = error_stats(fetches);
   return m;
 }
@@ -152,6 +159,7 @@ std::vector<std::pair<std::string, double>> ImageMetrics::named() const {
           {"psnr_db", psnr_db},
           {"ssim", ssim},
           {"shadow_disagree_pct", shadow_disagree_pct},
+          {"object_disagree_pct", object_disagree_pct},
           {"fetches_mean", fetches.mean},
           {"fetches_p99", fetches.p99},
           {"fetches_max", fetches.max},

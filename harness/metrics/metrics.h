@@ -12,7 +12,9 @@
 // - psnr_db / ssim: shaded colour over the whole image (background black in both), PSNR
 //   capped at 100 dB for identical images; SSIM after Wang et al. 2004 (11x11 Gaussian, 1.5);
 // - shadow_disagree_pct: % of jointly covered pixels whose shadow flags differ;
-// - fetches_*: technique texture fetches per covered pixel;
+// - object_disagree_pct: % of jointly covered pixels where one shows a plain scene object
+//   (hit layer -1) and the other the relief: visibility resolved differently (depth_correct);
+// - fetches_*: technique texture fetches per covered relief pixel;
 // - nonfinite_px: technique pixels with a NaN or infinite output (hard cases report them).
 #include <string>
 #include <utility>
@@ -38,6 +40,7 @@ struct ImageMetrics {
   double normal_err_mean_deg = 0, normal_err_p99_deg = 0;
   double psnr_db = 0, ssim = 0;
   double shadow_disagree_pct = 0;
+  double object_disagree_pct = 0;
   ErrorStats fetches;
   long nonfinite_px = 0;
 

@@ -22,11 +22,16 @@ TriangleMesh load_mesh(const std::string& path) {
   if (!scene) throw ConfigError("cannot read mesh " + path + ": " + importer.GetErrorString());
   TriangleMesh m;
   m.name = path;
+  bool all_uvs = true;
   for (unsigned mi = 0; mi < scene->mNumMeshes; ++mi) {
     const aiMesh* am = scene->mMeshes[mi];
     const unsigned base = unsigned(m.positions.size());
-    for (unsigned v = 0; v < am->mNumVertices; ++v)
+    const aiVector3D* uv = am->HasTextureCoords(0) ? am->mTextureCoords[0] : nullptr;
+    all_uvs = all_uvs && uv;
+    for (unsigned v = 0; v < am->mNumVertices; ++v) {
       m.positions.push_back(glm::vec3(am->mVertices[v].x, am->mVertices[v].y, am->mVertices[v].z));
+      if (uv) m.uvs.push_back(glm::vec2(uv[v].x, uv[v].y));
+    }
     for (unsigned f = 0; f < am->mNumFaces; ++f)
       if (am->mFaces[f].mNumIndices == 3)
         m.triangles.push_back(glm::uvec3(base + am->mFaces[f].mIndices[0],
@@ -34,6 +39,7 @@ TriangleMesh load_mesh(const std::string& path) {
                                          base + am->mFaces[f].mIndices[2]));
   }
   if (m.triangles.empty()) throw ConfigError("mesh " + path + " holds no triangles");
+  if (!all_uvs) m.uvs.clear();
   m.lo = m.hi = glm::dvec3(m.positions[0]);
   for (const auto& p : m.positions) {
     m.lo = glm::min(m.lo, glm::dvec3(p));

@@ -15,6 +15,7 @@ namespace rl {
 struct TriangleMesh {
   std::string name;
   std::vector<glm::vec3> positions;
+  std::vector<glm::vec2> uvs;  // per position when every part of the file has them, else empty
   std::vector<glm::uvec3> triangles;
   glm::dvec3 lo{0}, hi{0};  // bounding box
 };

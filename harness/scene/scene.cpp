@@ -1,5 +1,7 @@
 #include "scene/scene.h"
 
+#include "scene/base_mesh.h"
+
 #include <cmath>
 
 #include <glm/gtc/constants.hpp>
@@ -15,9 +17,31 @@ PlanarBase planar_base(const SceneDesc& scene) {
   return b;
 }
 
+double scene_radius(const SceneDesc& scene) {
+  // A curved base is fitted into the sphere of diameter `size`; its relief lies inside.
+  if (scene.base.curved()) return 0.5 * scene.size;
+  return std::sqrt(0.5 * scene.size * scene.size + scene.depth * scene.depth);
+}
+
 BaseGeometry make_base_geometry(const SceneDesc& scene) {
-  const PlanarBase base = planar_base(scene);
   BaseGeometry g;
+  if (scene.base.curved()) {
+    const BaseMesh mesh = make_base_mesh(scene.base, scene.size, scene.tile);
+    for (size_t i = 0; i < mesh.position.size(); ++i) {
+      BaseVertex v;
+      v.position = glm::vec3(mesh.position[i]);
+      v.uv = glm::vec2(mesh.uv[i]);
+      v.dpdu = glm::vec3(mesh.dpdu[i]);
+      v.dpdv = glm::vec3(mesh.dpdv[i]);
+      v.normal = glm::vec3(mesh.normal[i]);
+      v.entry_depth = 0;
+      v.curvature = glm::vec2(mesh.curvature[i]);
+      g.vertices.push_back(v);
+    }
+    for (const glm::uvec3& t : mesh.triangles) g.indices.insert(g.indices.end(), {t.x, t.y, t.z});
+    return g;
+  }
+  const PlanarBase base = planar_base(scene);
   auto vertex = [&](const glm::dvec3& uvd) {
     BaseVertex v;
     v.position = glm::vec3(base.world_from_texture(uvd));
@@ -86,7 +110,7 @@ Camera make_camera(const SceneDesc& scene, const View& view, int width, int heig
   cam.fov_y_deg = scene.fov_deg;
   const double el = glm::radians(view.elevation_deg), az = glm::radians(view.azimuth_deg);
   // Fit the quad's bounding sphere (relief included) in the narrower field of view.
-  const double radius = std::sqrt(0.5 * scene.size * scene.size + scene.depth * scene.depth);
+  const double radius = scene_radius(scene);
   double half_fov = glm::radians(scene.fov_deg) * 0.5;
   if (width < height) half_fov = std::atan(std::tan(half_fov) * width / height);
   const double distance = scene.distance > 0 ? scene.distance : radius / std::sin(half_fov);

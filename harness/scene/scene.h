@@ -1,7 +1,7 @@
 #pragma once
-// A scene: the relief asset, the base surface it is mapped on, its scale, the light and the
-// effects it asks for. Issue 2 has one base, the planar quad; curved bases come later and
-// fill the same BaseGeometry vertex layout.
+// A scene: the relief asset, the base surface it is mapped on (the planar quad, or a curved
+// base mesh: harness/scene/base_mesh.h), its scale, the light, the effects it asks for and any
+// plain triangle-mesh objects standing in it.
 #include <map>
 #include <string>
 #include <vector>
@@ -70,8 +70,29 @@ enum class Proxy { Base, Box };
 // the map), or, for a baked mesh, the mesh itself (includes representation error).
 enum class TruthLevel { Sampled, Mesh };
 
+// The surface the relief is mapped onto. "plane" is the planar quad of PlanarBase (the
+// heightfield truth); every other kind is a base mesh displaced along its normals (chapter 5):
+// generated "cube", "sphere", "torus", the Utah "teapot", or a mesh file with uvs.
+struct BaseDesc {
+  std::string kind = "plane";  // plane, cube, sphere, torus, teapot, or "file"
+  std::string path;            // kind == "file": an OBJ/PLY with texture coordinates
+  int segments = 32;           // generated sphere/torus: quads around the main circle
+  bool curved() const { return kind != "plane"; }
+};
+
+// A plain triangle-mesh object in the scene (not relief mapped): chapter 5's Figure 5.20
+// interpenetration. Drawn with a standard shader before the relief and traced by the truth.
+struct SceneObject {
+  std::string shape = "sphere";  // "sphere", "cube", or a mesh file path
+  glm::dvec3 center{0};
+  double radius = 0.25;  // half the side for a cube; a mesh is fitted into this sphere
+  glm::dvec3 albedo{0.85, 0.35, 0.2};
+};
+
 struct SceneDesc {
   std::string name;
+  BaseDesc base;
+  std::vector<SceneObject> objects;
   Proxy proxy = Proxy::Base;
   TruthLevel truth = TruthLevel::Sampled;
   // With a box proxy, is depth 1 (the box's bottom) a floor, or empty (an object baked from a
@@ -121,7 +142,8 @@ struct BaseVertex {
   glm::vec3 dpdu;  // world change per unit u (tangent scaled by the mapping)
   glm::vec3 dpdv;
   glm::vec3 normal;
-  float entry_depth;  // depth at which a ray entering here starts (0 on the base / box top)
+  float entry_depth;          // depth at which a ray entering here starts (0 on the base / box top)
+  glm::vec2 curvature{0.0f};  // quadric (A, B) of the base along dpdu, dpdv (chapter 5)
 };
 
 struct BaseGeometry {
@@ -130,8 +152,11 @@ struct BaseGeometry {
 };
 
 // The base quad, or for Proxy::Box the closed box [0, tile]^2 x [0, 1] in texture space with
-// outward faces (counter-clockwise seen from outside).
+// outward faces (counter-clockwise seen from outside), or a curved base's mesh.
 BaseGeometry make_base_geometry(const SceneDesc& scene);
+
+// Radius of a sphere around the origin holding the base and its relief (camera fitting).
+double scene_radius(const SceneDesc& scene);
 
 struct Camera {
   glm::dvec3 eye, target, up;

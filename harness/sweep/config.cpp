@@ -233,12 +233,85 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
   return r;
 }
 
+// base = "sphere" (generated kinds, the teapot) or a mesh file with uvs; segments = N.
+// Only non-default values enter the canonical description, so planar cells keep their keys.
+void parse_base(const toml::table& t, const Src& src, const std::string& base_dir, SceneDesc& s,
+                json& canon) {
+  if (auto* n = t.get("base")) {
+    const std::string kind = string_of(*n, src, "base");
+    static const std::set<std::string> generated = {"plane", "cube", "sphere", "torus", "teapot"};
+    if (generated.count(kind)) {
+      s.base.kind = kind;
+    } else if (fs::path(kind).has_extension()) {
+      s.base.kind = "file";
+      s.base.path = resolve_path(kind, base_dir, src, *n);
+      const TriangleMesh mesh = load_mesh(s.base.path);
+      if (mesh.uvs.empty())
+        fail(src.at(*n), "base mesh " + s.base.path +
+                             " has no texture coordinates; a relief needs a uv mapping");
+      canon["base_file"] = std::to_string(file_hash(s.base.path));
+    } else {
+      fail(src.at(*n), "unknown base '" + kind +
+                           "' (known: plane, cube, sphere, torus, teapot, or a mesh file path)");
+    }
+    if (s.base.curved()) canon["base"] = s.base.kind;
+  }
+  if (auto* n = t.get("segments")) {
+    s.base.segments = positive_int(*n, src, "segments", 3, 4096);
+    if (s.base.curved()) canon["segments"] = s.base.segments;
+  }
+  if (!s.base.curved()) return;
+  if (s.proxy == Proxy::Box)
+    fail(src.at(*t.get("base")), "scene '" + s.name +
+                                     "': a curved base is drawn itself; proxy = \"box\" needs "
+                                     "the planar base");
+  if (!s.relief.mesh_path.empty())
+    fail(src.at(*t.get("base")),
+         "scene '" + s.name +
+             "': a baked mesh relief needs the planar base (it is an object in "
+             "its box)");
+}
+
+// objects = [{ shape = "sphere" | "cube" | "mesh.obj", center = [x, y, z], radius = r,
+// albedo = [r, g, b] }]: plain triangle meshes standing in the scene (chapter 5, Figure 5.20).
+void parse_objects(const toml::table& t, const Src& src, const std::string& base_dir, SceneDesc& s,
+                   json& canon) {
+  const toml::node* n = t.get("objects");
+  if (!n) return;
+  const toml::array* a = n->as_array();
+  if (!a) fail(src.at(*n), "'objects' must be an array of tables, e.g. [{ shape = \"sphere\" }]");
+  for (const toml::node& e : *a) {
+    const toml::table* o = e.as_table();
+    if (!o) fail(src.at(e), "each of 'objects' must be a table, e.g. { shape = \"sphere\" }");
+    check_keys(*o, {"shape", "center", "radius", "albedo"}, src, "an object");
+    SceneObject obj;
+    if (auto* v = o->get("shape")) {
+      obj.shape = string_of(*v, src, "shape");
+      if (obj.shape != "sphere" && obj.shape != "cube")
+        obj.shape = resolve_path(obj.shape, base_dir, src, *v);
+    }
+    if (auto* v = o->get("center")) obj.center = vec3_of(*v, src, "center");
+    if (auto* v = o->get("radius")) {
+      obj.radius = number(*v, src, "radius");
+      if (!(obj.radius > 0) || !std::isfinite(obj.radius))
+        fail(src.at(*v), "'radius' must be positive, got " + std::to_string(obj.radius));
+    }
+    if (auto* v = o->get("albedo")) obj.albedo = vec3_of(*v, src, "albedo");
+    s.objects.push_back(obj);
+    canon["objects"].push_back({obj.shape, obj.center.x, obj.center.y, obj.center.z, obj.radius,
+                                obj.albedo.x, obj.albedo.y, obj.albedo.z});
+  }
+  if (s.relief.reverse_cop > 1)
+    fail(src.at(*n), "scene '" + s.name + "': objects are not supported with reverse_perspective");
+}
+
 SceneDesc parse_scene(const toml::table& t, const Src& src, const std::string& base_dir,
                       const toml::node& node, json& canon) {
-  check_keys(t,
-             {"name", "relief", "proxy", "truth", "floor", "size", "tile", "depth", "quantize",
-              "effects", "light", "fov", "distance", "shadow_bias", "ambient", "diffuse",
-              "specular", "shininess", "shadow_intensity"},
+  check_keys(t, {"name",      "relief",          "base",    "segments", "objects",
+                 "proxy",     "truth",           "floor",   "size",     "tile",
+                 "depth",     "quantize",        "effects", "light",    "fov",
+                 "distance",  "shadow_bias",     "ambient", "diffuse",  "specular",
+                 "shininess", "shadow_intensity"},
              src, "[[scene]]");
   SceneDesc s;
   if (!t.contains("name")) fail(src.at(node), "[[scene]] needs a 'name'");
@@ -320,6 +393,8 @@ SceneDesc parse_scene(const toml::table& t, const Src& src, const std::string& b
       s.effects.add(*effect);
     }
   }
+  parse_base(t, src, base_dir, s, canon);
+  parse_objects(t, src, base_dir, s, canon);
   canon["name"] = s.name;
   canon["proxy"] = s.proxy == Proxy::Box ? "box" : "base";
   canon["truth"] = s.truth == TruthLevel::Mesh ? "mesh" : "sampled";

@@ -13,6 +13,7 @@
 #include "gl/render_target.h"
 #include "metrics/metrics.h"
 #include "relief/image_io.h"
+#include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 #include "sweep/cells.h"
 #include "sweep/pareto.h"
@@ -64,8 +65,10 @@ struct Asset {
   ReliefMap map;
   std::unique_ptr<GpuRelief> relief;
   std::unique_ptr<GpuBase> base;
-  std::unique_ptr<TruthSurface> truth;
+  std::unique_ptr<ObjectPass> objects;
+  std::unique_ptr<SceneTruth> truth;
   double build_ms = 0;
+  double texel_world = 0;  // world size of a texel on the base
   // Prepared technique instances by (technique, parameters): prepare() runs once per asset.
   std::map<std::string, std::pair<std::unique_ptr<Technique>, double>> prepared;
 };
@@ -133,7 +136,6 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     const Cell& cell = cells[order[oi]];
     if (done.count(cell.key)) continue;
     const SceneDesc& scene = config.scenes[cell.scene_index];
-    const PlanarBase base = planar_base(scene);
 
     if (cell.asset_key != asset_key) {
       const auto t0 = Clock::now();
@@ -141,7 +143,9 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       asset->map = build_relief_asset(scene, cell.texture_res);
       asset->relief = std::make_unique<GpuRelief>(asset->map);
       asset->base = std::make_unique<GpuBase>(make_base_geometry(scene));
-      asset->truth = make_truth(scene, asset->map, config.truth_tolerance);
+      asset->objects = std::make_unique<ObjectPass>(scene.objects);
+      asset->truth = std::make_unique<SceneTruth>(scene, asset->map, config.truth_tolerance);
+      asset->texel_world = texel_world(scene, cell.texture_res);
       asset->build_ms = ms_since(t0);
       asset_key = cell.asset_key;
       truth_key.clear();
@@ -158,7 +162,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     const Camera camera = make_camera(scene, cell.view, cell.width, cell.height);
     const std::string image_dir = options.out_dir + "/images/" + scene.name;
     if (cell.truth_key != truth_key) {
-      truth = render_truth(*asset->truth, asset->map, scene, camera, scene.effects, &truth_stats);
+      truth = asset->truth->render(asset->map, scene, camera, scene.effects, &truth_stats);
       truth_key = cell.truth_key;
       ++summary.truth_traces;
       char buf[256];
@@ -189,22 +193,22 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       slot.second = ms_since(t0);
     }
     Technique& technique = *slot.first;
-    FrameInput frame{scene, asset->map, *asset->relief, *asset->base, camera, scene.effects};
+    FrameInput frame{scene,  asset->map,    *asset->relief,      *asset->base,
+                     camera, scene.effects, asset->objects.get()};
 
     GBuffer g;
     {
       RenderTarget target(cell.width, cell.height, RenderTarget::Kind::GBuffer);
       target.bind_and_clear();
-      technique.render(frame, RenderTarget::Kind::GBuffer);
+      render_frame(technique, frame, RenderTarget::Kind::GBuffer);
       target.read_back(g);
     }
-    const double texel_world = base.texel_world(cell.texture_res);
-    const ImageMetrics m = compare_gbuffers(g, truth, scene.depth, texel_world);
+    const ImageMetrics m = compare_gbuffers(g, truth, scene.depth, asset->texel_world);
     RenderTarget timing_target(cell.width, cell.height, RenderTarget::Kind::ColorOnly);
     const FrameTiming timing = time_frames(
         [&] {
           timing_target.bind_and_clear();
-          technique.render(frame, RenderTarget::Kind::ColorOnly);
+          render_frame(technique, frame, RenderTarget::Kind::ColorOnly);
         },
         config.warmup, config.frames, gl.is_software());
 
@@ -229,7 +233,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       const std::string error_png = image_dir + "/" + cell.key + "_error.png";
       write_png(render_png, g.width, g.height, 3, rgb_of(g));
       write_png(error_png, g.width, g.height, 3,
-                error_heat_map(g, truth, texel_world, config.heat_map_scale));
+                error_heat_map(g, truth, asset->texel_world, config.heat_map_scale));
       row["image_render"] = fs::relative(render_png, options.out_dir).string();
       row["image_truth"] =
           fs::relative(image_dir + "/truth_" + cell.truth_key + ".png", options.out_dir).string();

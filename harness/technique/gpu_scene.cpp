@@ -56,7 +56,8 @@ GpuBase::GpuBase(const BaseGeometry& g) {
   } attributes[] = {
       {0, 3, offsetof(BaseVertex, position)}, {1, 2, offsetof(BaseVertex, uv)},
       {2, 3, offsetof(BaseVertex, dpdu)},     {3, 3, offsetof(BaseVertex, dpdv)},
-      {4, 3, offsetof(BaseVertex, normal)},   {5, 1, offsetof(BaseVertex, entry_depth)}};
+      {4, 3, offsetof(BaseVertex, normal)},   {5, 1, offsetof(BaseVertex, entry_depth)},
+      {6, 2, offsetof(BaseVertex, curvature)}};
   for (const auto& a : attributes) {
     glEnableVertexArrayAttrib(vao_, a.location);
     glVertexArrayAttribFormat(vao_, a.location, a.size, GL_FLOAT, GL_FALSE,

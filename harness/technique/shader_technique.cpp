@@ -5,18 +5,9 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/render_target.h"
+#include "technique/scene_uniforms.h"
 
 namespace rl {
-namespace {
-
-void set_vec3(GLuint p, const char* name, const glm::dvec3& v) {
-  glProgramUniform3f(p, glGetUniformLocation(p, name), float(v.x), float(v.y), float(v.z));
-}
-void set_float(GLuint p, const char* name, double v) {
-  glProgramUniform1f(p, glGetUniformLocation(p, name), float(v));
-}
-
-}  // namespace
 
 SurfaceVariant ShaderTechnique::variant_of(const SceneDesc& scene) {
   return {scene.proxy, scene.empty_floor, scene.projection.active()};
@@ -52,23 +43,14 @@ void ShaderTechnique::render(const FrameInput& frame, RenderTarget::Kind target)
   const GLuint p =
       ShaderLibrary::shared().program(surface_program(frame.effects, target, variant_of(s)));
   glUseProgram(p);
-  const glm::mat4 view_proj(frame.camera.projection_matrix() * frame.camera.view_matrix());
-  glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "rl_view_projection"), 1, GL_FALSE,
-                            glm::value_ptr(view_proj));
+  set_scene_uniforms(p, s, frame.camera);
   const PlanarBase base = planar_base(s);
   glProgramUniform2f(p, glGetUniformLocation(p, "rl_uv_max"), float(s.tile), float(s.tile));
-  set_vec3(p, "rl_eye", frame.camera.eye);
-  set_vec3(p, "rl_eye_affine", base.texture_from_world(frame.camera.eye));
-  set_float(p, "rl_cop", s.projection.cop);
-  set_vec3(p, "rl_light", s.light_position);
-  set_float(p, "rl_depth_scale", s.depth);
-  set_float(p, "rl_depth_aspect", s.depth / glm::length(base.dpdu()));
-  set_float(p, "rl_shadow_bias", s.shadow_bias);
-  set_vec3(p, "rl_ambient", s.material.ambient);
-  set_vec3(p, "rl_diffuse", s.material.diffuse);
-  set_vec3(p, "rl_specular", s.material.specular);
-  set_float(p, "rl_shininess", s.material.shininess);
-  set_float(p, "rl_shadow_intensity", s.material.shadow_intensity);
+  set_uniform(p, "rl_eye_affine", base.texture_from_world(frame.camera.eye));
+  set_uniform(p, "rl_cop", s.projection.cop);
+  set_uniform(p, "rl_depth_scale", s.depth);
+  set_uniform(p, "rl_depth_aspect", s.depth / glm::length(base.dpdu()));
+  set_uniform(p, "rl_shadow_bias", s.shadow_bias);
   frame.relief.bind();
   bind_resources(p);
   glEnable(GL_DEPTH_TEST);
@@ -96,8 +78,8 @@ std::vector<ProbeHit> ShaderTechnique::probe(const ReliefMap& map, const GpuReli
   std::vector<glm::vec4> origins(static_cast<size_t>(width) * height, glm::vec4(0, 0, 0, 0));
   std::vector<glm::vec4> directions(origins.size(), glm::vec4(0, 0, 1, 0));
   for (size_t i = 0; i < rays.size(); ++i) {
-    origins[i] = glm::vec4(rays[i].origin, 1);
-    directions[i] = glm::vec4(rays[i].direction, 0);
+    origins[i] = glm::vec4(rays[i].origin, rays[i].quadric.x);
+    directions[i] = glm::vec4(rays[i].direction, rays[i].quadric.y);
   }
   GLuint inputs[2];
   glCreateTextures(GL_TEXTURE_2D, 2, inputs);
@@ -112,7 +94,7 @@ std::vector<ProbeHit> ShaderTechnique::probe(const ReliefMap& map, const GpuReli
   target.bind_and_clear();
   const GLuint p = ShaderLibrary::shared().program(probe_program());
   glUseProgram(p);
-  set_float(p, "rl_depth_aspect", depth_aspect);
+  set_uniform(p, "rl_depth_aspect", depth_aspect);
   relief.bind();
   bind_resources(p);
   glBindTextureUnit(2, inputs[0]);

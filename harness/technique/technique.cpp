@@ -4,6 +4,11 @@
 
 namespace rl {
 
+void render_frame(Technique& technique, const FrameInput& frame, RenderTarget::Kind target) {
+  if (frame.objects) frame.objects->draw(frame.scene, frame.camera, target);
+  technique.render(frame, target);
+}
+
 TechniqueRegistry& TechniqueRegistry::instance() {
   static TechniqueRegistry registry;
   return registry;

@@ -18,6 +18,7 @@
 #include "relief/relief_map.h"
 #include "scene/scene.h"
 #include "technique/gpu_scene.h"
+#include "technique/object_pass.h"
 
 namespace rl {
 
@@ -37,7 +38,8 @@ struct FrameInput {
   const GpuRelief& relief;
   const GpuBase& base;
   const Camera& camera;
-  EffectSet effects;  // exactly the scene's requested effects
+  EffectSet effects;                    // exactly the scene's requested effects
+  const ObjectPass* objects = nullptr;  // the scene's plain objects, if any
 };
 
 // A tangent-space ray for ray-probe mode: (u, v, depth)(t) = origin + t * direction, with
@@ -45,6 +47,7 @@ struct FrameInput {
 struct ProbeRay {
   glm::vec3 origin;
   glm::vec3 direction;
+  glm::vec2 quadric{0.0f};  // base curvature (A, B) in texture units, for ray-bending techniques
 };
 
 struct ProbeHit {
@@ -93,6 +96,10 @@ class Described : public Base {
     return i;
   }
 };
+
+// One frame of a cell into the bound target: the scene's objects, then the technique's relief
+// (which, with depth_correct, resolves visibility against them per pixel).
+void render_frame(Technique& technique, const FrameInput& frame, RenderTarget::Kind target);
 
 struct TechniqueEntry {
   TechniqueInfo info;

@@ -12,10 +12,7 @@
 #include "core/parallel.h"
 
 namespace rl {
-namespace {
 
-// Largest |C| = |d00 - d10 - d01 + d11| over the bilinear cells: the twist that makes a
-// bilinear patch non-planar.
 double max_twist(const ReliefMap& map) {
   double m = 0;
   for (int y = 0; y < map.height; ++y)
@@ -24,6 +21,8 @@ double max_twist(const ReliefMap& map) {
                                map.depth_texel(x, y + 1) + map.depth_texel(x + 1, y + 1)));
   return m;
 }
+
+namespace {
 
 void embree_error(void*, RTCError code, const char* message) {
   throw std::runtime_error("Embree error " + std::to_string(int(code)) + ": " +

@@ -15,6 +15,10 @@
 
 namespace rl {
 
+// Largest |C| = |d00 - d10 - d01 + d11| over the map's bilinear cells: the twist that makes a
+// bilinear patch non-planar (a k x k tessellation of a cell deviates by |C| / (4 k^2)).
+double max_twist(const ReliefMap& map);
+
 class HeightfieldTruth final : public TruthSurface {
  public:
   // `tolerance` in depth units; `max_vertices` caps memory (the achieved bound is reported).

@@ -1,5 +1,9 @@
 #include "truth/make_truth.h"
 
+#include <chrono>
+
+#include "scene/base_mesh.h"
+
 #include "relief/mesh_bake.h"
 #include "truth/heightfield_truth.h"
 #include "truth/mesh_truth.h"
@@ -14,6 +18,35 @@ std::unique_ptr<TruthSurface> make_truth(const SceneDesc& scene, const ReliefMap
                                        scene.projection);
   }
   return std::make_unique<HeightfieldTruth>(map, tolerance);
+}
+
+SceneTruth::SceneTruth(const SceneDesc& scene, const ReliefMap& map, double tolerance) {
+  const auto start = std::chrono::steady_clock::now();
+  if (scene.base.curved())
+    displaced_ = std::make_unique<DisplacedTruth>(
+        make_base_mesh(scene.base, scene.size, scene.tile), map, scene.depth, tolerance);
+  else
+    planar_ = make_truth(scene, map, tolerance);
+  if (!scene.objects.empty()) objects_ = std::make_unique<ObjectsTruth>(scene.objects);
+  build_ms_ =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+SceneTruth::~SceneTruth() = default;
+
+GBuffer SceneTruth::render(const ReliefMap& map, const SceneDesc& scene, const Camera& camera,
+                           EffectSet effects, TruthStats* stats) const {
+  if (displaced_)
+    return render_truth(*displaced_, map, scene, camera, effects, stats, objects_.get());
+  return render_truth(*planar_, map, scene, camera, effects, stats, objects_.get());
+}
+
+double SceneTruth::tessellation_bound() const {
+  return displaced_ ? displaced_->tessellation_bound() : planar_->tessellation_bound();
+}
+
+int SceneTruth::subdivision() const {
+  return displaced_ ? displaced_->subdivision() : planar_->subdivision();
 }
 
 }  // namespace rl

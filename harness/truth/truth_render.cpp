@@ -6,6 +6,8 @@
 #include <limits>
 
 #include "core/parallel.h"
+#include "truth/displaced_truth.h"
+#include "truth/objects_truth.h"
 
 namespace rl {
 namespace {
@@ -84,6 +86,11 @@ bool trace_primary(const TruthSurface& truth, const ReliefMap& map, const SceneD
   return true;
 }
 
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
 }  // namespace
 
 glm::dvec3 shade(const Material& m, const glm::dvec3& albedo, const glm::dvec3& n,
@@ -96,8 +103,23 @@ glm::dvec3 shade(const Material& m, const glm::dvec3& albedo, const glm::dvec3& 
   return m.ambient * albedo + lit;
 }
 
+namespace {
+
+void write_relief_pixel(GBuffer& g, size_t i, const SceneDesc& scene, const glm::dvec3& albedo,
+                        const glm::dvec3& n, const glm::dvec3& world, const glm::dvec3& to_light,
+                        const glm::dvec3& dir, const glm::dvec2& uv, bool in_shadow) {
+  const glm::dvec3 c = shade(scene.material, albedo, n, to_light, -dir, in_shadow);
+  g.color[i] = glm::vec4(glm::vec3(c), 1.0f);
+  g.position[i] = glm::vec4(glm::vec3(world), 1.0f);
+  g.normal[i] = glm::vec4(glm::vec3(n), in_shadow ? 1.0f : 0.0f);
+  g.hit[i] = glm::vec4(float(uv.x), float(uv.y), 0.0f, 0.0f);
+}
+
+}  // namespace
+
 GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const SceneDesc& scene,
-                     const Camera& camera, EffectSet effects, TruthStats* stats) {
+                     const Camera& camera, EffectSet effects, TruthStats* stats,
+                     const ObjectsTruth* objects) {
   const auto start = std::chrono::steady_clock::now();
   const uint64_t primary0 = truth.primary_rays(), shadow0 = truth.shadow_rays();
   const PlanarBase base = planar_base(scene);
@@ -120,19 +142,29 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
           glm::dvec3 o = base.texture_from_world(eye);
           glm::dvec3 d = base.texture_direction(dir);  // t stays the world distance
           const ReverseProjection& projection = scene.projection;
-          if (projection.active()) {
+          if (projection.active() && d.z > 0) {
             // Lines stay lines: the ray through the eye and its point at depth 1, projected.
-            if (d.z <= 0) continue;
             const glm::dvec3 far = o + d * ((1.0 - o.z) / d.z);
             o = projection.texture_from_affine(o);
             d = projection.texture_from_affine(far) - o;
           }
           double t_start = 0;
           TruthHit h;
-          if (!trace_primary(truth, map, scene, o, d, bottom, t_start, h, unresolved)) continue;
+          const bool relief =
+              d.z > 0 && trace_primary(truth, map, scene, o, d, bottom, t_start, h, unresolved);
           const glm::dvec3 world =
               projection.active() ? base.world_from_texture(projection.affine_from_texture(h.point))
                                   : eye + dir * (t_start + h.t);
+          if (objects) {
+            // An object in front of the relief's hit (or anywhere, where the relief is missed).
+            const ObjectHit oh = objects->intersect(
+                eye, dir, relief ? glm::length(world - eye) : std::numeric_limits<double>::max());
+            if (oh.hit) {
+              write_object_pixel(g, i, oh, scene, dir);
+              continue;
+            }
+          }
+          if (!relief) continue;
           const glm::dvec2 uv(h.point.x, h.point.y);
           const glm::dvec3 tn = decode_normal(map.sample_relief(uv.x, uv.y));
           glm::dvec3 n = glm::normalize(tn.x * glm::normalize(base.dpdu()) +
@@ -159,21 +191,68 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
               in_shadow = truth.occluded(h.point, l, t_start, t_exit);
             }
           }
-          const glm::dvec3 c = shade(scene.material, albedo, n, to_light, -dir, in_shadow);
-          g.color[i] = glm::vec4(glm::vec3(c), 1.0f);
-          g.position[i] = glm::vec4(glm::vec3(world), 1.0f);
-          g.normal[i] = glm::vec4(glm::vec3(n), in_shadow ? 1.0f : 0.0f);
-          g.hit[i] = glm::vec4(float(uv.x), float(uv.y), 0.0f, 0.0f);
+          write_relief_pixel(g, i, scene, albedo, n, world, to_light, dir, uv, in_shadow);
         }
       },
       256);
 
   if (stats) {
-    stats->trace_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    stats->trace_ms = ms_since(start);
     stats->primary_rays = truth.primary_rays() - primary0;
     stats->shadow_rays = truth.shadow_rays() - shadow0;
     stats->unresolved = unresolved.load();
+  }
+  return g;
+}
+
+GBuffer render_truth(const DisplacedTruth& truth, const ReliefMap& map, const SceneDesc& scene,
+                     const Camera& camera, EffectSet effects, TruthStats* stats,
+                     const ObjectsTruth* objects) {
+  const auto start = std::chrono::steady_clock::now();
+  const uint64_t primary0 = truth.primary_rays(), shadow0 = truth.shadow_rays();
+  const bool shadows = effects.has(Effect::SelfShadow);
+  const double far = camera.far_plane;
+  GBuffer g;
+  g.resize(camera.width, camera.height);
+  parallel_for(
+      size_t(camera.width) * camera.height,
+      [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+          glm::dvec3 eye, dir;
+          camera.pixel_ray(int(i % camera.width), int(i / camera.width), eye, dir);
+          const DisplacedHit h = truth.intersect(eye, dir, far);
+          if (objects) {
+            const ObjectHit oh = objects->intersect(eye, dir, h.hit ? h.t : far);
+            if (oh.hit) {
+              write_object_pixel(g, i, oh, scene, dir);
+              continue;
+            }
+          }
+          if (!h.hit) continue;
+          // Shading as the shaders do it: the map's normal in the base's frame at the hit.
+          const glm::dvec3 tn = decode_normal(map.sample_relief(h.uv.x, h.uv.y));
+          const glm::dvec3 n =
+              glm::normalize(tn.x * h.tangent + tn.y * h.bitangent + tn.z * h.normal);
+          const glm::dvec3 albedo(map.sample_color(h.uv.x, h.uv.y));
+          const glm::dvec3 to_light = glm::normalize(scene.light_position - h.position);
+          bool in_shadow = false;
+          if (shadows) {
+            if (glm::dot(h.normal, to_light) <= 0) {
+              in_shadow = true;  // light at or below the base's tangent plane, as the shaders
+            } else {
+              const double reach = glm::length(scene.light_position - h.position);
+              in_shadow = truth.occluded(h.position, to_light, 1e-4 * scene.depth, reach);
+            }
+          }
+          write_relief_pixel(g, i, scene, albedo, n, h.position, to_light, dir, h.uv, in_shadow);
+        }
+      },
+      256);
+  if (stats) {
+    stats->trace_ms = ms_since(start);
+    stats->primary_rays = truth.primary_rays() - primary0;
+    stats->shadow_rays = truth.shadow_rays() - shadow0;
+    stats->unresolved = 0;
   }
   return g;
 }

@@ -23,7 +23,17 @@ struct TruthStats {
 glm::dvec3 shade(const Material& m, const glm::dvec3& albedo, const glm::dvec3& n,
                  const glm::dvec3& to_light, const glm::dvec3& to_eye, bool in_shadow);
 
+class ObjectsTruth;
+class DisplacedTruth;
+
+// A relief on the planar base (texture-space truth), with the scene's objects if given.
 GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const SceneDesc& scene,
-                     const Camera& camera, EffectSet effects, TruthStats* stats = nullptr);
+                     const Camera& camera, EffectSet effects, TruthStats* stats = nullptr,
+                     const ObjectsTruth* objects = nullptr);
+
+// A relief on a curved base (world-space displaced truth), with the scene's objects if given.
+GBuffer render_truth(const DisplacedTruth& truth, const ReliefMap& map, const SceneDesc& scene,
+                     const Camera& camera, EffectSet effects, TruthStats* stats = nullptr,
+                     const ObjectsTruth* objects = nullptr);
 
 }  // namespace rl

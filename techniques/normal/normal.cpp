@@ -11,7 +11,7 @@ class NormalMapping final : public Described<NormalMapping, ShaderTechnique> {
             "Normal mapping",
             "Book chapter 5, 'Parallax mapping' and Figure 5.9 (the normal-map baseline); "
             "Chapter 3 bump mapping",
-            {},
+            {Effect::DepthCorrect},
             {}};
   }
 

@@ -10,7 +10,7 @@ class ParallaxMapping final : public Described<ParallaxMapping, ShaderTechnique>
     return {"parallax",
             "Parallax (offset) mapping",
             "Book chapter 5, 'Parallax mapping', Listing 5.1 (after Kaneko et al. 2001)",
-            {},
+            {Effect::DepthCorrect},
             {{"offset_limiting", ParamKind::Bool, 1, 0, 1,
               "shift by d * view.xy of the unit view vector (Listing 5.1) instead of reaching "
               "the view ray at depth d"},

@@ -11,7 +11,7 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
             "Relief mapping (linear + binary search)",
             "Book chapter 5, 'Relief Texture mapping', Listings 5.3 and 5.4 "
             "(Policarpo, Oliveira & Comba 2005)",
-            {Effect::SelfShadow},
+            {Effect::SelfShadow, Effect::DepthCorrect},
             {{"linear_steps", ParamKind::Int, 10, 2, 1024,
               "linear search steps through the depth range (Listing 5.3: 10, or 20 in its "
               "double-precision variant)"},

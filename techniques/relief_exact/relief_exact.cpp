@@ -11,7 +11,7 @@ class ReliefExact final : public Described<ReliefExact, ShaderTechnique> {
             "Exact texel traversal (centerline to centerline)",
             "Baboud & Decoret 2006, Section 3.3 'Rasterization-based intersection' "
             "(2D Amanatides & Woo 1987)",
-            {Effect::SelfShadow},
+            {Effect::SelfShadow, Effect::DepthCorrect},
             {},
             true};
   }

@@ -11,7 +11,7 @@ class ReliefExactBilinear final : public Described<ReliefExactBilinear, ShaderTe
             "Exact bilinear traversal (centerline walk, exact ray-patch solve per cell)",
             "Beyond Baboud & Decoret 2006, Section 3.3: solves the saddle case of their "
             "Figure 3 exactly",
-            {Effect::SelfShadow},
+            {Effect::SelfShadow, Effect::DepthCorrect},
             {},
             true};
   }

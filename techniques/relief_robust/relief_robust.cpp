@@ -16,7 +16,7 @@ class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
         "Robust binary search with safety radii",
         "Baboud & Decoret 2006, Sections 3.4-3.5 (safety radius, robust binary search, "
         "Figures 5-8, 12)",
-        {Effect::SelfShadow},
+        {Effect::SelfShadow, Effect::DepthCorrect},
         {{"binary_steps", ParamKind::Int, 8, 1, 32, "binary search steps once the ray is below"},
          {"exact_zero_radius", ParamKind::Bool, 0, 0, 1,
           "solve zero-radius columns exactly instead of clamping the radius to 1"},

@@ -10,6 +10,7 @@
 
 #include "gl/context.h"
 #include "gl/render_target.h"
+#include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 #include "technique/gpu_scene.h"
 #include "truth/make_truth.h"
@@ -35,19 +36,19 @@ Measured measure(const SceneDesc& scene, const std::string& technique, const Par
   ReliefMap map = build_relief_asset(scene, res);
   GpuRelief relief(map);
   GpuBase base(make_base_geometry(scene));
-  const std::unique_ptr<TruthSurface> truth = make_truth(scene, map, truth_tolerance);
+  ObjectPass objects(scene.objects);
+  const SceneTruth truth(scene, map, truth_tolerance);
   const Camera camera = make_camera(scene, view, size, size);
   Measured m;
-  m.truth = render_truth(*truth, map, scene, camera, scene.effects, &m.truth_stats);
+  m.truth = truth.render(map, scene, camera, scene.effects, &m.truth_stats);
   auto t = TechniqueRegistry::instance().create(technique, params, "test");
   t->prepare(map);
-  FrameInput frame{scene, map, relief, base, camera, scene.effects};
+  FrameInput frame{scene, map, relief, base, camera, scene.effects, &objects};
   RenderTarget target(size, size, RenderTarget::Kind::GBuffer);
   target.bind_and_clear();
-  t->render(frame, RenderTarget::Kind::GBuffer);
+  render_frame(*t, frame, RenderTarget::Kind::GBuffer);
   target.read_back(m.technique);
-  m.metrics =
-      compare_gbuffers(m.technique, m.truth, scene.depth, planar_base(scene).texel_world(res));
+  m.metrics = compare_gbuffers(m.technique, m.truth, scene.depth, texel_world(scene, res));
   return m;
 }
 

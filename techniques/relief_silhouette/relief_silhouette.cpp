@@ -1,0 +1,38 @@
+// Relief mapping with curvature silhouettes, book chapter 5 Listings 5.5-5.7.
+#include "technique/shader_technique.h"
+
+namespace rl {
+
+class ReliefSilhouette final : public Described<ReliefSilhouette, ShaderTechnique> {
+ public:
+  using Described::Described;
+  static TechniqueInfo describe() {
+    return {"relief_silhouette",
+            "Relief mapping with curvature silhouettes (bent rays through a per-vertex quadric)",
+            "Book chapter 5, 'Silhouette edges and Relief Texture mapping', Listings 5.5-5.7, "
+            "Equations 5.1-5.3 (Oliveira & Policarpo 2005)",
+            {Effect::Silhouette, Effect::DepthCorrect},
+            {{"linear_steps", ParamKind::Int, 10, 2, 1024,
+              "linear search samples over [0, t_max] (Listing 5.6: 10)"},
+             {"binary_steps", ParamKind::Int, 6, 0, 32,
+              "binary search refinements after the linear search (Listing 5.6: 6)"},
+             {"exact_distance", ParamKind::Bool, 0, 0, 1,
+              "1: ray-quadric distance of Equation 5.2 with the discriminant test; 0: the "
+              "vertical distance of Equation 5.3 (the chapter's 'twofold speedup')"}},
+            false};
+  }
+
+ protected:
+  std::string intersect_file() const override {
+    return "techniques/relief_silhouette/relief_silhouette.glsl";
+  }
+  Defines parameter_defines() const override {
+    return {{"RL_LINEAR_STEPS", std::to_string(static_cast<int>(param("linear_steps")))},
+            {"RL_BINARY_STEPS", std::to_string(static_cast<int>(param("binary_steps")))},
+            {"RL_QUADRIC_EXACT", std::to_string(static_cast<int>(param("exact_distance")))}};
+  }
+};
+
+RL_REGISTER_TECHNIQUE(ReliefSilhouette);
+
+}  // namespace rl
