@@ -37,6 +37,11 @@ struct BaseMesh {
 // `require_uvs` is false (plain objects), when they get the teapot's cylindrical projection.
 BaseMesh make_base_mesh(const BaseDesc& desc, double size, double tile, bool require_uvs = true);
 
+// True for the generated kinds (an exact parametric surface), false for mesh files.
+inline bool has_charts(const BaseDesc& desc) {
+  return desc.kind != "teapot" && desc.kind != "file";
+}
+
 // World size of one texel of a res x res map on the scene's base (planar: exact; curved: the
 // mean mapping scale over the base's vertices), the unit of position errors in texels.
 double texel_world(const SceneDesc& scene, int res);

@@ -153,10 +153,12 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       char buf[256];
       std::snprintf(buf, sizeof buf,
                     "relieflab: asset %s at %dx%d: built in %.0f ms (Embree truth %.0f ms, "
-                    "tessellation %dx%d per texel, deviation <= %.2g depth units)",
+                    "tessellation %dx%d per %s, deviation <= %.2g depth units)",
                     scene.name.c_str(), asset->map.width, asset->map.height, asset->build_ms,
                     asset->truth->build_ms(), asset->truth->subdivision(),
-                    asset->truth->subdivision(), asset->truth->tessellation_bound());
+                    asset->truth->subdivision(),
+                    scene.base.curved() && !has_charts(scene.base) ? "base triangle" : "texel",
+                    asset->truth->tessellation_bound());
       log.line(buf);
     }
     const Camera camera = make_camera(scene, cell.view, cell.width, cell.height);

@@ -277,23 +277,33 @@ DisplacedHit DisplacedTruth::intersect(const glm::dvec3& origin, const glm::dvec
   ++primary_rays_;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRayHit rh = embree_ray(origin, direction, 0.0, t_max);
-  rtcIntersect1(scene_, &context, &rh);
   DisplacedHit h;
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
-  const unsigned* tri = &indices_[3 * size_t(rh.hit.primID)];
-  const double w1 = rh.hit.u, w2 = rh.hit.v, w0 = 1 - w1 - w2;
-  const Vertex &a = vertices_[tri[0]], &b = vertices_[tri[1]], &c = vertices_[tri[2]];
-  auto mix3 = [&](const glm::vec3& x, const glm::vec3& y, const glm::vec3& z) {
-    return glm::normalize(w0 * glm::dvec3(x) + w1 * glm::dvec3(y) + w2 * glm::dvec3(z));
-  };
-  h.hit = true;
-  h.t = rh.ray.tfar;
-  h.position = origin + direction * h.t;
-  h.uv = w0 * glm::dvec2(a.uv) + w1 * glm::dvec2(b.uv) + w2 * glm::dvec2(c.uv);
-  h.tangent = mix3(a.tangent, b.tangent, c.tangent);
-  h.bitangent = mix3(a.bitangent, b.bitangent, c.bitangent);
-  h.normal = mix3(a.normal, b.normal, c.normal);
+  // The relief is one-sided, as the shaders have it ("base seen from below: no relief"): a hit
+  // on the sheet from behind (through an open mesh's gaps) is passed through.
+  double t_min = 0;
+  for (int pass = 0; pass < 64; ++pass) {
+    RTCRayHit rh = embree_ray(origin, direction, t_min, t_max);
+    rtcIntersect1(scene_, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
+    const unsigned* tri = &indices_[3 * size_t(rh.hit.primID)];
+    const double w1 = rh.hit.u, w2 = rh.hit.v, w0 = 1 - w1 - w2;
+    const Vertex &a = vertices_[tri[0]], &b = vertices_[tri[1]], &c = vertices_[tri[2]];
+    auto mix3 = [&](const glm::vec3& x, const glm::vec3& y, const glm::vec3& z) {
+      return glm::normalize(w0 * glm::dvec3(x) + w1 * glm::dvec3(y) + w2 * glm::dvec3(z));
+    };
+    h.normal = mix3(a.normal, b.normal, c.normal);
+    if (glm::dot(h.normal, direction) >= 0) {
+      t_min = double(rh.ray.tfar) * (1 + 1e-6) + 1e-7;
+      continue;
+    }
+    h.hit = true;
+    h.t = rh.ray.tfar;
+    h.position = origin + direction * h.t;
+    h.uv = w0 * glm::dvec2(a.uv) + w1 * glm::dvec2(b.uv) + w2 * glm::dvec2(c.uv);
+    h.tangent = mix3(a.tangent, b.tangent, c.tangent);
+    h.bitangent = mix3(a.bitangent, b.bitangent, c.bitangent);
+    return h;
+  }
   return h;
 }
 
