@@ -35,11 +35,15 @@ RTCScene embree_triangle_scene(RTCDevice device, const TriangleMesh& mesh,
                                                              mesh.triangles.size()));
   for (size_t i = 0; i < mesh.triangles.size(); ++i)
     for (int c = 0; c < 3; ++c) idx[3 * i + c] = mesh.triangles[i][c];
+  attach_and_commit(scene, geom);
+  return scene;
+}
+
+void attach_and_commit(RTCScene scene, RTCGeometry geom) {
   rtcCommitGeometry(geom);
   rtcAttachGeometry(scene, geom);
   rtcReleaseGeometry(geom);
   rtcCommitScene(scene);
-  return scene;
 }
 
 }  // namespace rl

@@ -49,7 +49,6 @@ void ShaderTechnique::render(const FrameInput& frame, RenderTarget::Kind target)
   set_uniform(p, "rl_eye_affine", base.texture_from_world(frame.camera.eye));
   set_uniform(p, "rl_cop", s.projection.cop);
   set_uniform(p, "rl_depth_scale", s.depth);
-  set_uniform(p, "rl_depth_aspect", s.depth / glm::length(base.dpdu()));
   set_uniform(p, "rl_shadow_bias", s.shadow_bias);
   frame.relief.bind();
   bind_resources(p);
@@ -94,7 +93,7 @@ std::vector<ProbeHit> ShaderTechnique::probe(const ReliefMap& map, const GpuReli
   target.bind_and_clear();
   const GLuint p = ShaderLibrary::shared().program(probe_program());
   glUseProgram(p);
-  set_uniform(p, "rl_depth_aspect", depth_aspect);
+  set_uniform(p, "rl_probe_depth_aspect", depth_aspect);
   relief.bind();
   bind_resources(p);
   glBindTextureUnit(2, inputs[0]);

@@ -100,10 +100,7 @@ DisplacedTruth::DisplacedTruth(const BaseMesh& base, const ReliefMap& map, doubl
                              offsetof(Vertex, position), sizeof(Vertex), vertices_.size());
   rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices_.data(), 0,
                              3 * sizeof(unsigned), indices_.size() / 3);
-  rtcCommitGeometry(geom);
-  rtcAttachGeometry(scene_, geom);
-  rtcReleaseGeometry(geom);
-  rtcCommitScene(scene_);
+  attach_and_commit(scene_, geom);
   build_ms_ =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }

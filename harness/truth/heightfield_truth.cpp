@@ -87,10 +87,7 @@ HeightfieldTruth::HeightfieldTruth(const ReliefMap& map, double tolerance, size_
   auto* grid_buffer = static_cast<RTCGrid*>(rtcSetNewGeometryBuffer(
       geom, RTC_BUFFER_TYPE_GRID, 0, RTC_FORMAT_GRID, sizeof(RTCGrid), grids.size()));
   std::copy(grids.begin(), grids.end(), grid_buffer);
-  rtcCommitGeometry(geom);
-  rtcAttachGeometry(scene_, geom);
-  rtcReleaseGeometry(geom);
-  rtcCommitScene(scene_);
+  attach_and_commit(scene_, geom);
   build_ms_ =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
