@@ -1,6 +1,7 @@
 // Truth throughput: rays/s of HeightfieldTruth::intersect (tile walk + Embree grid) against
 // raw rtcIntersect1 on the same Embree scene with the same rays, single-threaded, and the
-// whole truth G-buffer (all cores). Not part of CI.
+// whole truth G-buffer (all cores); the displaced-mesh truth of a curved base: its build
+// (tessellation + BVH) and its G-buffer. Not part of CI.
 #include <cmath>
 #include <map>
 #include <memory>
@@ -8,7 +9,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
+#include "truth/displaced_truth.h"
 #include "truth/heightfield_truth.h"
 #include "truth/truth_render.h"
 
@@ -93,11 +96,59 @@ void BM_TruthGBuffer(benchmark::State& state) {
   state.SetItemsProcessed(int64_t(rays));
 }
 
+// A curved base (chapter 5): `kind` on a 32-segment sphere at res^2 (two tiles around).
+void BM_DisplacedTruthBuild(benchmark::State& state, std::string kind) {
+  SceneDesc scene;
+  scene.relief.procedural = kind;
+  scene.base.kind = "sphere";
+  const int res = int(state.range(0));
+  const ReliefMap map = build_relief_asset(scene, res);
+  const BaseMesh base = make_base_mesh(scene.base, scene.size, scene.tile);
+  size_t triangles = 0;
+  double bound = 0;
+  for (auto _ : state) {
+    DisplacedTruth truth(base, map, scene.depth, 2e-3);
+    triangles = truth.triangles();
+    bound = truth.tessellation_bound();
+  }
+  state.counters["triangles"] = double(triangles);
+  state.counters["bound"] = bound;
+}
+
+void BM_DisplacedTruthGBuffer(benchmark::State& state) {
+  SceneDesc scene;
+  scene.relief.procedural = "sines";
+  scene.base.kind = "sphere";
+  const ReliefMap map = build_relief_asset(scene, 256);
+  const DisplacedTruth truth(make_base_mesh(scene.base, scene.size, scene.tile), map, scene.depth,
+                             2e-3);
+  const Camera cam = make_camera(scene, View{30, 30}, 512, 512);
+  uint64_t rays = 0;
+  for (auto _ : state) {
+    TruthStats stats;
+    GBuffer g = render_truth(truth, map, scene, cam, EffectSet{}, &stats);
+    benchmark::DoNotOptimize(g.color.data());
+    rays += stats.primary_rays;
+  }
+  state.SetItemsProcessed(int64_t(rays));
+}
+
 BENCHMARK_CAPTURE(BM_TruthIntersect, bricks, "bricks")->Arg(256)->Arg(512);
 BENCHMARK_CAPTURE(BM_RawEmbreeIntersect1, bricks, "bricks")->Arg(256)->Arg(512);
 BENCHMARK_CAPTURE(BM_TruthIntersect, sines, "sines")->Arg(256)->Arg(512);
 BENCHMARK_CAPTURE(BM_RawEmbreeIntersect1, sines, "sines")->Arg(256)->Arg(512);
 BENCHMARK(BM_TruthGBuffer)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_DisplacedTruthBuild, sines, "sines")
+    ->Arg(128)
+    ->Arg(256)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_DisplacedTruthBuild, bricks, "bricks")
+    ->Arg(128)
+    ->Arg(256)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_DisplacedTruthGBuffer)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace rl
