@@ -249,7 +249,8 @@ void parse_base(const toml::table& t, const Src& src, const std::string& base_di
       if (mesh.uvs.empty())
         fail(src.at(*n), "base mesh " + s.base.path +
                              " has no texture coordinates; a relief needs a uv mapping");
-      canon["base_file"] = std::to_string(file_hash(s.base.path));
+      canon["base_file"] =
+          fs::path(s.base.path).filename().string() + ":" + hex64(file_hash(s.base.path));
     } else {
       fail(src.at(*n), "unknown base '" + kind +
                            "' (known: plane, cube, sphere, torus, teapot, or a mesh file path)");
@@ -298,7 +299,11 @@ void parse_objects(const toml::table& t, const Src& src, const std::string& base
     }
     if (auto* v = o->get("albedo")) obj.albedo = vec3_of(*v, src, "albedo");
     s.objects.push_back(obj);
-    canon["objects"].push_back({obj.shape, obj.center.x, obj.center.y, obj.center.z, obj.radius,
+    const bool file = obj.shape != "sphere" && obj.shape != "cube";
+    const std::string shape_id =
+        file ? fs::path(obj.shape).filename().string() + ":" + hex64(file_hash(obj.shape))
+             : obj.shape;
+    canon["objects"].push_back({shape_id, obj.center.x, obj.center.y, obj.center.z, obj.radius,
                                 obj.albedo.x, obj.albedo.y, obj.albedo.z});
   }
   if (s.relief.reverse_cop > 1)
