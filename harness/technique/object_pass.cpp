@@ -48,11 +48,10 @@ void ObjectPass::draw(const SceneDesc& scene, const Camera& camera,
   set_scene_uniforms(p, scene, camera);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-  glEnable(GL_CULL_FACE);
-  glCullFace(GL_BACK);
+  // Both sides, as the truth traces them: a mesh file's winding is not known.
+  glDisable(GL_CULL_FACE);
   glBindVertexArray(vao_);
   glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
-  glDisable(GL_CULL_FACE);
 }
 
 }  // namespace rl
