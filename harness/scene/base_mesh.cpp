@@ -260,7 +260,27 @@ BaseMesh make_base_mesh(const BaseDesc& desc, double size, double tile, bool req
 
 double texel_world(const SceneDesc& scene, int res) {
   if (!scene.base.curved()) return planar_base(scene).texel_world(res);
-  const BaseMesh m = make_base_mesh(scene.base, scene.size, scene.tile);
+  return texel_world(make_base_mesh(scene.base, scene.size, scene.tile), res);
+}
+
+BaseGeometry base_geometry(const BaseMesh& mesh) {
+  BaseGeometry g;
+  for (size_t i = 0; i < mesh.position.size(); ++i) {
+    BaseVertex v;
+    v.position = glm::vec3(mesh.position[i]);
+    v.uv = glm::vec2(mesh.uv[i]);
+    v.dpdu = glm::vec3(mesh.dpdu[i]);
+    v.dpdv = glm::vec3(mesh.dpdv[i]);
+    v.normal = glm::vec3(mesh.normal[i]);
+    v.entry_depth = 0;
+    v.curvature = glm::vec2(mesh.curvature[i]);
+    g.vertices.push_back(v);
+  }
+  for (const glm::uvec3& t : mesh.triangles) g.indices.insert(g.indices.end(), {t.x, t.y, t.z});
+  return g;
+}
+
+double texel_world(const BaseMesh& m, int res) {
   double sum = 0;
   for (size_t i = 0; i < m.position.size(); ++i)
     sum += 0.5 * (glm::length(m.dpdu[i]) + glm::length(m.dpdv[i]));

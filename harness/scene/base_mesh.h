@@ -45,6 +45,10 @@ inline bool has_charts(const BaseDesc& desc) {
 // World size of one texel of a res x res map on the scene's base (planar: exact; curved: the
 // mean mapping scale over the base's vertices), the unit of position errors in texels.
 double texel_world(const SceneDesc& scene, int res);
+double texel_world(const BaseMesh& mesh, int res);
+
+// The mesh as the shaders receive it.
+BaseGeometry base_geometry(const BaseMesh& mesh);
 
 // Tangent frames of the uv mapping: per triangle the solution of dP = dpdu du + dpdv dv (the
 // core of Lengyel's method and of MikkTSpace), accumulated at the vertices weighted by corner

@@ -25,22 +25,7 @@ double scene_radius(const SceneDesc& scene) {
 
 BaseGeometry make_base_geometry(const SceneDesc& scene) {
   BaseGeometry g;
-  if (scene.base.curved()) {
-    const BaseMesh mesh = make_base_mesh(scene.base, scene.size, scene.tile);
-    for (size_t i = 0; i < mesh.position.size(); ++i) {
-      BaseVertex v;
-      v.position = glm::vec3(mesh.position[i]);
-      v.uv = glm::vec2(mesh.uv[i]);
-      v.dpdu = glm::vec3(mesh.dpdu[i]);
-      v.dpdv = glm::vec3(mesh.dpdv[i]);
-      v.normal = glm::vec3(mesh.normal[i]);
-      v.entry_depth = 0;
-      v.curvature = glm::vec2(mesh.curvature[i]);
-      g.vertices.push_back(v);
-    }
-    for (const glm::uvec3& t : mesh.triangles) g.indices.insert(g.indices.end(), {t.x, t.y, t.z});
-    return g;
-  }
+  if (scene.base.curved()) return base_geometry(make_base_mesh(scene.base, scene.size, scene.tile));
   const PlanarBase base = planar_base(scene);
   auto vertex = [&](const glm::dvec3& uvd) {
     BaseVertex v;

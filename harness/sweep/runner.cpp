@@ -142,10 +142,19 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       asset = std::make_unique<Asset>();
       asset->map = build_relief_asset(scene, cell.texture_res);
       asset->relief = std::make_unique<GpuRelief>(asset->map);
-      asset->base = std::make_unique<GpuBase>(make_base_geometry(scene));
       asset->objects = std::make_unique<ObjectPass>(scene.objects);
-      asset->truth = std::make_unique<SceneTruth>(scene, asset->map, config.truth_tolerance);
-      asset->texel_world = texel_world(scene, cell.texture_res);
+      if (scene.base.curved()) {
+        // One base mesh for the GPU, the truth and the texel size.
+        const BaseMesh mesh = make_base_mesh(scene.base, scene.size, scene.tile);
+        asset->base = std::make_unique<GpuBase>(base_geometry(mesh));
+        asset->truth =
+            std::make_unique<SceneTruth>(scene, asset->map, config.truth_tolerance, &mesh);
+        asset->texel_world = texel_world(mesh, cell.texture_res);
+      } else {
+        asset->base = std::make_unique<GpuBase>(make_base_geometry(scene));
+        asset->truth = std::make_unique<SceneTruth>(scene, asset->map, config.truth_tolerance);
+        asset->texel_world = texel_world(scene, cell.texture_res);
+      }
       asset->build_ms = ms_since(t0);
       asset_key = cell.asset_key;
       truth_key.clear();

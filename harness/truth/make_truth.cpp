@@ -20,11 +20,13 @@ std::unique_ptr<TruthSurface> make_truth(const SceneDesc& scene, const ReliefMap
   return std::make_unique<HeightfieldTruth>(map, tolerance);
 }
 
-SceneTruth::SceneTruth(const SceneDesc& scene, const ReliefMap& map, double tolerance) {
+SceneTruth::SceneTruth(const SceneDesc& scene, const ReliefMap& map, double tolerance,
+                       const BaseMesh* base) {
   const auto start = std::chrono::steady_clock::now();
   if (scene.base.curved())
     displaced_ = std::make_unique<DisplacedTruth>(
-        make_base_mesh(scene.base, scene.size, scene.tile), map, scene.depth, tolerance);
+        base ? *base : make_base_mesh(scene.base, scene.size, scene.tile), map, scene.depth,
+        tolerance);
   else
     planar_ = make_truth(scene, map, tolerance);
   if (!scene.objects.empty()) objects_ = std::make_unique<ObjectsTruth>(scene.objects);

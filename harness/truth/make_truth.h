@@ -21,7 +21,9 @@ std::unique_ptr<TruthSurface> make_truth(const SceneDesc& scene, const ReliefMap
 // nearest hit per pixel.
 class SceneTruth {
  public:
-  SceneTruth(const SceneDesc& scene, const ReliefMap& map, double tolerance);
+  // `base`: the scene's curved base mesh if already built (else built here).
+  SceneTruth(const SceneDesc& scene, const ReliefMap& map, double tolerance,
+             const BaseMesh* base = nullptr);
   ~SceneTruth();
   GBuffer render(const ReliefMap& map, const SceneDesc& scene, const Camera& camera,
                  EffectSet effects, TruthStats* stats = nullptr) const;
