@@ -8,6 +8,7 @@
 #include <memory>
 #include <set>
 
+#include "core/elapsed.h"
 #include "gl/context.h"
 #include "gl/frame_timer.h"
 #include "gl/render_target.h"
@@ -28,10 +29,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
 
 std::string hms(double seconds) {
   const long s = long(seconds + 0.5);

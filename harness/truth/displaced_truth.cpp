@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/elapsed.h"
 #include "core/embree_util.h"
 #include "core/parallel.h"
 #include "truth/heightfield_truth.h"
@@ -101,8 +102,7 @@ DisplacedTruth::DisplacedTruth(const BaseMesh& base, const ReliefMap& map, doubl
   rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices_.data(), 0,
                              3 * sizeof(unsigned), indices_.size() / 3);
   attach_and_commit(scene_, geom);
-  build_ms_ =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  build_ms_ = ms_since(start);
 }
 
 DisplacedTruth::~DisplacedTruth() {

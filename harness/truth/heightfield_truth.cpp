@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/elapsed.h"
 #include "core/embree_util.h"
 #include "core/grid_walk.h"
 #include "core/parallel.h"
@@ -88,8 +89,7 @@ HeightfieldTruth::HeightfieldTruth(const ReliefMap& map, double tolerance, size_
       geom, RTC_BUFFER_TYPE_GRID, 0, RTC_FORMAT_GRID, sizeof(RTCGrid), grids.size()));
   std::copy(grids.begin(), grids.end(), grid_buffer);
   attach_and_commit(scene_, geom);
-  build_ms_ =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  build_ms_ = ms_since(start);
 }
 
 HeightfieldTruth::~HeightfieldTruth() {

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "core/elapsed.h"
 #include "scene/base_mesh.h"
 
 #include "relief/mesh_bake.h"
@@ -30,8 +31,7 @@ SceneTruth::SceneTruth(const SceneDesc& scene, const ReliefMap& map, double tole
   else
     planar_ = make_truth(scene, map, tolerance);
   if (!scene.objects.empty()) objects_ = std::make_unique<ObjectsTruth>(scene.objects);
-  build_ms_ =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  build_ms_ = ms_since(start);
 }
 
 SceneTruth::~SceneTruth() = default;

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "core/elapsed.h"
 #include "core/embree_util.h"
 
 namespace rl {
@@ -23,8 +24,7 @@ MeshTruth::MeshTruth(const TriangleMesh& mesh, const BakeFrame& frame,
     const double len = glm::length(n);
     affine_normals_.push_back(len > 0 ? n / len : glm::dvec3(0, 0, -1));
   }
-  build_ms_ =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  build_ms_ = ms_since(start);
 }
 
 MeshTruth::~MeshTruth() {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/elapsed.h"
 #include "core/parallel.h"
 #include "truth/displaced_truth.h"
 #include "truth/objects_truth.h"
@@ -86,11 +87,6 @@ bool trace_primary(const TruthSurface& truth, const ReliefMap& map, const SceneD
   return true;
 }
 
-double ms_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
-
 }  // namespace
 
 glm::dvec3 shade(const Material& m, const glm::dvec3& albedo, const glm::dvec3& n,
@@ -151,7 +147,7 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
           double t_start = 0;
           TruthHit h;
           const bool relief =
-              d.z > 0 && trace_primary(truth, map, scene, o, d, bottom, t_start, h, unresolved);
+              trace_primary(truth, map, scene, o, d, bottom, t_start, h, unresolved);
           const glm::dvec3 world =
               projection.active() ? base.world_from_texture(projection.affine_from_texture(h.point))
                                   : eye + dir * (t_start + h.t);
