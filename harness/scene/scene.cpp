@@ -1,11 +1,11 @@
 #include "scene/scene.h"
 
-#include "scene/base_mesh.h"
-
 #include <cmath>
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+
+#include "scene/base_mesh.h"
 
 namespace rl {
 
