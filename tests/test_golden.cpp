@@ -48,13 +48,20 @@ std::vector<GoldenCell> golden_cells() {
   // Curved bases (chapter 5): planar search vs bent rays, where the silhouette matters.
   for (const char* base : {"sphere", "torus"}) {
     const std::string b(base);
-    cells.push_back({b + "/sines/relief/el20", "sines", "relief",
-                     {{"linear_steps", 16}, {"binary_steps", 6}}, View{20, 30}, b});
+    cells.push_back({b + "/sines/relief/el20",
+                     "sines",
+                     "relief",
+                     {{"linear_steps", 16}, {"binary_steps", 6}},
+                     View{20, 30},
+                     b});
     for (double exact : {0.0, 1.0})
       cells.push_back({b + "/sines/relief_silhouette/exact" + std::to_string(int(exact)) + "/el20",
-                       "sines", "relief_silhouette",
+                       "sines",
+                       "relief_silhouette",
                        {{"linear_steps", 16}, {"binary_steps", 6}, {"exact_distance", exact}},
-                       View{20, 30}, b, {Effect::Silhouette}});
+                       View{20, 30},
+                       b,
+                       {Effect::Silhouette}});
   }
   return cells;
 }
