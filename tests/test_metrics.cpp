@@ -71,6 +71,37 @@ TEST(Metrics, CoveragePositionNormalsShadowsAndFetches) {
   // Fetches over the 90 technique-covered pixels: 50 x 4 and 40 x 10.
   EXPECT_NEAR(m.fetches.mean, (50 * 4 + 40 * 10) / 90.0, 1e-9);
   EXPECT_EQ(m.fetches.max, 10);
+  // The headline error: 10 missed + 5 false + 20 off by more than a texel, over the 100
+  // pixels either side covers.
+  EXPECT_EQ(m.union_covered_px, 100);
+  EXPECT_DOUBLE_EQ(m.wrong_pct, 35.0);
+}
+
+TEST(Metrics, WrongPctCountsAFalseFloorThatArtifactPctCannotSee) {
+  // A technique drawing "floor" on 60 pixels the truth leaves empty, exact elsewhere: no
+  // jointly covered pixel is off, so artifact_pct is 0, while 60 of 100 covered pixels are wrong.
+  GBuffer truth = filled(10, 10), tech = filled(10, 10);
+  for (int i = 0; i < 60; ++i) truth.color[i].a = truth.position[i].w = 0;
+  ImageMetrics m = compare_gbuffers(tech, truth, 0.1, 0.01);
+  EXPECT_EQ(m.artifact_pct, 0);
+  EXPECT_DOUBLE_EQ(m.wrong_pct, 60.0);
+  EXPECT_DOUBLE_EQ(m.false_pct, 150.0);  // in % of the 40 truth-covered pixels
+}
+
+TEST(Metrics, NothingCoveredIsReportedEmptyNotPerfect) {
+  GBuffer truth = filled(4, 4), tech = filled(4, 4);
+  for (size_t i = 0; i < truth.size(); ++i) {
+    truth.color[i].a = truth.position[i].w = 0;
+    tech.color[i].a = tech.position[i].w = 0;
+  }
+  ImageMetrics m = compare_gbuffers(tech, truth, 0.1, 0.01);
+  EXPECT_TRUE(m.empty());
+  for (const auto& [name, value] : m.named()) {
+    if (name == "covered_px" || name == "union_px" || name == "nonfinite_px")
+      EXPECT_EQ(value, 0) << name;
+    else
+      EXPECT_TRUE(std::isnan(value)) << name << " must be empty, not " << value;
+  }
 }
 
 TEST(Metrics, PsnrOfAKnownDifference) {

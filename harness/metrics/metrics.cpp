@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/gtc/constants.hpp>
 #include <opencv2/core.hpp>
@@ -107,6 +108,7 @@ ImageMetrics compare_gbuffers(const GBuffer& t, const GBuffer& r, double depth_w
         !finite4(t.hit[i]))
       ++m.nonfinite_px;
     if (rc) ++m.truth_covered_px;
+    if (rc || tc) ++m.union_covered_px;
     if (rc && !tc) ++missed;
     if (tc && !rc) ++false_hits;
     if (tc && !is_object(t, i)) fetches.push_back(t.hit[i].w);
@@ -130,6 +132,9 @@ ImageMetrics compare_gbuffers(const GBuffer& t, const GBuffer& r, double depth_w
   m.pos_err = error_stats(pos);
   m.pos_err_texels = error_stats(pos_texels);
   m.artifact_pct = both ? 100.0 * artifacts / both : 0;
+  m.wrong_pct = m.union_covered_px
+                    ? 100.0 * double(missed + false_hits + artifacts) / double(m.union_covered_px)
+                    : 0;
   const ErrorStats n = error_stats(normal_deg);
   m.normal_err_mean_deg = n.mean;
   m.normal_err_p99_deg = n.p99;
@@ -142,28 +147,35 @@ ImageMetrics compare_gbuffers(const GBuffer& t, const GBuffer& r, double depth_w
 }
 
 std::vector<std::pair<std::string, double>> ImageMetrics::named() const {
-  return {{"covered_px", double(truth_covered_px)},
-          {"missed_pct", missed_pct},
-          {"false_pct", false_pct},
-          {"pos_err_mean", pos_err.mean},
-          {"pos_err_rmse", pos_err.rmse},
-          {"pos_err_p99", pos_err.p99},
-          {"pos_err_max", pos_err.max},
-          {"pos_err_texels_mean", pos_err_texels.mean},
-          {"pos_err_texels_rmse", pos_err_texels.rmse},
-          {"pos_err_texels_p99", pos_err_texels.p99},
-          {"pos_err_texels_max", pos_err_texels.max},
-          {"artifact_pct", artifact_pct},
-          {"normal_err_mean_deg", normal_err_mean_deg},
-          {"normal_err_p99_deg", normal_err_p99_deg},
-          {"psnr_db", psnr_db},
-          {"ssim", ssim},
-          {"shadow_disagree_pct", shadow_disagree_pct},
-          {"object_disagree_pct", object_disagree_pct},
-          {"fetches_mean", fetches.mean},
-          {"fetches_p99", fetches.p99},
-          {"fetches_max", fetches.max},
-          {"nonfinite_px", double(nonfinite_px)}};
+  std::vector<std::pair<std::string, double>> v = {{"covered_px", double(truth_covered_px)},
+                                                   {"union_px", double(union_covered_px)},
+                                                   {"wrong_pct", wrong_pct},
+                                                   {"missed_pct", missed_pct},
+                                                   {"false_pct", false_pct},
+                                                   {"pos_err_mean", pos_err.mean},
+                                                   {"pos_err_rmse", pos_err.rmse},
+                                                   {"pos_err_p99", pos_err.p99},
+                                                   {"pos_err_max", pos_err.max},
+                                                   {"pos_err_texels_mean", pos_err_texels.mean},
+                                                   {"pos_err_texels_rmse", pos_err_texels.rmse},
+                                                   {"pos_err_texels_p99", pos_err_texels.p99},
+                                                   {"pos_err_texels_max", pos_err_texels.max},
+                                                   {"artifact_pct", artifact_pct},
+                                                   {"normal_err_mean_deg", normal_err_mean_deg},
+                                                   {"normal_err_p99_deg", normal_err_p99_deg},
+                                                   {"psnr_db", psnr_db},
+                                                   {"ssim", ssim},
+                                                   {"shadow_disagree_pct", shadow_disagree_pct},
+                                                   {"object_disagree_pct", object_disagree_pct},
+                                                   {"fetches_mean", fetches.mean},
+                                                   {"fetches_p99", fetches.p99},
+                                                   {"fetches_max", fetches.max},
+                                                   {"nonfinite_px", double(nonfinite_px)}};
+  if (empty())
+    for (auto& [name, value] : v)
+      if (name != "covered_px" && name != "union_px" && name != "nonfinite_px")
+        value = std::numeric_limits<double>::quiet_NaN();
+  return v;
 }
 
 std::vector<float> error_heat_map(const GBuffer& t, const GBuffer& r, double texel_world,

@@ -3,6 +3,10 @@
 // technique and truth mode is measured the same way.
 //
 // Conventions (stated once, used everywhere):
+// - wrong_pct, the headline error: % of the union of covered pixels (technique or truth)
+//   that are wrong — coverage disagrees (missed or false) or both cover and the hit is more
+//   than one texel from the truth's. It sees every wrong pixel: a technique that draws empty
+//   floor, or leaves a silhouette out, is charged for it, unlike artifact_pct;
 // - coverage: missed_pct = truth-covered pixels the technique left empty, false_pct =
 //   technique-covered pixels the truth leaves empty, both in % of truth-covered pixels;
 // - position error: world distance between the two hits over pixels both cover, reported in
@@ -33,6 +37,8 @@ ErrorStats error_stats(std::vector<double> values);
 
 struct ImageMetrics {
   long truth_covered_px = 0;
+  long union_covered_px = 0;  // technique or truth covers the pixel
+  double wrong_pct = 0;       // headline error (see above)
   double missed_pct = 0, false_pct = 0;
   ErrorStats pos_err;         // depth units
   ErrorStats pos_err_texels;  // texel widths
@@ -44,7 +50,11 @@ struct ImageMetrics {
   ErrorStats fetches;
   long nonfinite_px = 0;
 
-  // (name, value) in the column order of rows.csv.
+  // Nothing to measure: neither side covers a pixel. Error columns are then reported empty
+  // (NaN in named()), never as a perfect score.
+  bool empty() const { return union_covered_px == 0; }
+
+  // (name, value) in the column order of rows.csv; error columns NaN when empty().
   std::vector<std::pair<std::string, double>> named() const;
 };
 

@@ -28,6 +28,11 @@ const std::vector<ProceduralKind>& procedural_kinds() {
         {"columns", 4, "bricks per row"},
         {"mortar", 0.08, "mortar width as a fraction of the brick height"},
         {"mortar_depth", 0.8, "depth of the mortar"}}},
+      {"domes",
+       "spherical caps on a floor at depth 1 (an empty floor under the box proxy: objects "
+       "standing on nothing, like a baked mesh)",
+       {{"count", 3, "domes per tile along u and v"},
+        {"radius", 0.4, "cap radius as a fraction of the dome spacing"}}},
       {"walls",
        "one-texel-thick walls at depth 0 on a grid, floor at depth 1",
        {{"spacing", 16, "texels between walls"}}},
@@ -71,6 +76,14 @@ DepthFn depth_function(const std::string& kind, const std::map<std::string, doub
       double mortar_u = mortar * cols / rows;  // same world width as the horizontal joints
       bool in_mortar = fv < mortar || fu < mortar_u;
       return in_mortar ? mortar_depth : 0.0;
+    };
+  }
+  if (kind == "domes") {
+    double n = o.at("count"), radius = o.at("radius");
+    return [n, radius](double u, double v, int, int) {
+      double fu = u * n - std::floor(u * n) - 0.5, fv = v * n - std::floor(v * n) - 0.5;
+      double r2 = (fu * fu + fv * fv) / (radius * radius);
+      return r2 >= 1.0 ? 1.0 : 1.0 - std::sqrt(1.0 - r2);
     };
   }
   if (kind == "walls") {
@@ -119,6 +132,8 @@ ReliefMap make_procedural(const std::string& kind, int resolution,
   }
   if (kind == "constant" && (o["value"] < 0 || o["value"] > 1))
     throw ConfigError(where + ": option 'value' must be in [0, 1]");
+  if (kind == "domes" && !(o["radius"] > 0 && o["radius"] <= 0.5 && o["count"] >= 1))
+    throw ConfigError(where + ": domes need radius in (0, 0.5] and count >= 1");
 
   DepthFn fn = depth_function(kind, o, resolution);
   ReliefMap map;

@@ -644,7 +644,7 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
     for (const auto& ts : c.techniques)
       for (const auto& [p, v] : ts.param_lists)
         if (std::find(t.rows.begin(), t.rows.end(), p) == t.rows.end()) t.rows.push_back(p);
-    t.values = {"pos_err_rmse", "artifact_pct", "psnr_db", "fetches_mean", "frame_ms"};
+    t.values = {"wrong_pct", "pos_err_rmse", "artifact_pct", "psnr_db", "fetches_mean", "frame_ms"};
     c.tables.push_back(t);
   }
 

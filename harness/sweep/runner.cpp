@@ -1,6 +1,7 @@
 #include "sweep/runner.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -221,7 +222,15 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
         config.warmup, config.frames, gl.is_software());
 
     Row row = cell.identity;
-    for (const auto& [name, value] : m.named()) row[name] = value;
+    // An error column that measures nothing (no pixel covered) is empty, never zero.
+    for (const auto& [name, value] : m.named())
+      row[name] =
+          std::isnan(value) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(value);
+    if (m.empty())
+      log.line("relieflab: warning: " + cell.technique + " " + describe_params(cell) + " on " +
+               scene.name + " el=" + std::to_string(cell.view.elevation_deg) +
+               ": neither the technique nor the truth covers a pixel; its error columns are "
+               "empty (nothing was measured)");
     row["frame_ms"] = timing.median_ms;
     row["frame_ms_min"] = timing.min_ms;
     row["timing"] = timing.method;
@@ -257,12 +266,12 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       char buf[512];
       std::snprintf(buf, sizeof buf,
                     "[%zu/%zu] %3.0f%% %s elapsed, ~%s left | %s %s | %s el=%g az=%g %dx%d | "
-                    "pos_err_rmse=%.4g artifact=%.3g%% fetches=%.1f frame=%.2fms",
+                    "wrong=%.3g%% pos_err_rmse=%.4g fetches=%.1f frame=%.2fms",
                     summary.already_done + finished, cells.size(),
                     100.0 * (summary.already_done + finished) / cells.size(), hms(elapsed).c_str(),
                     hms(eta).c_str(), cell.technique.c_str(), describe_params(cell).c_str(),
                     scene.name.c_str(), cell.view.elevation_deg, cell.view.azimuth_deg, cell.width,
-                    cell.height, m.pos_err.rmse, m.artifact_pct, m.fetches.mean, timing.median_ms);
+                    cell.height, m.wrong_pct, m.pos_err.rmse, m.fetches.mean, timing.median_ms);
       std::fprintf(stderr, "%s\n", buf);
     }
   }

@@ -46,7 +46,13 @@ RlHit rl_intersect(vec3 p, vec3 s) {
     r = max(r, 1u);
 #endif
     float t_next = min(t + float(r) * t_per_line, t_end);
-    if (p.z + t_next >= RL_FETCH(rl_relief, p.xy + s.xy * t_next).a) {
+    float d_next = RL_FETCH(rl_relief, p.xy + s.xy * t_next).a;
+    // Reaching the bottom over floor texels (depth 1) is the floor, not a crossing inside the
+    // step: at most one intersection lies in the step, and a ray that entered a feature and is
+    // back at depth 1 over the floor would have two. Return the floor itself so that an empty
+    // floor is discarded (a binary search would return a point above it).
+    if (t_next >= t_end && d_next >= 1.0) return rl_hit_on_ray(p, s, t_end, true);
+    if (p.z + t_next >= d_next) {
       // Exactly one crossing in (t, t_next]: binary search, then the middle of the last interval.
       float lo = max(t, 0.0), hi = t_next;
       for (int i = 0; i < RL_BINARY_STEPS; i++) {
