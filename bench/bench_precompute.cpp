@@ -1,19 +1,45 @@
-// Safety-radius precompute (relief_robust) at 128^2 and 256^2, all cores, no disk cache.
+// Safety-radius precompute (relief_robust), all cores, no disk cache: the faithful radii of
+// Section 3.5 (blocked rays ignored, the default) and the conservative ones, at 256^2 and
+// 1024^2, on procedural maps and on the rock-wall height map (resampled bilinearly).
 // The paper reports about 10 s for 128^2 on its 2006 GPU (Baboud & Decoret, Section 3.5).
 #include <benchmark/benchmark.h>
 
 #include "../techniques/relief_robust/safety_radius.h"
+#include "relief/image_io.h"
 #include "relief/procedural.h"
+#include "relief/relief_map.h"
 
 namespace rl {
 namespace {
 
-void BM_SafetyRadius(benchmark::State& state, std::string kind) {
-  ReliefMap map = make_procedural(kind, int(state.range(0)), {}, 10.0, "bench");
+ReliefMap rock(int size) {
+  // The Irrlicht rock wall's 256^2 height map, resampled to size^2 (GL_LINEAR, repeat).
+  static const ReliefMap source = [] {
+    ReliefImageSource src;
+    src.depth_path =
+        std::string(RELIEFLAB_SOURCE_DIR) + "/assets/relief/rockwall/rockwall_height.bmp";
+    return load_relief_images(src, 10.0);
+  }();
+  ReliefMap m;
+  m.width = m.height = size;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const double d = source.sample_depth((x + 0.5) / size, (y + 0.5) / size);
+      m.relief.push_back(glm::vec4(0.5f, 0.5f, 1.0f, float(d)));
+      m.color.push_back(glm::vec4(1));
+    }
+  return m;
+}
+
+void BM_SafetyRadius(benchmark::State& state, std::string kind, bool ignore_blocked) {
+  const int size = int(state.range(0));
+  ReliefMap map = kind == "rock" ? rock(size) : make_procedural(kind, size, {}, 10.0, "bench");
   quantize_8bit(map);
+  SafetyRadiusOptions o;
+  o.ignore_blocked = ignore_blocked;
   SafetyRadii r;
   for (auto _ : state) {
-    r = compute_safety_radii(map, SafetyRadiusOptions{});
+    r = compute_safety_radii(map, o);
     benchmark::DoNotOptimize(r.radius.data());
   }
   double mean = 0;
@@ -22,21 +48,19 @@ void BM_SafetyRadius(benchmark::State& state, std::string kind) {
   state.counters["zero_pct"] = 100.0 * r.zero_count() / r.radius.size();
 }
 
-BENCHMARK_CAPTURE(BM_SafetyRadius, pyramids, "pyramids")
-    ->Arg(128)
-    ->Arg(256)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-BENCHMARK_CAPTURE(BM_SafetyRadius, bricks, "bricks")
-    ->Arg(128)
-    ->Arg(256)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-BENCHMARK_CAPTURE(BM_SafetyRadius, sines, "sines")
-    ->Arg(128)
-    ->Arg(256)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
+#define RL_RADIUS_BENCH(name, kind, ignore)              \
+  BENCHMARK_CAPTURE(BM_SafetyRadius, name, kind, ignore) \
+      ->Arg(256)                                         \
+      ->Arg(1024)                                        \
+      ->Unit(benchmark::kMillisecond)                    \
+      ->UseRealTime()                                    \
+      ->Iterations(1)
+RL_RADIUS_BENCH(rock, "rock", true);
+RL_RADIUS_BENCH(sines, "sines", true);
+RL_RADIUS_BENCH(bricks, "bricks", true);
+RL_RADIUS_BENCH(pyramids, "pyramids", true);
+RL_RADIUS_BENCH(rock_conservative, "rock", false);
+RL_RADIUS_BENCH(bricks_conservative, "bricks", false);
 
 }  // namespace
 }  // namespace rl

@@ -24,7 +24,11 @@ class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
           "depth a ray may dip into a feature unseen: larger radii, faster, silhouette "
           "errors up to this depth (Figure 12)"},
          {"directions", ParamKind::Int, 16, 4, 256, "ray azimuths sampled by the precompute"},
-         {"max_radius", ParamKind::Int, 16, 1, 255, "largest radius stored, texels"}},
+         {"max_radius", ParamKind::Int, 0, 0, 255,
+          "largest radius stored, texels; 0 = follow the texture (min(255, larger side))"},
+         {"ignore_blocked", ParamKind::Bool, 1, 0, 1,
+          "Section 3.5 as written: rays blocked before the texel are ignored; 0 = conservative "
+          "radii that also hold for blocked rays"}},
         true};
   }
 
@@ -33,6 +37,7 @@ class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
     o.error_allowed = param("error_allowed");
     o.directions = int(param("directions"));
     o.max_radius = int(param("max_radius"));
+    o.ignore_blocked = param("ignore_blocked") != 0;
     radii_ = cached_safety_radii(map, o);
     if (texture_) glDeleteTextures(1, &texture_);
     glCreateTextures(GL_TEXTURE_2D, 1, &texture_);

@@ -84,10 +84,177 @@ class DepthSampler {
   std::vector<float> d_;
 };
 
+// Heights (= -depth) of the map padded by `pad` texels of wrapped copies on every side, so the
+// line sweep samples bilinearly without a modulo per sample; `transposed` swaps x and y, so
+// that a sweep always runs along rows (contiguous memory) whatever its major axis.
+class PaddedHeights {
+ public:
+  PaddedHeights(const ReliefMap& m, int pad, bool transposed)
+      : w_(transposed ? m.height : m.width),
+        h_(transposed ? m.width : m.height),
+        pad_(pad),
+        stride_(size_t(w_ + 2 * pad)) {
+    data_.resize(stride_ * size_t(h_ + 2 * pad));
+    for (int y = -pad; y < h_ + pad; ++y)
+      for (int x = -pad; x < w_ + pad; ++x) {
+        const int sx = ((x % w_) + w_) % w_, sy = ((y % h_) + h_) % h_;
+        const size_t src = transposed ? m.index(sy, sx) : m.index(sx, sy);
+        data_[size_t(y + pad) * stride_ + size_t(x + pad)] = -m.relief[src].a;
+      }
+  }
+  int width() const { return w_; }
+  int height() const { return h_; }
+  // Bilinear height at texel-centre coordinates (x, y), both above -pad.
+  float operator()(double x, double y) const {
+    const double px = x + pad_, py = y + pad_;
+    const long ix = long(px), iy = long(py);  // floor: both are positive
+    const float fx = float(px - double(ix)), fy = float(py - double(iy));
+    const float* r0 = &data_[size_t(iy) * stride_ + size_t(ix)];
+    const float* r1 = r0 + stride_;
+    const float top = r0[0] + (r0[1] - r0[0]) * fx, bottom = r1[0] + (r1[1] - r1[0]) * fx;
+    return top + (bottom - top) * fy;
+  }
+
+ private:
+  int w_, h_, pad_;
+  size_t stride_;
+  std::vector<float> data_;
+};
+
 }  // namespace
 
-SafetyRadii compute_safety_radii(const ReliefMap& map, const SafetyRadiusOptions& o) {
-  const auto start = std::chrono::steady_clock::now();
+void first_unblocked_violations(const std::vector<float>& h, double step, double error_allowed,
+                                std::vector<int>& hull, std::vector<int>& first) {
+  const int n = int(h.size());
+  // by_horizon[t]: the first sample whose horizon is sample t.
+  first.assign(size_t(n), n);
+  std::vector<int>& by_horizon = first;
+  hull.clear();
+  auto below_new_edge = [&](int k) {  // is the hull's top on or under (second, k)?
+    const int i = hull[hull.size() - 2], j = hull.back();
+    return double(j - i) * (double(h[size_t(k)]) - h[size_t(i)]) -
+               (double(h[size_t(j)]) - h[size_t(i)]) * double(k - i) >=
+           0;
+  };
+  for (int k = 0; k < n; ++k) {
+    // Horizon of (s_k, h_k + e): the hull vertex of maximal backward-rising slope from it.
+    const double qh = double(h[size_t(k)]) + error_allowed;
+    auto slope = [&](int i) { return (double(h[size_t(i)]) - qh) / ((k - i) * step); };
+    int t = -1;
+    if (error_allowed == 0) {
+      // The point itself: the vertices the monotone chain drops on pushing it lie on or under
+      // its tangent, so the top left is the horizon (collinear ties dropped: the leftmost).
+      while (hull.size() >= 2 && below_new_edge(k)) hull.pop_back();
+      if (!hull.empty()) t = hull.back();
+    } else if (!hull.empty()) {
+      // A point above the profile: slopes to an upper hull from a point right of it are
+      // unimodal along the hull; the first maximum is the leftmost argmax.
+      int lo = 0, hi = int(hull.size()) - 1;
+      while (lo < hi) {
+        const int mid = (lo + hi) / 2;
+        if (slope(hull[size_t(mid)]) >= slope(hull[size_t(mid) + 1]))
+          hi = mid;
+        else
+          lo = mid + 1;
+      }
+      t = hull[size_t(lo)];
+      while (hull.size() >= 2 && below_new_edge(k)) hull.pop_back();
+    }
+    // A horizon above the point (beyond float noise in the bilinear lerp): a rising slope.
+    if (t >= 0 && double(h[size_t(t)]) - qh > 1e-7)
+      by_horizon[size_t(t)] = std::min(by_horizon[size_t(t)], k);
+    hull.push_back(k);
+  }
+  // A start at sample j first violates at the earliest sample whose horizon lies strictly
+  // after j: a suffix minimum over horizons, computed in place.
+  int next = n;
+  for (int j = n - 1; j >= 0; --j) {
+    const int here = by_horizon[size_t(j)];
+    first[size_t(j)] = next;
+    next = std::min(next, here);
+  }
+}
+
+namespace {
+
+// Section 3.5 with blocked rays ignored: one horizon sweep per line (see safety_radius.h).
+SafetyRadii compute_unblocked(const ReliefMap& map, const SafetyRadiusOptions& o, int cap) {
+  const int W = map.width, H = map.height;
+  const PaddedHeights rows(map, cap + 4, false), columns(map, cap + 4, true);
+  const double two_pi = 2 * glm::pi<double>();
+  const double step = o.step;
+  const int per_centerline = std::max(1, int(std::lround(1.0 / step)));
+  // Per direction, its own radius array (directions run in parallel); min-reduced at the end.
+  std::vector<std::vector<uint8_t>> per_direction(size_t(o.directions));
+  parallel_for(
+      size_t(o.directions),
+      [&](size_t d_begin, size_t d_end) {
+        std::vector<float> h;
+        std::vector<int> hull, first;
+        for (size_t d = d_begin; d < d_end; ++d) {
+          std::vector<uint8_t>& radius = per_direction[d];
+          radius.assign(size_t(W) * H, uint8_t(cap));
+          const double theta = two_pi * (double(d) + 0.5) / o.directions;
+          const double cx = std::cos(theta), cy = std::sin(theta);
+          // Line coordinates: a along the ray's major axis (forward), b across; the grid is
+          // the map or its transpose so that a runs along memory rows. A line is b = c + ub a.
+          const bool major_x = std::abs(cx) >= std::abs(cy);
+          const PaddedHeights& grid = major_x ? rows : columns;
+          const int A = grid.width(), B = grid.height();
+          const bool flip = major_x ? cx < 0 : cy < 0;
+          const double ub = major_x ? cy / std::abs(cx) : cx / std::abs(cy);
+          const double c_min = -0.5 - std::max(-0.5 * ub, (A - 0.5) * ub);
+          const double c_max = B - 0.5 - std::min(-0.5 * ub, (A - 0.5) * ub);
+          const double spacing = 1.0 / o.starts;
+          for (double c = c_min + 0.5 * spacing; c < c_max; c += spacing) {
+            // The part of the line inside the map.
+            double a0 = -0.5, a1 = A - 0.5;
+            if (ub != 0) {
+              const double at_lo = (-0.5 - c) / ub, at_hi = (B - 0.5 - c) / ub;
+              a0 = std::max(a0, std::min(at_lo, at_hi));
+              a1 = std::min(a1, std::max(at_lo, at_hi));
+            } else if (c < -0.5 || c >= B - 0.5) {
+              continue;
+            }
+            if (a0 > a1) continue;
+            // Samples from the entry to cap + 1 centerlines past the exit (wrapping there).
+            const long k0 = long(std::ceil(a0 / step));
+            const long k1 = long(std::floor((a1 + cap + 1) / step));
+            h.resize(size_t(k1 - k0 + 1));
+            for (long k = k0; k <= k1; ++k) {
+              const double a = k * step;
+              h[size_t(k - k0)] = grid(flip ? (A - 1) - a : a, c + ub * a);
+            }
+            first_unblocked_violations(h, step, o.error_allowed, hull, first);
+            // Starts: centerline crossings (integer a) inside the map.
+            const long j_lo = std::max<long>(long(std::ceil(std::max(a0, 0.0))), 0);
+            const long j_hi = std::min<long>(long(std::floor(a1)), A - 1);
+            const int n = int(h.size());
+            for (long ja = j_lo; ja <= j_hi; ++ja) {
+              const long j = ja * per_centerline - k0;
+              const int tb = std::clamp(int(std::floor(c + ub * double(ja) + 0.5)), 0, B - 1);
+              int r = cap;
+              if (first[size_t(j)] < n)
+                r = std::min(cap, int(std::ceil((first[size_t(j)] - j) * step - 1e-9)) - 1);
+              const int ta = flip ? (A - 1) - int(ja) : int(ja);
+              const size_t idx = major_x ? size_t(tb) * W + ta : size_t(ta) * W + tb;
+              radius[idx] = std::min(radius[idx], uint8_t(std::max(r, 0)));
+            }
+          }
+        }
+      },
+      1);
+  SafetyRadii out;
+  out.width = W;
+  out.height = H;
+  out.radius.assign(size_t(W) * H, uint8_t(cap));
+  for (const auto& r : per_direction)
+    for (size_t i = 0; i < r.size(); ++i) out.radius[i] = std::min(out.radius[i], r[i]);
+  return out;
+}
+
+// Blocked rays counted: every texel, direction and start scans the profile ahead.
+SafetyRadii compute_conservative(const ReliefMap& map, const SafetyRadiusOptions& o, int cap) {
   const DepthSampler depth(map);
   SafetyRadii out;
   out.width = map.width;
@@ -99,7 +266,7 @@ SafetyRadii compute_safety_radii(const ReliefMap& map, const SafetyRadiusOptions
       [&](size_t begin, size_t end) {
         for (size_t idx = begin; idx < end; ++idx) {
           const int i = int(idx % map.width), j = int(idx / map.width);
-          int radius = o.max_radius;
+          int radius = cap;
           for (int d = 0; d < o.directions && radius > 0; ++d) {
             const double theta = two_pi * (d + 0.5) / o.directions;
             const double cx = std::cos(theta), cy = std::sin(theta);
@@ -126,6 +293,21 @@ SafetyRadii compute_safety_radii(const ReliefMap& map, const SafetyRadiusOptions
         }
       },
       64);
+  return out;
+}
+
+}  // namespace
+
+int effective_max_radius(const ReliefMap& map, const SafetyRadiusOptions& o) {
+  if (o.max_radius > 0) return std::min(o.max_radius, 255);
+  return std::clamp(std::max(map.width, map.height), 1, 255);
+}
+
+SafetyRadii compute_safety_radii(const ReliefMap& map, const SafetyRadiusOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  const int cap = effective_max_radius(map, o);
+  SafetyRadii out =
+      o.ignore_blocked ? compute_unblocked(map, o, cap) : compute_conservative(map, o, cap);
   out.compute_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return out;
@@ -143,10 +325,11 @@ std::filesystem::path cache_dir() {
 }  // namespace
 
 SafetyRadii cached_safety_radii(const ReliefMap& map, const SafetyRadiusOptions& o) {
-  constexpr int kAlgorithmVersion = 1;  // bump when compute_safety_radii changes its answers
+  constexpr int kAlgorithmVersion = 2;  // bump when compute_safety_radii changes its answers
   char key_text[256];
-  std::snprintf(key_text, sizeof key_text, "v%d|%d|%d|%.9g|%d|%.9g|", kAlgorithmVersion,
-                o.directions, o.starts, o.step, o.max_radius, o.error_allowed);
+  std::snprintf(key_text, sizeof key_text, "v%d|%d|%d|%.9g|%d|%.9g|%d|", kAlgorithmVersion,
+                o.directions, o.starts, o.step, effective_max_radius(map, o), o.error_allowed,
+                int(o.ignore_blocked));
   const std::string key = hex64(fnv1a64(key_text, std::strlen(key_text), map.content_hash()));
   const std::filesystem::path path = cache_dir() / "safety_radius" / (key + ".bin");
   const size_t n = size_t(map.width) * map.height;

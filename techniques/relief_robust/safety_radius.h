@@ -15,9 +15,16 @@ struct SafetyRadiusOptions {
   int directions = 16;         // sampled ray azimuths over 360 degrees
   int starts = 3;              // sampled crossing points along the texel's centerline
   double step = 0.5;           // profile sampling step, in texels along the major axis
-  int max_radius = 16;         // cap, in texels (radii are stored in 8 bits)
+  int max_radius = 0;          // cap in texels; 0 = follow the texture: min(255, larger side)
   double error_allowed = 0.0;  // depth a ray may dip into a feature unseen (Figure 12)
+  // Section 3.5 as written: rays blocked by the heightfield before they pass above the texel
+  // are ignored (the search never stands on such a ray). false = conservative radii that
+  // hold for every ray above the texel, blocked or not (smaller, never unsafe).
+  bool ignore_blocked = true;
 };
+
+// The cap options.max_radius means for a map (0 = min(255, larger side)).
+int effective_max_radius(const ReliefMap& map, const SafetyRadiusOptions& options);
 
 struct SafetyRadii {
   int width = 0, height = 0;
@@ -27,17 +34,38 @@ struct SafetyRadii {
   int zero_count() const;
 };
 
-// The discrete conservative radius of every texel. For each texel, direction and start point
-// it walks the height profile forward along the ray's major axis and finds the first
-// distance at which a descending ray starting above the surface there could enter and leave
-// the surface (two intersections); the radius is the largest whole number of centerlines
-// before it, minimised over directions and starts. Rays blocked before the texel are not
-// ignored (unlike the paper): radii can only come out smaller, never unsafe.
+// The discrete safety radius of every texel: the largest whole number of centerlines a ray
+// crossing the texel's centerline above the surface may advance with at most one
+// intersection, minimised over the sampled directions and start points.
+//
+// ignore_blocked (the paper's Section 3.5): only rays that are unblocked from where they
+// entered the texture count. For one direction and one line through the map, a descending
+// ray above the start x0 that is unblocked behind it, dips below the surface and is back above
+// at s2 exists exactly when the "horizon" of (s2, h(s2)) looking back along the line — the
+// point before s2 that a line through (s2, h(s2)) rising backwards touches first — lies
+// strictly after x0 and above h(s2). (The lowest admissible ray through (s2, h(s2)) must clear
+// every point up to x0; it dips under the terrain between x0 and s2 exactly when a point there
+// rises above it.) One upper-convex-hull sweep per line gives every sample's horizon, and a
+// suffix minimum gives every start's first violation: O(samples) per line, independent of the
+// radii. Lines start where they enter the map (nothing behind a map border blocks: exact for
+// the box proxy, conservative for tiled bases) and run past its far border, wrapping, for the
+// cap. With error_allowed = e, points before s2 count e lower (dips of at most e are not
+// seen; rays up to e below the start count, conservatively).
+//
+// Otherwise (conservative): every ray above the start counts, blocked or not; each texel,
+// direction and start scans the profile ahead (first_two_hit_distance).
 SafetyRadii compute_safety_radii(const ReliefMap& map, const SafetyRadiusOptions& options);
 
 // compute_safety_radii through an on-disk cache keyed by the map's content and the options
 // (folder: $RELIEFLAB_CACHE_DIR, else $XDG_CACHE_HOME/relieflab, else ~/.cache/relieflab).
 SafetyRadii cached_safety_radii(const ReliefMap& map, const SafetyRadiusOptions& options);
+
+// The line criterion of ignore_blocked on one profile h[0..n) (heights, up = larger) sampled
+// every `step` from where the line enters the map: first[j] = the first sample s2 > j at
+// which a descending ray above h[j], unblocked over h[0..j], could have entered and left
+// the surface (the horizon of s2 lies strictly after j), or n. `hull` is scratch space.
+void first_unblocked_violations(const std::vector<float>& h, double step, double error_allowed,
+                                std::vector<int>& hull, std::vector<int>& first);
 
 // The first violation distance of one profile h[0..n) sampled every `step` (heights, up =
 // larger), or +infinity: where a descending ray above h[0] could have entered and left.
