@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "relief/image_io.h"
 #include "support/test_support.h"
 
 namespace rl {
@@ -162,6 +163,61 @@ TEST(ConfigErrors, EarlierResultsSurviveABadConfig) {
   EXPECT_EQ(test::run_cli("run " + bad + " --out " + out, output), 2);
   EXPECT_EQ(fs::last_write_time(out + "/results.sqlite"), before);
   EXPECT_EQ(fs::file_size(out + "/rows.csv"), size);
+}
+
+// A good first scene, then `second` (a [[scene]] block): the bad asset is in a later scene.
+std::string with_second_scene(const std::string& second) {
+  return replace(kGood, "[[technique]]", second + "\n[[technique]]");
+}
+
+TEST(ConfigErrors, BadAssetsInALaterSceneStopTheRunBeforeAnythingIsWritten) {
+  const std::string files = test::scratch_dir("assets");
+  fs::create_directories(files);
+  // An image with no alpha channel to hold depth, and a truncated PNG.
+  write_png(files + "/rgb.png", 8, 8, 3, std::vector<float>(8 * 8 * 3, 0.5f));
+  {
+    std::ifstream in(RELIEFLAB_SOURCE_DIR "/assets/relief/trak5/panel1_n.png", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    std::ofstream(files + "/truncated.png", std::ios::binary) << bytes.substr(0, bytes.size() / 3);
+  }
+  // Meshes that would measure nothing: a NaN vertex, every triangle degenerate, 1e30.
+  std::ofstream(files + "/nan.obj") << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
+  std::ofstream(files + "/inf.obj") << "v 0 0 0\nv 1 0 0\nv inf 1 0\nf 1 2 3\n";
+  std::ofstream(files + "/flat.obj") << "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n";
+  std::ofstream(files + "/huge.obj") << "v 0 0 0\nv 1e30 0 0\nv 0 1e30 0\nf 1 2 3\n";
+  const std::string scene = "[[scene]]\nname = \"later\"\n";
+  const std::vector<BadCase> cases = {
+      {"no_alpha",
+       with_second_scene(scene + "relief = { normal = \"" + files + "/rgb.png\" }"),
+       {"scene 'later'", "rgb.png: no alpha channel"}},
+      {"truncated_png",
+       with_second_scene(scene + "relief = { normal = \"" + files + "/truncated.png\" }"),
+       {"scene 'later'", "truncated.png"}},
+      {"nan_mesh",
+       with_second_scene(scene + "relief = { mesh = \"" + files + "/nan.obj\" }\nproxy = \"box\""),
+       {"nan.obj"}},  // Assimp drops the vertex: a face then refers to a missing one
+      {"inf_mesh",
+       with_second_scene(scene + "relief = { mesh = \"" + files + "/inf.obj\" }\nproxy = \"box\""),
+       {"inf.obj", "non-finite"}},
+      {"degenerate_mesh",
+       with_second_scene(scene + "relief = { mesh = \"" + files + "/flat.obj\" }\nproxy = \"box\""),
+       {"flat.obj is degenerate"}},
+      {"huge_object",
+       with_second_scene(scene + "relief = { procedural = \"flat\", resolution = 8 }\n" +
+                         "objects = [{ shape = \"" + files + "/huge.obj\" }]"),
+       {"huge.obj", "beyond 1e15"}},
+  };
+  for (const BadCase& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string dir = test::scratch_dir(c.name);
+    const std::string out = dir + "/out";
+    std::string output;
+    EXPECT_EQ(test::run_cli("run " + write_config(dir, c.text) + " --out " + out, output), 2)
+        << output;
+    for (const auto& e : c.expected)
+      EXPECT_NE(output.find(e), std::string::npos) << "expected '" << e << "' in: " << output;
+    EXPECT_FALSE(fs::exists(out)) << "a bad asset wrote " << out;
+  }
 }
 
 TEST(ConfigErrors, MissingConfigFile) {

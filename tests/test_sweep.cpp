@@ -228,3 +228,54 @@ TEST(Sweep, DefaultConfigParsesAndExpands) {
 
 }  // namespace
 }  // namespace rl
+
+namespace rl {
+namespace {
+
+TEST(Framing, FillCoversTheViewportAtGrazingViewsWithinAFewDegrees) {
+  // The default framing of a planar scene: at 5 degrees the relief fills the viewport (the old
+  // whole-quad fit covered 4.3% of a 256^2 viewport), and the covered pixels' view elevations
+  // stay within elevation / 4 of the nominal one.
+  SweepConfig c = default_sweep_config();
+  const SceneDesc& panel = c.scenes.front();
+  ASSERT_EQ(panel.framing, Framing::Fill);
+  SceneDesc fit = panel;
+  fit.framing = Framing::Fit;
+  fit.size = fit.fill_footprint;
+  fit.tile = 1;
+  for (double el : {5.0, 20.0}) {
+    SCOPED_TRACE(el);
+    const Camera cam = make_camera(panel, View{el, 30}, 64, 64);
+    int hits = 0;
+    double lo = 90, hi = -90;
+    for (int y = 0; y < 64; ++y)
+      for (int x = 0; x < 64; ++x) {
+        glm::dvec3 o, d;
+        cam.pixel_ray(x, y, o, d);
+        const double t = -o.z / d.z;  // the quad's plane
+        const glm::dvec3 p = o + t * d;
+        if (d.z < 0 && std::abs(p.x) <= 0.5 * panel.size && std::abs(p.y) <= 0.5 * panel.size) {
+          ++hits;
+          lo = std::min(lo, glm::degrees(std::asin(-d.z)));
+          hi = std::max(hi, glm::degrees(std::asin(-d.z)));
+        }
+      }
+    EXPECT_EQ(hits, 64 * 64);
+    EXPECT_GE(lo, el - el / 4 - 1e-9);
+    EXPECT_LE(hi, el + el / 4 + 1e-9);
+  }
+  // The fill quad keeps the texel size: more tiles, not larger ones.
+  EXPECT_DOUBLE_EQ(panel.size / panel.tile, fit.size / fit.tile);
+  // Measured end to end: a 5-degree cell's truth covers the whole viewport.
+  SceneDesc scene = test::procedural_scene("bricks", 32, 0.08, true);
+  scene.framing = Framing::Fill;
+  scene.fill_footprint = scene.size;
+  const int factor = fill_quad_factor(scene, 5, 1);
+  scene.size *= factor;
+  scene.tile *= factor;
+  const test::Measured m = test::measure(scene, "relief", {}, View{5, 30}, 48);
+  EXPECT_EQ(m.metrics.truth_covered_px, 48 * 48);
+}
+
+}  // namespace
+}  // namespace rl

@@ -41,6 +41,13 @@ FrameTiming time_frames(const std::function<void()>& draw, int warmup, int frame
   }
   std::sort(ms.begin(), ms.end());
   t.min_ms = ms.front();
+  auto quantile = [&](double q) {
+    const double at = q * double(ms.size() - 1);
+    const size_t lo = size_t(at);
+    const size_t hi = std::min(lo + 1, ms.size() - 1);
+    return ms[lo] + (ms[hi] - ms[lo]) * (at - double(lo));
+  };
+  t.iqr_ms = quantile(0.75) - quantile(0.25);
   t.median_ms =
       ms.size() % 2 ? ms[ms.size() / 2] : 0.5 * (ms[ms.size() / 2 - 1] + ms[ms.size() / 2]);
   return t;

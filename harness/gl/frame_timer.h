@@ -10,6 +10,9 @@ namespace rl {
 struct FrameTiming {
   double median_ms = 0;
   double min_ms = 0;
+  // Spread: interquartile range (linear interpolation between order statistics). A median
+  // whose IQR overlaps another row's does not rank them; fetches do.
+  double iqr_ms = 0;
   int frames = 0;
   std::string method;  // "gpu_timer" or "wall_clock_glfinish"
 };

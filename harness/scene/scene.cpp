@@ -1,5 +1,6 @@
 #include "scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/constants.hpp>
@@ -88,7 +89,53 @@ void Camera::pixel_ray(int x, int y, glm::dvec3& origin, glm::dvec3& direction) 
       glm::normalize(forward + right * (ndc_x * tan_half * aspect) + true_up * (ndc_y * tan_half));
 }
 
+double fill_fov_deg(const SceneDesc& scene, double elevation_deg) {
+  return std::min(scene.fov_deg, 0.5 * elevation_deg);
+}
+
+namespace {
+
+// Fill framing's camera distance: the narrower side of the viewport spans the footprint at
+// the target.
+double fill_distance(const SceneDesc& scene, double fov_y_deg, double aspect) {
+  double half = glm::radians(fov_y_deg) * 0.5;
+  if (aspect < 1) half = std::atan(std::tan(half) * aspect);
+  return 0.5 * scene.fill_footprint / std::tan(half);
+}
+
+}  // namespace
+
+int fill_quad_factor(const SceneDesc& scene, double min_elevation_deg, double max_aspect) {
+  const double el = glm::radians(std::clamp(min_elevation_deg, 0.5, 90.0));
+  const double fov = fill_fov_deg(scene, glm::degrees(el));
+  const double h = glm::radians(fov) * 0.5;
+  const double distance = fill_distance(scene, fov, std::min(1.0, max_aspect));
+  const double eye_height = distance * std::sin(el), eye_back = distance * std::cos(el);
+  // The top rays' hits, beyond the target, and their sideways reach (wider viewports reach
+  // further sideways).
+  const double top = std::max(el - h, 1e-3);
+  const double far = eye_height / std::tan(top) - eye_back;
+  const double side = eye_height / std::sin(top) * std::tan(h) * std::max(1.0, max_aspect);
+  const double half = std::max(far, eye_back) + side + scene.fill_footprint;
+  return int(std::ceil(2 * half / scene.fill_footprint));
+}
+
 Camera make_camera(const SceneDesc& scene, const View& view, int width, int height) {
+  if (scene.framing == Framing::Fill) {
+    Camera cam;
+    cam.width = width;
+    cam.height = height;
+    cam.fov_y_deg = fill_fov_deg(scene, view.elevation_deg);
+    const double el = glm::radians(view.elevation_deg), az = glm::radians(view.azimuth_deg);
+    const double distance = fill_distance(scene, cam.fov_y_deg, double(width) / height);
+    const glm::dvec3 dir(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
+    cam.target = glm::dvec3(0);
+    cam.eye = dir * distance;
+    cam.up = glm::dvec3(-std::sin(el) * std::cos(az), -std::sin(el) * std::sin(az), std::cos(el));
+    cam.near_plane = std::max(1e-3, 0.5 * (distance * std::sin(el) - scene.depth));
+    cam.far_plane = 2 * distance + 2 * scene.size;
+    return cam;
+  }
   Camera cam;
   cam.width = width;
   cam.height = height;

@@ -89,8 +89,17 @@ struct SceneObject {
   glm::dvec3 albedo{0.85, 0.35, 0.2};
 };
 
+// How the camera frames a planar scene. Fit: the whole quad's bounding sphere in view (a
+// grazing view then sees a thin sliver). Fill: the relief fills the viewport at every view:
+// the quad is made long enough (more tiles) and the camera's field of view narrows with the
+// elevation (at most elevation / 2), so a row still means one view angle (the spread is in
+// the row as elev_min_deg / elev_max_deg).
+enum class Framing { Fit, Fill };
+
 struct SceneDesc {
   std::string name;
+  Framing framing = Framing::Fit;
+  double fill_footprint = 1.0;  // Fill: world width the viewport spans at the target
   BaseDesc base;
   std::vector<SceneObject> objects;
   Proxy proxy = Proxy::Base;
@@ -171,5 +180,11 @@ struct Camera {
 };
 
 Camera make_camera(const SceneDesc& scene, const View& view, int width, int height);
+
+// Fill framing: the vertical field of view at an elevation, and how many times the scene's
+// footprint the quad must span so that every ray of views down to `min_elevation_deg` (at
+// viewport aspects up to `max_aspect`) meets it.
+double fill_fov_deg(const SceneDesc& scene, double elevation_deg);
+int fill_quad_factor(const SceneDesc& scene, double min_elevation_deg, double max_aspect);
 
 }  // namespace rl

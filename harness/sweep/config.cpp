@@ -312,11 +312,18 @@ void parse_objects(const toml::table& t, const Src& src, const std::string& base
 
 SceneDesc parse_scene(const toml::table& t, const Src& src, const std::string& base_dir,
                       const toml::node& node, json& canon) {
-  check_keys(t, {"name",      "relief",          "base",    "segments", "objects",
-                 "proxy",     "truth",           "floor",   "size",     "tile",
-                 "depth",     "quantize",        "effects", "light",    "fov",
-                 "distance",  "shadow_bias",     "ambient", "diffuse",  "specular",
-                 "shininess", "shadow_intensity"},
+  check_keys(t, {"name",        "relief",
+                 "base",        "segments",
+                 "objects",     "proxy",
+                 "truth",       "floor",
+                 "size",        "tile",
+                 "depth",       "quantize",
+                 "effects",     "light",
+                 "fov",         "distance",
+                 "shadow_bias", "ambient",
+                 "diffuse",     "specular",
+                 "shininess",   "shadow_intensity",
+                 "framing"},
              src, "[[scene]]");
   SceneDesc s;
   if (!t.contains("name")) fail(src.at(node), "[[scene]] needs a 'name'");
@@ -415,6 +422,25 @@ SceneDesc parse_scene(const toml::table& t, const Src& src, const std::string& b
     fail(src.at(node),
          "scene '" + s.name +
              "': truth = \"mesh\" needs proxy = \"box\" (the mesh is an object in its box)");
+  // Framing: fill by default where it applies (a planar quad drawn itself, no stated camera
+  // distance); the quad is lengthened for the sweep's views once they are known.
+  const bool can_fill =
+      !s.base.curved() && s.proxy == Proxy::Base && s.distance == 0 && s.relief.mesh_path.empty();
+  s.framing = can_fill ? Framing::Fill : Framing::Fit;
+  if (auto* n = t.get("framing")) {
+    const std::string f = string_of(*n, src, "framing");
+    if (f != "fill" && f != "fit")
+      fail(src.at(*n),
+           "'framing' must be \"fill\" (the relief fills the viewport) or \"fit\" "
+           "(the whole quad in view), got \"" +
+               f + "\"");
+    if (f == "fill" && !can_fill)
+      fail(src.at(*n), "scene '" + s.name +
+                           "': framing = \"fill\" needs the planar base drawn itself (no box "
+                           "proxy, no curved base, no baked mesh) and no 'distance'");
+    s.framing = f == "fill" ? Framing::Fill : Framing::Fit;
+  }
+  canon["framing"] = s.framing == Framing::Fill ? "fill" : "fit";
   canon["size"] = s.size;
   canon["tile"] = s.tile;
   canon["depth"] = s.depth;
@@ -566,6 +592,19 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
     if (!t) fail(src.at(n), "[[scene]] must be a table");
     json sc;
     c.scenes.push_back(parse_scene(*t, src, base_dir, n, sc));
+    SceneDesc& scene = c.scenes.back();
+    if (scene.framing == Framing::Fill) {
+      // Lengthen the quad (whole tiles more) for the grazing-est view of the sweep.
+      double min_el = 90, max_aspect = 0;
+      for (const View& v : c.views) min_el = std::min(min_el, v.elevation_deg);
+      for (const auto& [w, h] : c.viewports) max_aspect = std::max(max_aspect, double(w) / h);
+      scene.fill_footprint = scene.size;
+      const int factor = fill_quad_factor(scene, min_el, max_aspect);
+      scene.size *= factor;
+      scene.tile *= factor;
+      sc["size"] = scene.size;
+      sc["tile"] = scene.tile;
+    }
     if (!scene_names.insert(c.scenes.back().name).second)
       fail(src.at(n), "duplicate scene name '" + c.scenes.back().name + "'");
     canon["scenes"][c.scenes.back().name] = sc;

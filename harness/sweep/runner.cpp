@@ -1,5 +1,6 @@
 #include "sweep/runner.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +10,8 @@
 #include <memory>
 #include <set>
 
+#include <glm/glm.hpp>
+
 #include "core/elapsed.h"
 #include "gl/context.h"
 #include "gl/frame_timer.h"
@@ -17,6 +20,7 @@
 #include "relief/image_io.h"
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
+#include "sweep/asset_check.h"
 #include "sweep/cells.h"
 #include "sweep/pareto.h"
 #include "sweep/result_store.h"
@@ -91,6 +95,8 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   SweepSummary summary;
   const std::vector<Cell> cells = expand_cells(config);
   summary.cells = cells.size();
+  // Every image decoded and every mesh loaded before the output folder is touched.
+  check_sweep_assets(config);
 
   fs::create_directories(options.out_dir);
   Log log(options.out_dir + "/run.log");
@@ -221,6 +227,22 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
         },
         config.warmup, config.frames, gl.is_software());
 
+    // The spread of view elevations over the covered pixels (planar bases: against the quad's
+    // plane), so a row's "elevation" is checked to mean one view angle.
+    double elev_min = 90, elev_max = -90;
+    if (!scene.base.curved())
+      for (int y = 0; y < g.height; ++y)
+        for (int x = 0; x < g.width; ++x) {
+          const size_t i = size_t(y) * g.width + x;
+          if (!g.covered(i) && !truth.covered(i)) continue;
+          glm::dvec3 o, d;
+          camera.pixel_ray(x, y, o, d);
+          const double el = glm::degrees(std::asin(std::clamp(-d.z, -1.0, 1.0)));
+          elev_min = std::min(elev_min, el);
+          elev_max = std::max(elev_max, el);
+        }
+    const bool have_elev = elev_min <= elev_max;
+
     Row row = cell.identity;
     // An error column that measures nothing (no pixel covered) is empty, never zero.
     for (const auto& [name, value] : m.named())
@@ -231,8 +253,12 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
                scene.name + " el=" + std::to_string(cell.view.elevation_deg) +
                ": neither the technique nor the truth covers a pixel; its error columns are "
                "empty (nothing was measured)");
+    row["elev_min_deg"] = have_elev ? nlohmann::ordered_json(elev_min) : nlohmann::ordered_json();
+    row["elev_max_deg"] = have_elev ? nlohmann::ordered_json(elev_max) : nlohmann::ordered_json();
     row["frame_ms"] = timing.median_ms;
     row["frame_ms_min"] = timing.min_ms;
+    row["frame_ms_iqr"] = timing.iqr_ms;
+    row["frames_timed"] = timing.frames;
     row["timing"] = timing.method;
     row["precompute_ms"] = slot.second;
     row["precompute_cached"] = technique.prepared_from_cache();
