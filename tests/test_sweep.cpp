@@ -268,11 +268,7 @@ TEST(Framing, FillCoversTheViewportAtGrazingViewsWithinAFewDegrees) {
   EXPECT_DOUBLE_EQ(panel.size / panel.tile, fit.size / fit.tile);
   // Measured end to end: a 5-degree cell's truth covers the whole viewport.
   SceneDesc scene = test::procedural_scene("bricks", 32, 0.08, true);
-  scene.framing = Framing::Fill;
-  scene.fill_footprint = scene.size;
-  const int factor = fill_quad_factor(scene, 5, 1);
-  scene.size *= factor;
-  scene.tile *= factor;
+  apply_fill_framing(scene, 5, 1);
   const test::Measured m = test::measure(scene, "relief", {}, View{5, 30}, 48);
   EXPECT_EQ(m.metrics.truth_covered_px, 48 * 48);
 }

@@ -6,6 +6,17 @@
 
 namespace rl {
 
+ReliefImageSource image_source(const ReliefSourceDesc& relief) {
+  ReliefImageSource src;
+  src.normal_path = relief.normal_path;
+  src.depth_path = relief.depth_path;
+  src.color_path = relief.color_path;
+  src.height_convention = relief.height_convention;
+  src.flip_green = relief.flip_green;
+  src.normalize = relief.normalize;
+  return src;
+}
+
 ReliefMap build_relief_asset(const SceneDesc& scene, int resolution) {
   const PlanarBase base = planar_base(scene);
   ReliefMap map;
@@ -16,15 +27,8 @@ ReliefMap build_relief_asset(const SceneDesc& scene, int resolution) {
     map = make_procedural(scene.relief.procedural, resolution, scene.relief.options,
                           scene.depth / base.texel_world(resolution), "scene '" + scene.name + "'");
   } else {
-    ReliefImageSource src;
-    src.normal_path = scene.relief.normal_path;
-    src.depth_path = scene.relief.depth_path;
-    src.color_path = scene.relief.color_path;
-    src.height_convention = scene.relief.height_convention;
-    src.flip_green = scene.relief.flip_green;
-    src.normalize = scene.relief.normalize;
     const int native = scene.relief.native_resolution;
-    map = load_relief_images(src, scene.depth / base.texel_world(native));
+    map = load_relief_images(image_source(scene.relief), scene.depth / base.texel_world(native));
     map = resample(map, resolution, resolution);
   }
   if (scene.quantize) quantize_8bit(map);

@@ -1,11 +1,15 @@
 #pragma once
 // Builds a scene's relief map at a texture resolution: procedural maps are generated at that
 // resolution, image maps are loaded and resampled; then quantised to 8 bits if the scene asks.
+#include "relief/image_io.h"
 #include "relief/relief_map.h"
 #include "scene/scene.h"
 
 namespace rl {
 
 ReliefMap build_relief_asset(const SceneDesc& scene, int resolution);
+
+// The image files and conventions of an image relief, as load_relief_images takes them.
+ReliefImageSource image_source(const ReliefSourceDesc& relief);
 
 }  // namespace rl

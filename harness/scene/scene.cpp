@@ -120,6 +120,14 @@ int fill_quad_factor(const SceneDesc& scene, double min_elevation_deg, double ma
   return int(std::ceil(2 * half / scene.fill_footprint));
 }
 
+void apply_fill_framing(SceneDesc& scene, double min_elevation_deg, double max_aspect) {
+  scene.framing = Framing::Fill;
+  scene.fill_footprint = scene.size;
+  const int factor = fill_quad_factor(scene, min_elevation_deg, max_aspect);
+  scene.size *= factor;
+  scene.tile *= factor;
+}
+
 Camera make_camera(const SceneDesc& scene, const View& view, int width, int height) {
   if (scene.framing == Framing::Fill) {
     Camera cam;

@@ -186,5 +186,8 @@ Camera make_camera(const SceneDesc& scene, const View& view, int width, int heig
 // viewport aspects up to `max_aspect`) meets it.
 double fill_fov_deg(const SceneDesc& scene, double elevation_deg);
 int fill_quad_factor(const SceneDesc& scene, double min_elevation_deg, double max_aspect);
+// Makes `scene` a fill-framed one: its quad (of side fill_footprint = the current size) is
+// lengthened by whole tiles for those views; the texel size stays.
+void apply_fill_framing(SceneDesc& scene, double min_elevation_deg, double max_aspect);
 
 }  // namespace rl

@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "relief/image_io.h"
 #include "relief/mesh_bake.h"
+#include "scene/relief_asset.h"
 #include "scene/scene_objects.h"
 
 namespace rl {
@@ -12,16 +13,7 @@ void check_sweep_assets(const SweepConfig& config) {
     const std::string where = config.source + ": scene '" + scene.name + "': ";
     try {
       const ReliefSourceDesc& r = scene.relief;
-      if (!r.normal_path.empty() || !r.depth_path.empty()) {
-        ReliefImageSource src;
-        src.normal_path = r.normal_path;
-        src.depth_path = r.depth_path;
-        src.color_path = r.color_path;
-        src.height_convention = r.height_convention;
-        src.flip_green = r.flip_green;
-        src.normalize = r.normalize;
-        load_relief_images(src, 1.0);
-      }
+      if (!r.normal_path.empty() || !r.depth_path.empty()) load_relief_images(image_source(r), 1.0);
       if (!r.mesh_path.empty()) load_mesh(r.mesh_path);
       if (scene.base.kind == "file") load_mesh(scene.base.path);
       if (!scene.objects.empty()) make_object_mesh(scene.objects);

@@ -598,10 +598,7 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
       double min_el = 90, max_aspect = 0;
       for (const View& v : c.views) min_el = std::min(min_el, v.elevation_deg);
       for (const auto& [w, h] : c.viewports) max_aspect = std::max(max_aspect, double(w) / h);
-      scene.fill_footprint = scene.size;
-      const int factor = fill_quad_factor(scene, min_el, max_aspect);
-      scene.size *= factor;
-      scene.tile *= factor;
+      apply_fill_framing(scene, min_el, max_aspect);
       sc["size"] = scene.size;
       sc["tile"] = scene.tile;
     }

@@ -11,7 +11,7 @@ namespace rl {
 
 struct PlotSpec {
   std::string x = "fetches_mean";  // cost (lower is better)
-  std::string y = "wrong_pct";    // error (lower is better): the headline error
+  std::string y = "wrong_pct";     // error (lower is better): the headline error
   std::vector<std::string> group = {"scene", "elevation_deg"};
   bool log_y = true;
 };
