@@ -18,7 +18,7 @@ void BM_Technique(benchmark::State& state, std::string technique, ParamValues pa
   SceneDesc scene;
   scene.name = "bricks";
   scene.relief.procedural = "bricks";
-  scene.relief.native_resolution = 512;
+  scene.relief.native = {512, 512};
   if (shadows) scene.effects.add(Effect::SelfShadow);
   ReliefMap map = build_relief_asset(scene, 512);
   GpuRelief relief(map);

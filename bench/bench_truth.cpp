@@ -32,7 +32,7 @@ Setup& setup(const std::string& kind, int res) {
   Setup& s = cache[key];
   s.scene.name = kind;
   s.scene.relief.procedural = kind;
-  s.scene.relief.native_resolution = res;
+  s.scene.relief.native = {res, res};
   s.map = build_relief_asset(s.scene, res);
   s.truth = std::make_unique<HeightfieldTruth>(s.map);
   // Rays at 45 degrees that stay inside the one tile the raw scene holds: origins in the

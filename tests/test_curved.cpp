@@ -153,7 +153,7 @@ TEST(Silhouette, HardCasesStayFiniteAndBounded) {
     auto t =
         TechniqueRegistry::instance().create("relief_silhouette", silhouette_params(exact), "test");
     t->prepare(map);
-    const std::vector<ProbeHit> hits = t->probe(map, relief, rays, 1.0);
+    const std::vector<ProbeHit> hits = t->probe(map, relief, rays, glm::dvec2(1.0));
     for (size_t i = 0; i < hits.size(); ++i) {
       SCOPED_TRACE("exact=" + std::to_string(exact) + " ray " + std::to_string(i));
       ASSERT_TRUE(std::isfinite(hits[i].t) && std::isfinite(hits[i].depth) &&
@@ -167,9 +167,10 @@ TEST(Silhouette, HardCasesStayFiniteAndBounded) {
   auto t = TechniqueRegistry::instance().create("relief_silhouette", silhouette_params(0), "test");
   const ReliefMap deep = test::map_from_depths(2, 2, {1, 1, 1, 1});  // all at the bottom
   GpuRelief deep_gpu(deep);
-  const std::vector<ProbeHit> cases = t->probe(
-      deep, deep_gpu,
-      {{{0.5f, 0.5f, 0}, {1, 0, 0.5f}, {1, 0}}, {{0.5f, 0.5f, 0}, {1, 0, 0.5f}, {-1, 0}}}, 1.0);
+  const std::vector<ProbeHit> cases =
+      t->probe(deep, deep_gpu,
+               {{{0.5f, 0.5f, 0}, {1, 0, 0.5f}, {1, 0}}, {{0.5f, 0.5f, 0}, {1, 0, 0.5f}, {-1, 0}}},
+               glm::dvec2(1.0));
   EXPECT_FALSE(cases[0].hit) << "s.z^2 < 4f: the ray returns to the top before depth 1";
   EXPECT_TRUE(cases[1].hit) << "concave: every ray reaches depth 1";
   EXPECT_NEAR(cases[1].depth, 1.0f, 0.02f);

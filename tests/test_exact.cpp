@@ -54,7 +54,7 @@ Comparison compare(const std::string& technique, const ReliefMap& map,
                    const std::vector<ProbeRay>& rays, double miss_threshold) {
   GpuRelief relief(map);
   auto t = TechniqueRegistry::instance().create(technique, {}, "test");
-  std::vector<ProbeHit> hits = t->probe(map, relief, rays, 0.08);
+  std::vector<ProbeHit> hits = t->probe(map, relief, rays, glm::dvec2(0.08));
   Comparison c;
   std::printf("%s on %dx%d: ", technique.c_str(), map.width, map.height);
   for (size_t i = 0; i < rays.size(); ++i) {
@@ -151,7 +151,7 @@ TEST(Exact, HardCasesStayFiniteAndBounded) {
     for (const auto& map : {from_depths(32, 32, spike), from_depths(32, 32, step)}) {
       GpuRelief relief(map);
       auto t = TechniqueRegistry::instance().create(technique, {}, "test");
-      std::vector<ProbeHit> hits = t->probe(map, relief, rays, 0.08);
+      std::vector<ProbeHit> hits = t->probe(map, relief, rays, glm::dvec2(0.08));
       for (size_t i = 0; i < rays.size(); ++i) {
         SCOPED_TRACE(std::string(technique) + " ray " + std::to_string(i));
         ASSERT_TRUE(std::isfinite(hits[i].t) && std::isfinite(hits[i].uv.x) &&

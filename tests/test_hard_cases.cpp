@@ -76,7 +76,7 @@ TEST(HardCases, ViewExactlyAlongATexelRow) {
     rays.push_back({glm::vec3(0.5f / 64.0f, u, -1e-4f), glm::vec3(0.0f, -0.7f, 1.0f)});
     rays.push_back({glm::vec3(u, u, -1e-4f), glm::vec3(0.0f, 0.0f, 1.0f)});
   }
-  std::vector<ProbeHit> hits = t->probe(map, relief, rays, 0.08);
+  std::vector<ProbeHit> hits = t->probe(map, relief, rays, glm::dvec2(0.08));
   for (size_t i = 0; i < rays.size(); ++i) {
     ReferenceHit ref =
         intersect_heightfield(map, glm::dvec3(rays[i].origin), glm::dvec3(rays[i].direction), 1.0);
@@ -95,7 +95,7 @@ TEST(HardCases, TextureBordersAndTilingSeams) {
   for (float u : {0.0f, 1.0f, -1.0f, 2.0f, 1e-7f, 1.0f - 1e-7f})
     for (float su : {-0.5f, 0.5f, 0.0f})
       rays.push_back({glm::vec3(u, 0.37f, -1e-4f), glm::vec3(su, 0.05f, 1.0f)});
-  std::vector<ProbeHit> hits = t->probe(map, relief, rays, 0.08);
+  std::vector<ProbeHit> hits = t->probe(map, relief, rays, glm::dvec2(0.08));
   for (size_t i = 0; i < rays.size(); ++i) {
     ReferenceHit ref =
         intersect_heightfield(map, glm::dvec3(rays[i].origin), glm::dvec3(rays[i].direction), 1.0);

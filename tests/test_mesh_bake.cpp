@@ -102,7 +102,7 @@ SceneDesc teapot_scene(double cop, TruthLevel truth) {
   s.truth = truth;
   s.empty_floor = true;
   s.relief.mesh_path = std::string(RELIEFLAB_SOURCE_DIR) + "/assets/meshes/teapot.obj";
-  s.relief.native_resolution = 128;
+  s.relief.native = {128, 128};
   s.projection.cop = cop;
   const TriangleMesh mesh = load_mesh(s.relief.mesh_path);
   const BakeFrame frame = bake_frame(mesh, 1);

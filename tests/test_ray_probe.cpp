@@ -17,7 +17,7 @@ namespace {
 
 std::vector<ProbeHit> probe(const std::string& technique, const ParamValues& params,
                             const ReliefMap& map, const std::vector<ProbeRay>& rays,
-                            double aspect = 0.08) {
+                            glm::dvec2 aspect = glm::dvec2(0.08)) {
   GlContext::shared();
   GpuRelief relief(map);
   auto t = TechniqueRegistry::instance().create(technique, params, "test");
@@ -65,19 +65,26 @@ TEST(RayProbe, ParallaxIsItsClosedForm) {
   ReliefMap map = make_procedural("sines", 32, {}, 10.0, "test");
   std::vector<ProbeRay> rays =
       test::as_probe_rays(test::random_tangent_rays(512, 10, 80, 0.08, 4, 0.0));
-  for (double limiting : {0.0, 1.0}) {
-    std::vector<ProbeHit> hits = probe("parallax", {{"offset_limiting", limiting}}, map, rays);
-    for (size_t i = 0; i < rays.size(); ++i) {
-      const glm::dvec3 o(rays[i].origin), s(rays[i].direction);
-      const double d = map.sample_depth(o.x, o.y);
-      double scale = d;
-      if (limiting != 0) {
-        const glm::dvec2 world = glm::dvec2(s) / 0.08;
-        scale *= 1.0 / std::sqrt(1.0 + glm::dot(world, world));
+  // Square texture units, and a map whose v unit is 4x longer in world than its u unit (a
+  // 4:1 strip): the unit view vector's z must come from each axis's own world length.
+  for (const glm::dvec2 aspect : {glm::dvec2(0.08), glm::dvec2(0.08, 0.02)}) {
+    for (double limiting : {0.0, 1.0}) {
+      std::vector<ProbeHit> hits =
+          probe("parallax", {{"offset_limiting", limiting}}, map, rays, aspect);
+      for (size_t i = 0; i < rays.size(); ++i) {
+        const glm::dvec3 o(rays[i].origin), s(rays[i].direction);
+        const double d = map.sample_depth(o.x, o.y);
+        double scale = d;
+        if (limiting != 0) {
+          const glm::dvec2 world = glm::dvec2(s) / aspect;
+          scale *= 1.0 / std::sqrt(1.0 + glm::dot(world, world));
+        }
+        SCOPED_TRACE("limiting " + std::to_string(limiting) + " aspect v " +
+                     std::to_string(aspect.y));
+        EXPECT_NEAR(hits[i].uv.x, o.x + s.x * scale, 2e-3);
+        EXPECT_NEAR(hits[i].uv.y, o.y + s.y * scale, 2e-3);
+        EXPECT_EQ(hits[i].fetches, 2);
       }
-      EXPECT_NEAR(hits[i].uv.x, o.x + s.x * scale, 2e-3) << "limiting " << limiting;
-      EXPECT_NEAR(hits[i].uv.y, o.y + s.y * scale, 2e-3) << "limiting " << limiting;
-      EXPECT_EQ(hits[i].fetches, 2);
     }
   }
 }

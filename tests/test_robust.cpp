@@ -146,7 +146,7 @@ int misses(const std::string& technique, const ParamValues& params, const Relief
   GpuRelief relief(map);
   auto t = TechniqueRegistry::instance().create(technique, params, "test");
   t->prepare(map);
-  std::vector<ProbeHit> hits = t->probe(map, relief, rays, 0.08);
+  std::vector<ProbeHit> hits = t->probe(map, relief, rays, glm::dvec2(0.08));
   int missed = 0;
   double fetches = 0;
   for (size_t i = 0; i < rays.size(); ++i) {
@@ -220,7 +220,7 @@ TEST(RobustSearch, ZeroRadiusEverywhereAndAxisRaysStayBounded) {
     auto t = TechniqueRegistry::instance().create("relief_robust", {{"exact_zero_radius", exact}},
                                                   "test");
     t->prepare(peaks);
-    std::vector<ProbeHit> hits = t->probe(peaks, relief, rays, 0.08);
+    std::vector<ProbeHit> hits = t->probe(peaks, relief, rays, glm::dvec2(0.08));
     for (size_t i = 0; i < rays.size(); ++i) {
       SCOPED_TRACE("ray " + std::to_string(i) + (exact ? " exact" : " clamp"));
       ASSERT_TRUE(std::isfinite(hits[i].t) && std::isfinite(hits[i].uv.x));

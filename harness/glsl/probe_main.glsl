@@ -4,7 +4,7 @@
 
 layout(binding = 2) uniform sampler2D rl_probe_origin;
 layout(binding = 3) uniform sampler2D rl_probe_direction;
-uniform float rl_probe_depth_aspect;
+uniform vec2 rl_probe_depth_aspect;
 
 layout(location = 0) out vec4 o_probe_hit;
 layout(location = 1) out vec4 o_probe_extra;

@@ -4,11 +4,12 @@
 layout(binding = 0) uniform sampler2D rl_relief;
 layout(binding = 1) uniform sampler2D rl_color;
 
-// World relief depth / world length of one unit of u at this fragment: converts a
-// texture-space step back to a unit tangent-space direction (parallax's offset limiting needs
-// its z). Set by the pass's main() before the search: per fragment on curved bases, from
+// World relief depth / world length of one unit of u (x) and of v (y) at this fragment:
+// converts a texture-space step back to a unit tangent-space direction (parallax's offset
+// limiting needs its z). Per axis, since a non-square map's texture units differ in world
+// length. Set by the pass's main() before the search: per fragment on curved bases, from
 // rl_probe_depth_aspect in ray-probe mode.
-float rl_depth_aspect = 1.0;
+vec2 rl_depth_aspect = vec2(1.0);
 
 // Every texture read of a technique goes through RL_FETCH, so fetch counts compare across
 // techniques. Level 0 explicitly: searches run in non-uniform control flow, where implicit

@@ -56,7 +56,7 @@ vec3 rl_texture_direction(vec3 d, vec3 n) {
 }
 
 void main() {
-  rl_depth_aspect = rl_depth_scale / max(length(v_dpdu), 1e-30);
+  rl_depth_aspect = rl_depth_scale / max(vec2(length(v_dpdu), length(v_dpdv)), vec2(1e-30));
   vec3 N = normalize(v_normal);
   vec3 V = normalize(v_world - rl_eye);
   vec3 tv = rl_texture_direction(V, N);

@@ -259,8 +259,9 @@ BaseMesh make_base_mesh(const BaseDesc& desc, double size, double tile, bool req
 }
 
 double texel_world(const SceneDesc& scene, int res) {
-  if (!scene.base.curved()) return planar_base(scene).texel_world(res);
-  return texel_world(make_base_mesh(scene.base, scene.size, scene.tile), res);
+  const MapSize size = scene.relief.size_at(res);
+  if (!scene.base.curved()) return planar_base(scene).texel_world(size.width);
+  return texel_world(make_base_mesh(scene.base, scene.size, scene.tile), size);
 }
 
 BaseGeometry base_geometry(const BaseMesh& mesh) {
@@ -280,11 +281,11 @@ BaseGeometry base_geometry(const BaseMesh& mesh) {
   return g;
 }
 
-double texel_world(const BaseMesh& m, int res) {
+double texel_world(const BaseMesh& m, const MapSize& size) {
   double sum = 0;
   for (size_t i = 0; i < m.position.size(); ++i)
-    sum += 0.5 * (glm::length(m.dpdu[i]) + glm::length(m.dpdv[i]));
-  return sum / std::max<size_t>(1, m.position.size()) / res;
+    sum += 0.5 * (glm::length(m.dpdu[i]) / size.width + glm::length(m.dpdv[i]) / size.height);
+  return sum / std::max<size_t>(1, m.position.size());
 }
 
 void uv_frame(const glm::dvec3& n, const glm::dvec3& du, const glm::dvec3& dv, glm::dvec3& t,

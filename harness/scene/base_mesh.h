@@ -42,10 +42,11 @@ inline bool has_charts(const BaseDesc& desc) {
   return desc.kind != "teapot" && desc.kind != "file";
 }
 
-// World size of one texel of a res x res map on the scene's base (planar: exact; curved: the
-// mean mapping scale over the base's vertices), the unit of position errors in texels.
+// World size of one texel of the scene's map at texture resolution `res` (size_at) on its base
+// (planar: exact; curved: the mean mapping scale over the base's vertices and both axes), the
+// unit of position errors in texels.
 double texel_world(const SceneDesc& scene, int res);
-double texel_world(const BaseMesh& mesh, int res);
+double texel_world(const BaseMesh& mesh, const MapSize& size);
 
 // The mesh as the shaders receive it.
 BaseGeometry base_geometry(const BaseMesh& mesh);

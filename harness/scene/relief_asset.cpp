@@ -19,6 +19,7 @@ ReliefImageSource image_source(const ReliefSourceDesc& relief) {
 
 ReliefMap build_relief_asset(const SceneDesc& scene, int resolution) {
   const PlanarBase base = planar_base(scene);
+  const MapSize size = scene.relief.size_at(resolution);
   ReliefMap map;
   if (!scene.relief.mesh_path.empty()) {
     const TriangleMesh mesh = load_mesh(scene.relief.mesh_path);
@@ -27,9 +28,10 @@ ReliefMap build_relief_asset(const SceneDesc& scene, int resolution) {
     map = make_procedural(scene.relief.procedural, resolution, scene.relief.options,
                           scene.depth / base.texel_world(resolution), "scene '" + scene.name + "'");
   } else {
-    const int native = scene.relief.native_resolution;
-    map = load_relief_images(image_source(scene.relief), scene.depth / base.texel_world(native));
-    map = resample(map, resolution, resolution);
+    // Normals from depth take the slope at the native texel size, before any resampling.
+    const double native_texel = base.texel_world(scene.relief.native.width);
+    map = load_relief_images(image_source(scene.relief), scene.depth / native_texel);
+    map = resample(map, size.width, size.height);
   }
   if (scene.quantize) quantize_8bit(map);
   return map;

@@ -1,6 +1,7 @@
 #pragma once
-// Builds a scene's relief map at a texture resolution: procedural maps are generated at that
-// resolution, image maps are loaded and resampled; then quantised to 8 bits if the scene asks.
+// Builds a scene's relief map at a texture resolution (its longer side; ReliefSourceDesc::
+// size_at): procedural maps are generated at that resolution, image maps are loaded and
+// resampled keeping their aspect; then quantised to 8 bits if the scene asks.
 #include "relief/image_io.h"
 #include "relief/relief_map.h"
 #include "scene/scene.h"

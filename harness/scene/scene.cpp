@@ -15,13 +15,24 @@ PlanarBase planar_base(const SceneDesc& scene) {
   b.size = scene.size;
   b.tile = scene.tile;
   b.depth = scene.depth;
+  b.aspect = scene.relief.aspect();
   return b;
+}
+
+MapSize ReliefSourceDesc::size_at(int texture_res) const {
+  if (texture_res <= 0 || texture_res == native.longer()) return native;
+  const int shorter = int(
+      std::lround(double(texture_res) * std::min(native.width, native.height) / native.longer()));
+  const int s = std::max(2, shorter);
+  return native.width >= native.height ? MapSize{texture_res, s} : MapSize{s, texture_res};
 }
 
 double scene_radius(const SceneDesc& scene) {
   // A curved base is fitted into the sphere of diameter `size`; its relief lies inside.
   if (scene.base.curved()) return 0.5 * scene.size;
-  return std::sqrt(0.5 * scene.size * scene.size + scene.depth * scene.depth);
+  const PlanarBase base = planar_base(scene);
+  return std::sqrt(0.25 * base.size * base.size + 0.25 * base.size_v() * base.size_v() +
+                   scene.depth * scene.depth);
 }
 
 BaseGeometry make_base_geometry(const SceneDesc& scene) {
@@ -122,7 +133,8 @@ int fill_quad_factor(const SceneDesc& scene, double min_elevation_deg, double ma
 
 void apply_fill_framing(SceneDesc& scene, double min_elevation_deg, double max_aspect) {
   scene.framing = Framing::Fill;
-  scene.fill_footprint = scene.size;
+  // The footprint is the quad's shorter side, so the lengthened quad is long enough both ways.
+  scene.fill_footprint = scene.size * std::min(1.0, scene.relief.aspect());
   const int factor = fill_quad_factor(scene, min_elevation_deg, max_aspect);
   scene.size *= factor;
   scene.tile *= factor;

@@ -17,6 +17,14 @@ struct View {
   double azimuth_deg = 0;     // 0 = camera on the +u side, looking along -u
 };
 
+// A relief map's size in texels. Maps need not be square: a texture resolution in a sweep
+// (texture_res) names the longer side and the shorter one keeps the native aspect.
+struct MapSize {
+  int width = 256, height = 256;
+  int longer() const { return width > height ? width : height; }
+  bool operator==(const MapSize& o) const { return width == o.width && height == o.height; }
+};
+
 struct ReliefSourceDesc {
   // Exactly one of: a procedural kind, or image files.
   std::string procedural;                 // "sines", "bricks", ...
@@ -24,11 +32,16 @@ struct ReliefSourceDesc {
   std::string normal_path, depth_path, color_path;
   bool height_convention = true;  // image stores height (1 = top)
   bool flip_green = false;
-  bool normalize = false;       // remap image depths to [0, 1]
-  std::string mesh_path;        // a mesh baked into the map (Baboud & Decoret)
-  int mesh_up = 1;              // its up axis: 0, 1, 2 = x, y, z
-  double reverse_cop = 0;       // reverse perspective: centre of projection depth (> 1), or 0
-  int native_resolution = 256;  // resolution when texture_res = 0 ("native")
+  bool normalize = false;  // remap image depths to [0, 1]
+  std::string mesh_path;   // a mesh baked into the map (Baboud & Decoret)
+  int mesh_up = 1;         // its up axis: 0, 1, 2 = x, y, z
+  double reverse_cop = 0;  // reverse perspective: centre of projection depth (> 1), or 0
+  MapSize native;          // size when texture_res = 0 ("native")
+  // The map's size at a sweep's texture_res (the longer side; 0 = native).
+  MapSize size_at(int texture_res) const;
+  // World length of the map along v over its length along u: a planar quad keeps its texels
+  // square, so a 512 x 128 map lies on a 4:1 rectangle.
+  double aspect() const { return double(native.height) / native.width; }
 };
 
 struct Material {
@@ -122,24 +135,29 @@ struct SceneDesc {
   double shadow_bias = 0.02;  // depth units (Listing 5.3's shadow_threshold)
 };
 
-// The planar base: texture space (u, v, depth) <-> world. The quad spans [-size/2, size/2]^2
-// at z = 0 with u along +x, v along +y; depth 1 lies `depth` below it.
+// The planar base: texture space (u, v, depth) <-> world. The quad spans [-size/2, size/2] in
+// x (u) and `aspect` times that in y (v) at z = 0; depth 1 lies `depth` below it.
 struct PlanarBase {
   double size = 1, tile = 1, depth = 0.08;
+  double aspect = 1;  // world length along v / along u (the map's height / width)
 
+  double size_v() const { return size * aspect; }
   glm::dvec3 dpdu() const { return {size / tile, 0, 0}; }
-  glm::dvec3 dpdv() const { return {0, size / tile, 0}; }
+  glm::dvec3 dpdv() const { return {0, size_v() / tile, 0}; }
   glm::dvec3 normal() const { return {0, 0, 1}; }
   glm::dvec3 world_from_texture(const glm::dvec3& uvd) const {
-    return {-0.5 * size + uvd.x * size / tile, -0.5 * size + uvd.y * size / tile, -uvd.z * depth};
+    return {-0.5 * size + uvd.x * size / tile, -0.5 * size_v() + uvd.y * size_v() / tile,
+            -uvd.z * depth};
   }
   glm::dvec3 texture_from_world(const glm::dvec3& p) const {
-    return {(p.x + 0.5 * size) * tile / size, (p.y + 0.5 * size) * tile / size, -p.z / depth};
+    return {(p.x + 0.5 * size) * tile / size, (p.y + 0.5 * size_v()) * tile / size_v(),
+            -p.z / depth};
   }
   glm::dvec3 texture_direction(const glm::dvec3& d) const {
-    return {d.x * tile / size, d.y * tile / size, -d.z / depth};
+    return {d.x * tile / size, d.y * tile / size_v(), -d.z / depth};
   }
-  double texel_world(int resolution) const { return size / tile / resolution; }
+  // World side of a texel of a map `width` texels across u (texels are square).
+  double texel_world(int width) const { return size / tile / width; }
 };
 
 PlanarBase planar_base(const SceneDesc& scene);

@@ -154,9 +154,10 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
         fail(src.at(*n), "'up' must be \"x\", \"y\" or \"z\"");
       r.mesh_up = up[0] - 'x';
     }
-    r.native_resolution = 256;
-    if (auto* n = t->get("resolution"))
-      r.native_resolution = positive_int(*n, src, "resolution", 2, 8192);
+    if (auto* n = t->get("resolution")) {
+      const int res = positive_int(*n, src, "resolution", 2, 8192);
+      r.native = {res, res};
+    }
     canon["mesh"] = fs::path(r.mesh_path).filename().string() + ":" + hex64(file_hash(r.mesh_path));
     canon["up"] = r.mesh_up;
     if (auto* n = t->get("reverse_perspective")) {
@@ -168,7 +169,7 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
                  std::to_string(r.reverse_cop));
       canon["reverse_perspective"] = r.reverse_cop;
     }
-    canon["resolution"] = r.native_resolution;
+    canon["resolution"] = r.native.width;
     return r;
   }
   if (t->contains("up") || t->contains("reverse_perspective"))
@@ -183,9 +184,10 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
       fail(src.at(*t->get("procedural")),
            "unknown procedural relief '" + r.procedural + "' (known: " + names + ")");
     }
-    r.native_resolution = 256;
-    if (auto* n = t->get("resolution"))
-      r.native_resolution = positive_int(*n, src, "resolution", 2, 8192);
+    if (auto* n = t->get("resolution")) {
+      const int res = positive_int(*n, src, "resolution", 2, 8192);
+      r.native = {res, res};
+    }
     if (auto* o = t->get("options")) {
       const toml::table* ot = o->as_table();
       if (!ot) fail(src.at(*o), "'options' must be a table");
@@ -196,7 +198,7 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
     }
     canon["procedural"] = r.procedural;
     canon["options"] = r.options;
-    canon["resolution"] = r.native_resolution;
+    canon["resolution"] = r.native.width;
     return r;
   }
   if (t->contains("resolution") || t->contains("options"))
@@ -219,11 +221,8 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
   const std::string& sized = r.depth_path.empty() ? r.normal_path : r.depth_path;
   auto in = OIIO::ImageInput::open(sized);
   if (!in) fail(src.at(node), "cannot read image " + sized + ": " + OIIO::geterror());
-  r.native_resolution = in->spec().width;
-  if (in->spec().width != in->spec().height)
-    fail(src.at(node), "relief image " + sized + " is not square (" +
-                           std::to_string(in->spec().width) + "x" +
-                           std::to_string(in->spec().height) + ")");
+  // Any aspect: a planar quad takes the map's (ReliefSourceDesc::aspect).
+  r.native = {in->spec().width, in->spec().height};
   for (const std::string* p : {&r.normal_path, &r.depth_path, &r.color_path})
     if (!p->empty())
       canon["files"].push_back({fs::path(*p).filename().string(), hex64(file_hash(*p))});
@@ -496,7 +495,7 @@ TechniqueSweep parse_technique(const toml::table& t, const Src& src, const toml:
 }  // namespace
 
 int resolve_texture_res(const SceneDesc& scene, int texture_res) {
-  return texture_res > 0 ? texture_res : scene.relief.native_resolution;
+  return texture_res > 0 ? texture_res : scene.relief.native.longer();
 }
 
 SweepConfig parse_sweep_config(const std::string& text, const std::string& source_name,

@@ -153,7 +153,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
         asset->base = std::make_unique<GpuBase>(base_geometry(mesh));
         asset->truth =
             std::make_unique<SceneTruth>(scene, asset->map, config.truth_tolerance, &mesh);
-        asset->texel_world = texel_world(mesh, cell.texture_res);
+        asset->texel_world = texel_world(mesh, MapSize{asset->map.width, asset->map.height});
       } else {
         asset->base = std::make_unique<GpuBase>(make_base_geometry(scene));
         asset->truth = std::make_unique<SceneTruth>(scene, asset->map, config.truth_tolerance);
@@ -268,6 +268,8 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     row["truth_ms"] = truth_stats.trace_ms;
     row["truth_unresolved_px"] = double(truth_stats.unresolved);
     row["effects"] = join_effects(scene.effects);
+    row["texture_size"] =
+        std::to_string(asset->map.width) + "x" + std::to_string(asset->map.height);
     row["truth"] = scene.truth == TruthLevel::Mesh ? "mesh" : "sampled";
     row["renderer"] = gl.renderer();
     row["key"] = cell.key;

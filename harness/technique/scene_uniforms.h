@@ -11,6 +11,9 @@ namespace rl {
 inline void set_uniform(GLuint p, const char* name, const glm::dvec3& v) {
   glProgramUniform3f(p, glGetUniformLocation(p, name), float(v.x), float(v.y), float(v.z));
 }
+inline void set_uniform(GLuint p, const char* name, const glm::dvec2& v) {
+  glProgramUniform2f(p, glGetUniformLocation(p, name), float(v.x), float(v.y));
+}
 inline void set_uniform(GLuint p, const char* name, double v) {
   glProgramUniform1f(p, glGetUniformLocation(p, name), float(v));
 }

@@ -67,7 +67,7 @@ void ShaderTechnique::render(const FrameInput& frame, RenderTarget::Kind target)
 
 std::vector<ProbeHit> ShaderTechnique::probe(const ReliefMap& map, const GpuRelief& relief,
                                              const std::vector<ProbeRay>& rays,
-                                             double depth_aspect) {
+                                             glm::dvec2 depth_aspect) {
   (void)map;
   std::vector<ProbeHit> hits(rays.size());
   if (rays.empty()) return hits;

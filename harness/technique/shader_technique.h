@@ -23,7 +23,7 @@ class ShaderTechnique : public Technique {
 
   void render(const FrameInput& frame, RenderTarget::Kind target) override;
   std::vector<ProbeHit> probe(const ReliefMap& map, const GpuRelief& relief,
-                              const std::vector<ProbeRay>& rays, double depth_aspect) override;
+                              const std::vector<ProbeRay>& rays, glm::dvec2 depth_aspect) override;
 
   // The program a render with these effects and this target uses (tests inspect its source).
   static SurfaceVariant variant_of(const SceneDesc& scene);

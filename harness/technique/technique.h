@@ -71,8 +71,10 @@ class Technique {
   // A ColorOnly target is the timing variant: no G-buffer outputs are compiled in.
   virtual void render(const FrameInput& frame, RenderTarget::Kind target) = 0;
   // Runs the technique's intersection routine on a batch of tangent-space rays.
+  // `depth_aspect`: world relief depth / world length of one unit of u and of v.
   virtual std::vector<ProbeHit> probe(const ReliefMap& map, const GpuRelief& relief,
-                                      const std::vector<ProbeRay>& rays, double depth_aspect) = 0;
+                                      const std::vector<ProbeRay>& rays,
+                                      glm::dvec2 depth_aspect) = 0;
   // Bytes of the technique's own textures and buffers, beyond the shared relief + colour maps.
   virtual size_t memory_bytes() const { return 0; }
   // True when prepare() loaded its precomputation from a cache instead of computing it.

@@ -10,7 +10,7 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   vec2 offset = s.xy * d;
 #if RL_OFFSET_LIMITING
   // Unit tangent-space view z from the texture-space step s (s.z = 1 depth unit).
-  vec2 world_xy = s.xy * (1.0 / rl_depth_aspect);
+  vec2 world_xy = s.xy / rl_depth_aspect;
   float view_z = inversesqrt(1.0 + dot(world_xy, world_xy));
   offset *= view_z;
 #endif

@@ -23,7 +23,7 @@ SceneDesc procedural_scene(const std::string& kind, int resolution, double depth
   s.name = kind;
   s.relief.procedural = kind;
   s.relief.options = options;
-  s.relief.native_resolution = resolution;
+  s.relief.native = {resolution, resolution};
   s.depth = depth;
   s.quantize = quantize;
   return s;
@@ -32,7 +32,7 @@ SceneDesc procedural_scene(const std::string& kind, int resolution, double depth
 Measured measure(const SceneDesc& scene, const std::string& technique, const ParamValues& params,
                  const View& view, int size, double truth_tolerance) {
   GlContext::shared();
-  const int res = scene.relief.native_resolution;
+  const int res = scene.relief.native.longer();
   ReliefMap map = build_relief_asset(scene, res);
   GpuRelief relief(map);
   GpuBase base(make_base_geometry(scene));
