@@ -94,6 +94,8 @@ std::vector<Cell> expand_cells(const SweepConfig& config) {
                   {"truth", c.truth_key},    {"technique", ts.name},
                   {"params", params},        {"frames", config.frames},
                   {"warmup", config.warmup}, {"images", config.write_images}};
+              // Only when asked, so cells of sweeps without G-buffers keep their keys.
+              if (config.write_gbuffers) id["gbuffers"] = true;
               c.key = hex64(fnv1a64(id.dump()));
               c.identity["technique"] = ts.name;
               c.identity["scene"] = scene.name;

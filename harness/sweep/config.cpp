@@ -520,7 +520,7 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
     if (!t) fail(src.at(*n), "[sweep] must be a table");
     check_keys(*t,
                {"name", "elevations", "azimuths", "views", "viewports", "texture_res", "frames",
-                "warmup", "heat_map_scale", "truth_tolerance", "images"},
+                "warmup", "heat_map_scale", "truth_tolerance", "images", "gbuffers"},
                src, "[sweep]");
     if (auto* v = t->get("name")) c.name = string_of(*v, src, "name");
     if (auto* v = t->get("elevations")) elevations = number_list(*v, src, "elevations");
@@ -574,6 +574,10 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
     if (auto* v = t->get("images")) {
       if (!v->is_boolean()) fail(src.at(*v), "'images' must be true or false");
       c.write_images = v->value<bool>().value();
+    }
+    if (auto* v = t->get("gbuffers")) {
+      if (!v->is_boolean()) fail(src.at(*v), "'gbuffers' must be true or false");
+      c.write_gbuffers = v->value<bool>().value();
     }
   }
   if (c.views.empty())

@@ -39,6 +39,7 @@ struct SweepConfig {
   double heat_map_scale = 4;      // texels at the top of the heat map's colour scale
   double truth_tolerance = 2e-3;  // stated tessellation tolerance, depth units
   bool write_images = true;
+  bool write_gbuffers = false;  // raw G-buffers as OpenEXR (sweep/gbuffer_export.h)
   std::vector<TableSpec> tables;
   std::vector<PlotSpec> plots;                         // Pareto plots of error against cost
   std::map<std::string, std::string> scene_canonical;  // per scene: text of what defines it

@@ -22,6 +22,7 @@
 #include "scene/relief_asset.h"
 #include "sweep/asset_check.h"
 #include "sweep/cells.h"
+#include "sweep/gbuffer_export.h"
 #include "sweep/pareto.h"
 #include "sweep/result_store.h"
 #include "sweep/tables.h"
@@ -176,6 +177,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     }
     const Camera camera = make_camera(scene, cell.view, cell.width, cell.height);
     const std::string image_dir = options.out_dir + "/images/" + scene.name;
+    const std::string gbuffer_dir = options.out_dir + "/gbuffers/" + scene.name;
     if (cell.truth_key != truth_key) {
       truth = asset->truth->render(asset->map, scene, camera, scene.effects, &truth_stats);
       truth_key = cell.truth_key;
@@ -195,6 +197,9 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       if (config.write_images)
         write_png(image_dir + "/truth_" + cell.truth_key + ".png", truth.width, truth.height, 3,
                   rgb_of(truth));
+      if (config.write_gbuffers)
+        write_gbuffer_exr(gbuffer_dir + "/truth_" + cell.truth_key + ".exr", truth, scene, camera,
+                          {scene.name, "", "", cell.truth_key});
     }
 
     // Technique instance, prepared once per asset and parameter setting.
@@ -283,6 +288,14 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       row["image_truth"] =
           fs::relative(image_dir + "/truth_" + cell.truth_key + ".png", options.out_dir).string();
       row["image_error"] = fs::relative(error_png, options.out_dir).string();
+    }
+    if (config.write_gbuffers) {
+      const std::string exr = gbuffer_dir + "/" + cell.key + ".exr";
+      write_gbuffer_exr(exr, g, scene, camera,
+                        {scene.name, cell.technique, describe_params(cell), cell.key});
+      row["gbuffer"] = fs::relative(exr, options.out_dir).string();
+      row["gbuffer_truth"] =
+          fs::relative(gbuffer_dir + "/truth_" + cell.truth_key + ".exr", options.out_dir).string();
     }
     store.insert(cell.key, row);
     ++summary.new_rows;

@@ -1,0 +1,84 @@
+#include "sweep/gbuffer_export.h"
+
+#include <filesystem>
+#include <stdexcept>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+#include <glm/gtc/type_ptr.hpp>
+
+namespace rl {
+
+namespace {
+
+void set_matrix(OIIO::ImageSpec& spec, const char* name, const glm::dmat4& m) {
+  const glm::mat4 f(m);
+  spec.attribute(name, OIIO::TypeMatrix, glm::value_ptr(f));
+}
+
+}  // namespace
+
+void write_gbuffer_exr(const std::string& path, const GBuffer& g, const SceneDesc& scene,
+                       const Camera& camera, const GBufferLabels& labels) {
+  const bool planar = !scene.base.curved();
+  std::vector<std::string> names = {"R",   "G",     "B",       "A",     "P.X",  "P.Y",
+                                    "P.Z", "N.X",   "N.Y",     "N.Z",   "uv.U", "uv.V",
+                                    "Z",   "layer", "fetches", "shadow"};
+  if (planar) names.push_back("relief_depth");
+  const int channels = int(names.size());
+  const glm::dmat4 view = camera.view_matrix(), projection = camera.projection_matrix();
+  const PlanarBase base = planar_base(scene);
+
+  std::vector<float> px(size_t(g.width) * g.height * channels, 0.0f);
+  for (int y = 0; y < g.height; ++y)
+    for (int x = 0; x < g.width; ++x) {
+      const size_t i = size_t(y) * g.width + x;
+      if (!g.covered(i)) continue;
+      // GL's row 0 is the bottom; the file's first row is the top.
+      float* p = &px[(size_t(g.height - 1 - y) * g.width + x) * channels];
+      const glm::vec4 c = g.color[i], pos = g.position[i], n = g.normal[i], hit = g.hit[i];
+      const glm::dvec3 world(pos);
+      const double z = -(view * glm::dvec4(world, 1.0)).z;
+      const float values[] = {
+          c.r, c.g, c.b,   1.0f,  pos.x,    pos.y, pos.z, n.x,
+          n.y, n.z, hit.x, hit.y, float(z), hit.z, hit.w, n.w > 0.5f ? 1.0f : 0.0f};
+      std::copy(std::begin(values), std::end(values), p);
+      if (planar) {
+        // Texture depth through the base (and a baked mesh's reverse projection, if any).
+        const glm::dvec3 t = scene.projection.texture_from_affine(base.texture_from_world(world));
+        p[channels - 1] = float(t.z);
+      }
+    }
+
+  OIIO::ImageSpec spec(g.width, g.height, channels, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = names;
+  spec.alpha_channel = 3;
+  spec.z_channel = 12;
+  spec.attribute("compression", "zip");
+  set_matrix(spec, "worldtocamera", view);
+  set_matrix(spec, "worldtoscreen", projection * view);
+  set_matrix(spec, "relieflab:view", view);
+  set_matrix(spec, "relieflab:projection", projection);
+  const int viewport[4] = {0, 0, g.width - 1, g.height - 1};
+  spec.attribute("relieflab:viewport", OIIO::TypeBox2i, viewport);
+  const float eye[3] = {float(camera.eye.x), float(camera.eye.y), float(camera.eye.z)};
+  spec.attribute("relieflab:eye", OIIO::TypeVector, eye);
+  spec.attribute("relieflab:fov_y_deg", float(camera.fov_y_deg));
+  spec.attribute("relieflab:near", float(camera.near_plane));
+  spec.attribute("relieflab:far", float(camera.far_plane));
+  spec.attribute("relieflab:scene", labels.scene);
+  if (!labels.technique.empty()) spec.attribute("relieflab:technique", labels.technique);
+  if (!labels.params.empty()) spec.attribute("relieflab:params", labels.params);
+  spec.attribute("relieflab:key", labels.key);
+
+  const std::filesystem::path final_path(path);
+  std::filesystem::create_directories(final_path.parent_path());
+  const std::string tmp = path + ".tmp.exr";
+  auto out = OIIO::ImageOutput::create(tmp);
+  if (!out || !out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, px.data()) ||
+      !out->close())
+    throw std::runtime_error("cannot write G-buffer " + path + ": " + OIIO::geterror());
+  std::filesystem::rename(tmp, final_path);
+}
+
+}  // namespace rl
