@@ -92,6 +92,46 @@ ReliefMap from_depths(int n, const std::function<float(int, int)>& f) {
   return test::map_from_depths(n, n, d);
 }
 
+TEST(SafetyRadius, ASteadySlopeInFloatsIsTouchedNotEntered) {
+  // A planar slope (a pyramid's face) sampled in floats: rounding leaves its samples a few
+  // 1e-8 off collinear, which once read as dips and zeroed the radii of whole faces.
+  std::vector<float> h;
+  for (int k = 0; k < 120; ++k) h.push_back(float(-0.849719 - 0.00936065 * k));
+  std::vector<int> hull, first;
+  first_unblocked_violations(h, 0.5, 0.0, hull, first);
+  for (int j = 0; j < int(h.size()); ++j) EXPECT_EQ(first[size_t(j)], int(h.size())) << j;
+}
+
+TEST(SafetyRadius, IgnoringBlockedRaysGrowsRadii) {
+  // Section 3.5's radii count a subset of the conservative radii's rays, so they are at least
+  // as large wherever both sample the same rays; the two sample ray offsets differently
+  // (lines 1/starts apart, start points on the centerline), which leaves a few texels (under
+  // 3% measured on the domes) smaller. Measured before the collinear-tie fix: 53% of the
+  // pyramids' texels came out smaller, mean radius 0.13 against 1.37.
+  for (const char* kind : {"pyramids", "bricks", "domes", "sines"}) {
+    SCOPED_TRACE(kind);
+    ReliefMap map = make_procedural(kind, 128,
+                                    std::string(kind) == "pyramids"
+                                        ? std::map<std::string, double>{{"count", 6}}
+                                        : std::map<std::string, double>{},
+                                    10.0, "test");
+    quantize_8bit(map);
+    SafetyRadiusOptions faithful, conservative;
+    conservative.ignore_blocked = false;
+    const SafetyRadii a = compute_safety_radii(map, faithful);
+    const SafetyRadii b = compute_safety_radii(map, conservative);
+    long smaller = 0;
+    double sum_a = 0, sum_b = 0;
+    for (size_t i = 0; i < a.radius.size(); ++i) {
+      smaller += a.radius[i] < b.radius[i];
+      sum_a += a.radius[i];
+      sum_b += b.radius[i];
+    }
+    EXPECT_LE(smaller, long(a.radius.size()) / 20);
+    EXPECT_GE(sum_a, sum_b);
+  }
+}
+
 TEST(SafetyRadius, FlatIsMaximalAndAFieldOfPeaksIsZero) {
   SafetyRadiusOptions o;
   const ReliefMap flat_map = from_depths(16, [](int, int) { return 0.5f; });
@@ -184,7 +224,7 @@ TEST(RobustSearch, MissesFarFewerIntersectionsThanBinarySearchAtGrazingAngles) {
     // Sampled directions (16) and start points leave a few gaps. The conservative radii hold
     // for every ray and miss at most 0.5% (pyramids / bricks / walls: 0 / 2 / 6); ignoring
     // blocked rays trusts the lee of a feature along the sampled direction, which a ray a few
-    // degrees off does not share: 0 / 4 / 23 (1.1%) on the one-texel walls.
+    // degrees off does not share: 0 / 5 / 26 (1.3%) on the one-texel walls.
     EXPECT_LE(exact_conservative, int(rays.size()) / 200);
     EXPECT_LE(exact, int(rays.size()) * 3 / 200);
   }

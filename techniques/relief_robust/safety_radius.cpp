@@ -123,6 +123,10 @@ class PaddedHeights {
 
 }  // namespace
 
+// Height (depth units) within which a ray counts as touching, not entering, the surface: ten
+// times the rounding of float heights in [-1, 0], a 4000th of an 8-bit depth step.
+constexpr double kTouch = 1e-6;
+
 void first_unblocked_violations(const std::vector<float>& h, double step, double error_allowed,
                                 std::vector<int>& hull, std::vector<int>& first) {
   const int n = int(h.size());
@@ -130,11 +134,15 @@ void first_unblocked_violations(const std::vector<float>& h, double step, double
   first.assign(size_t(n), n);
   std::vector<int>& by_horizon = first;
   hull.clear();
-  auto below_new_edge = [&](int k) {  // is the hull's top on or under (second, k)?
+  // Is the hull's top on, under, or within kTouch above the edge (second, k)? Such a vertex is
+  // a collinear tie: a ray along the edge touches it without dipping in. The tolerance keeps
+  // float rounding on planar slopes (a pyramid's face, sampled by bilinear lerps) from
+  // turning exact ties into dips of 1e-8 that zeroed the radii of whole faces.
+  auto below_new_edge = [&](int k) {
     const int i = hull[hull.size() - 2], j = hull.back();
     return double(j - i) * (double(h[size_t(k)]) - h[size_t(i)]) -
                (double(h[size_t(j)]) - h[size_t(i)]) * double(k - i) >=
-           0;
+           -kTouch * double(k - i);
   };
   for (int k = 0; k < n; ++k) {
     // Horizon of (s_k, h_k + e): the hull vertex of maximal backward-rising slope from it.
@@ -161,7 +169,7 @@ void first_unblocked_violations(const std::vector<float>& h, double step, double
       while (hull.size() >= 2 && below_new_edge(k)) hull.pop_back();
     }
     // A horizon above the point (beyond float noise in the bilinear lerp): a rising slope.
-    if (t >= 0 && double(h[size_t(t)]) - qh > 1e-7)
+    if (t >= 0 && double(h[size_t(t)]) - qh > kTouch)
       by_horizon[size_t(t)] = std::min(by_horizon[size_t(t)], k);
     hull.push_back(k);
   }
@@ -325,7 +333,7 @@ std::filesystem::path cache_dir() {
 }  // namespace
 
 SafetyRadii cached_safety_radii(const ReliefMap& map, const SafetyRadiusOptions& o) {
-  constexpr int kAlgorithmVersion = 2;  // bump when compute_safety_radii changes its answers
+  constexpr int kAlgorithmVersion = 3;  // bump when compute_safety_radii changes its answers
   char key_text[256];
   std::snprintf(key_text, sizeof key_text, "v%d|%d|%d|%.9g|%d|%.9g|%d|", kAlgorithmVersion,
                 o.directions, o.starts, o.step, effective_max_radius(map, o), o.error_allowed,
