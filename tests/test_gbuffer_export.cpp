@@ -13,7 +13,6 @@
 #include "sweep/cells.h"
 #include "sweep/config.h"
 #include "sweep/result_store.h"
-#include "sweep/runner.h"
 
 namespace rl {
 namespace {
@@ -55,7 +54,7 @@ Exr read_exr(const std::string& path) {
 
 TEST(GBufferExport, ChannelsAndCameraReproduceTheRow) {
   const std::string dir = test::scratch_dir("gbuffers");
-  const SweepConfig config = parse_sweep_config(R"(
+  const SweepConfig config = test::run_sweep_in(R"(
 [sweep]
 name = "gbuffers"
 elevations = [35]
@@ -71,19 +70,16 @@ relief = { procedural = "bricks", resolution = 32 }
 name = "relief"
 linear_steps = [8]
 )",
-                                                "gbuffers.toml", dir);
-  RunOptions opt;
-  opt.out_dir = dir + "/out";
-  opt.progress = false;
-  run_sweep(config, opt);
-  ResultStore store(opt.out_dir + "/results.sqlite");
+                                                dir);
+  const std::string out = dir + "/out";
+  ResultStore store(out + "/results.sqlite");
   const std::vector<Cell> cells = expand_cells(config);
   ASSERT_EQ(cells.size(), 1u);
   const Cell& cell = cells[0];
   const auto row = store.row(cell.key);
   ASSERT_TRUE(row);
-  const Exr tech = read_exr(opt.out_dir + "/" + std::string((*row)["gbuffer"]));
-  const Exr truth = read_exr(opt.out_dir + "/" + std::string((*row)["gbuffer_truth"]));
+  const Exr tech = read_exr(out + "/" + std::string((*row)["gbuffer"]));
+  const Exr truth = read_exr(out + "/" + std::string((*row)["gbuffer_truth"]));
   const std::set<std::string> expected = {
       "R",   "G",    "B",    "A", "P.X",   "P.Y",     "P.Z",    "N.X",         "N.Y",
       "N.Z", "uv.U", "uv.V", "Z", "layer", "fetches", "shadow", "relief_depth"};
@@ -135,7 +131,7 @@ linear_steps = [8]
 
 TEST(GBufferExport, OffByDefault) {
   const std::string dir = test::scratch_dir("no-gbuffers");
-  const SweepConfig config = parse_sweep_config(R"(
+  test::run_sweep_in(R"(
 [sweep]
 name = "plain"
 elevations = [45]
@@ -148,13 +144,9 @@ relief = { procedural = "flat", resolution = 8 }
 [[technique]]
 name = "normal"
 )",
-                                                "plain.toml", dir);
-  RunOptions opt;
-  opt.out_dir = dir + "/out";
-  opt.progress = false;
-  run_sweep(config, opt);
-  EXPECT_TRUE(fs::exists(opt.out_dir + "/rows.csv"));
-  EXPECT_FALSE(fs::exists(opt.out_dir + "/gbuffers"));
+                     dir);
+  EXPECT_TRUE(fs::exists(dir + "/out/rows.csv"));
+  EXPECT_FALSE(fs::exists(dir + "/out/gbuffers"));
 }
 
 }  // namespace

@@ -15,7 +15,6 @@
 #include "sweep/cells.h"
 #include "sweep/config.h"
 #include "sweep/result_store.h"
-#include "sweep/runner.h"
 
 namespace rl {
 namespace {
@@ -146,12 +145,8 @@ depth = 0.05
 )";
   for (const std::string& name : TechniqueRegistry::instance().names())
     text += "[[technique]]\nname = \"" + name + "\"\n";
-  const SweepConfig config = parse_sweep_config(text, dir + "/non_square.toml", dir);
-  RunOptions opt;
-  opt.out_dir = dir + "/out";
-  opt.progress = false;
-  run_sweep(config, opt);
-  ResultStore store(opt.out_dir + "/results.sqlite");
+  const SweepConfig config = test::run_sweep_in(text, dir);
+  ResultStore store(dir + "/out/results.sqlite");
   // The bumps are symmetric under swapping u and v about the quad's centre, so with square
   // texels a view along v sees the view along u turned by 90 degrees: the same error. A quad
   // stretched to the texture's unit square (or a shader mixing the u and v scales) breaks it.

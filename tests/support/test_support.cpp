@@ -12,6 +12,7 @@
 #include "gl/render_target.h"
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
+#include "sweep/runner.h"
 #include "technique/gpu_scene.h"
 #include "truth/make_truth.h"
 
@@ -91,6 +92,15 @@ std::string scratch_dir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir.parent_path());
   return dir.string();
+}
+
+SweepConfig run_sweep_in(const std::string& toml, const std::string& dir) {
+  const SweepConfig config = parse_sweep_config(toml, dir + "/sweep.toml", dir);
+  RunOptions opt;
+  opt.out_dir = dir + "/out";
+  opt.progress = false;
+  run_sweep(config, opt);
+  return config;
 }
 
 int run_cli(const std::string& args, std::string& output) {

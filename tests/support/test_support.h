@@ -8,6 +8,7 @@
 #include "metrics/metrics.h"
 #include "relief/relief_map.h"
 #include "scene/scene.h"
+#include "sweep/config.h"
 #include "technique/technique.h"
 #include "truth/truth_render.h"
 
@@ -47,6 +48,10 @@ ReliefMap map_from_depths(int w, int h, const std::vector<float>& depths);
 
 // A fresh, empty folder under the build's temporary directory.
 std::string scratch_dir(const std::string& name);
+
+// Parses the sweep config `toml` (relative paths resolved from `dir`) and runs it quietly
+// into dir + "/out"; returns the parsed config (expand_cells(config) gives its cell keys).
+SweepConfig run_sweep_in(const std::string& toml, const std::string& dir);
 
 // Runs the relieflab CLI with `args`; returns its exit status, stderr+stdout in `output`.
 int run_cli(const std::string& args, std::string& output);
