@@ -4,6 +4,7 @@
 
 #include "core/hash.h"
 #include "metrics/metrics.h"
+#include "sweep/config_technique.h"
 #include "technique/technique.h"
 
 namespace rl {
@@ -12,18 +13,6 @@ namespace {
 // Results change when the harness's measuring changes: bump this when a metric or the truth
 // is redefined, so stale rows are not mistaken for current ones.
 constexpr int kMeasurementVersion = 1;
-
-void product(const std::vector<std::pair<std::string, std::vector<double>>>& lists, size_t i,
-             ParamValues& current, std::vector<ParamValues>& out) {
-  if (i == lists.size()) {
-    out.push_back(current);
-    return;
-  }
-  for (double v : lists[i].second) {
-    current[lists[i].first] = v;
-    product(lists, i + 1, current, out);
-  }
-}
 
 }  // namespace
 
@@ -57,16 +46,7 @@ std::vector<Cell> expand_cells(const SweepConfig& config) {
           std::find(ts.scenes.begin(), ts.scenes.end(), scene.name) == ts.scenes.end())
         continue;
       const TechniqueInfo& info = TechniqueRegistry::instance().find(ts.name)->info;
-      std::vector<std::pair<std::string, std::vector<double>>> lists;
-      for (const ParamSpec& p : info.params) {
-        auto it = ts.param_lists.find(p.name);
-        lists.push_back({p.name, it != ts.param_lists.end()
-                                     ? it->second
-                                     : std::vector<double>{p.default_value}});
-      }
-      std::vector<ParamValues> settings;
-      ParamValues current;
-      product(lists, 0, current, settings);
+      const std::vector<ParamValues> settings = parameter_settings(ts);
       for (int tex : config.texture_res) {
         const int res = resolve_texture_res(scene, tex);
         for (const auto& [w, h] : config.viewports) {

@@ -13,10 +13,15 @@
 
 namespace rl {
 
+// A [[technique]] of a config. Its settings are the Cartesian product of the parameter lists
+// (a parameter not listed takes its default), times the `sets` when given: each set pairs
+// values of several parameters (e.g. min/max samples) and is combined with every product
+// setting; a parameter is listed or in sets, not both (sweep/config_technique.h).
 struct TechniqueSweep {
   std::string name;
   std::vector<std::string> scenes;                         // empty = every scene
   std::map<std::string, std::vector<double>> param_lists;  // declared parameters only
+  std::vector<ParamValues> sets;                           // paired settings, or none
   std::string where;                                       // "file:line" for messages
 };
 

@@ -1,5 +1,12 @@
 #include "technique/technique.h"
 
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <set>
+#include <stdexcept>
+
 #include "core/error.h"
 
 namespace rl {
@@ -9,14 +16,87 @@ void render_frame(Technique& technique, const FrameInput& frame, RenderTarget::K
   technique.render(frame, target);
 }
 
+namespace {
+
+bool is_identifier(const std::string& s) {
+  if (s.empty() || !std::islower(static_cast<unsigned char>(s[0]))) return false;
+  for (char c : s)
+    if (!(std::islower(static_cast<unsigned char>(c)) ||
+          std::isdigit(static_cast<unsigned char>(c)) || c == '_'))
+      return false;
+  return true;
+}
+
+// The path from the repository's techniques/ (or harness/) folder on, for messages.
+std::string short_source(const std::string& path) {
+  for (const char* root : {"techniques/", "harness/", "tests/"}) {
+    const size_t at = path.rfind(root);
+    if (at != std::string::npos) return path.substr(at);
+  }
+  return path;
+}
+
+}  // namespace
+
+void check_technique_info(const TechniqueInfo& info) {
+  const std::string who = "technique '" + info.name + "'";
+  if (!is_identifier(info.name))
+    throw std::logic_error(who + ": a name is lower-case letters, digits and '_'");
+  std::set<std::string> seen;
+  for (const ParamSpec& p : info.params) {
+    const std::string param = who + " parameter '" + p.name + "'";
+    if (!is_identifier(p.name))
+      throw std::logic_error(param + ": a name is lower-case letters, digits and '_'");
+    if (!seen.insert(p.name).second) throw std::logic_error(param + " is declared twice");
+    if (!(p.min_value <= p.max_value))
+      throw std::logic_error(param + ": min " + std::to_string(p.min_value) + " > max " +
+                             std::to_string(p.max_value));
+    if (!(p.default_value >= p.min_value && p.default_value <= p.max_value))
+      throw std::logic_error(param + ": default " + std::to_string(p.default_value) + " outside [" +
+                             std::to_string(p.min_value) + ", " + std::to_string(p.max_value) +
+                             "]");
+    if (p.kind != ParamKind::Float && p.default_value != std::floor(p.default_value))
+      throw std::logic_error(param + ": an " + param_kind_name(p.kind) +
+                             " default must be a whole number");
+    if (p.kind == ParamKind::Bool && (p.min_value != 0 || p.max_value != 1))
+      throw std::logic_error(param + ": a bool ranges over [0, 1]");
+    if (p.doc.empty()) throw std::logic_error(param + " needs a doc string");
+  }
+}
+
 TechniqueRegistry& TechniqueRegistry::instance() {
   static TechniqueRegistry registry;
   return registry;
 }
 
 void TechniqueRegistry::add(TechniqueEntry entry) {
-  const std::string name = entry.info.name;
-  entries_[name] = std::move(entry);
+  check_technique_info(entry.info);
+  const std::string& name = entry.info.name;
+  if (const TechniqueEntry* other = find(name))
+    throw std::logic_error("technique '" + name + "' is registered twice: by " +
+                           short_source(other->source) + " and by " + short_source(entry.source));
+  for (const ParamSpec& p : entry.info.params)
+    for (const auto& [other_name, other] : entries_)
+      for (const ParamSpec& q : other.info.params)
+        if (q.name == p.name && q.kind != p.kind)
+          throw std::logic_error(
+              "technique '" + name + "' parameter '" + p.name + "' (" + param_kind_name(p.kind) +
+              ") shares its name, and so its rows.csv column, with technique '" + other_name +
+              "''s " + param_kind_name(q.kind) + " parameter: one name, one quantity");
+  entries_.emplace(name, std::move(entry));
+}
+
+void register_or_exit(TechniqueEntry entry) {
+  try {
+    TechniqueRegistry::instance().add(std::move(entry));
+  } catch (const std::logic_error& e) {
+    std::fprintf(stderr, "relieflab: plugin registration failed: %s\n", e.what());
+    std::exit(3);
+  }
+}
+
+void TechniqueRegistry::remove(const std::string& name) {
+  entries_.erase(name);
 }
 
 const TechniqueEntry* TechniqueRegistry::find(const std::string& name) const {
@@ -30,16 +110,24 @@ std::vector<std::string> TechniqueRegistry::names() const {
   return out;
 }
 
-std::unique_ptr<Technique> TechniqueRegistry::create(const std::string& name,
-                                                     const ParamValues& params,
-                                                     const std::string& where) const {
+ParamValues TechniqueRegistry::resolve(const std::string& name, const ParamValues& params,
+                                       const std::string& where) const {
   const TechniqueEntry* e = find(name);
   if (!e) {
     std::string known;
     for (const auto& n : names()) known += (known.empty() ? "" : ", ") + n;
     throw ConfigError(where + ": unknown technique '" + name + "' (known: " + known + ")");
   }
-  return e->create(resolve_params(e->info.params, params, where));
+  ParamValues resolved = resolve_params(e->info.params, params, where);
+  if (e->validate) e->validate(resolved, where + ": technique '" + name + "'");
+  return resolved;
+}
+
+std::unique_ptr<Technique> TechniqueRegistry::create(const std::string& name,
+                                                     const ParamValues& params,
+                                                     const std::string& where) const {
+  ParamValues resolved = resolve(name, params, where);  // throws for unknown names
+  return find(name)->create(resolved);
 }
 
 }  // namespace rl

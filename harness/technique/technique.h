@@ -1,9 +1,15 @@
 #pragma once
 // The technique plugin interface. A technique is a class registered by name with
 // RL_REGISTER_TECHNIQUE (like Mitsuba's plugin macros). Its static describe() gives the
-// citation, the effects it supports and its parameters, so a config is checked before any
-// work; an instance is made per parameter setting, prepared once per relief asset (timed as
-// precompute), then rendered per view.
+// citation, the effects it supports and its parameters (designated initializers, checked at
+// registration), so a config is checked before any work; an optional static
+// validate(params, where) rejects parameter combinations (e.g. min_samples > max_samples)
+// for every setting of a sweep before its first cell. An instance is made per parameter
+// setting, prepared once per relief asset (timed as precompute), then rendered per view.
+//
+// One parameter namespace: a parameter name is one rows.csv column and one table field
+// across all techniques, so two techniques may share a name only for the same quantity; the
+// registry refuses a shared name whose kind differs.
 #include <functional>
 #include <map>
 #include <memory>
@@ -30,6 +36,11 @@ struct TechniqueInfo {
   std::vector<ParamSpec> params;
   bool box_proxy = false;  // can render a scene's bounding-box proxy (Proxy::Box)
 };
+
+// Throws std::logic_error naming the technique when its metadata is inconsistent: an empty or
+// non-identifier name, a duplicate parameter, min > max, a default outside its range, a
+// non-integer int/bool default, a bool range other than [0, 1].
+void check_technique_info(const TechniqueInfo& info);
 
 // What render() draws with: the scene, its GPU resources and the view.
 struct FrameInput {
@@ -106,16 +117,28 @@ void render_frame(Technique& technique, const FrameInput& frame, RenderTarget::K
 struct TechniqueEntry {
   TechniqueInfo info;
   std::function<std::unique_ptr<Technique>(const ParamValues&)> create;
+  // Cross-parameter check of a full setting (defaults filled in); throws ConfigError naming
+  // `where`. Empty: every in-range combination is valid.
+  std::function<void(const ParamValues&, const std::string& where)> validate;
+  std::string source;  // the file that registered it, for messages
 };
 
 class TechniqueRegistry {
  public:
   static TechniqueRegistry& instance();
+  // Registers a technique; throws std::logic_error when its metadata is inconsistent, its name
+  // is taken (naming both registering files) or a parameter name it shares with another
+  // technique has a different kind.
   void add(TechniqueEntry entry);
+  // Unregisters (tests that register throwaway techniques clean up after themselves).
+  void remove(const std::string& name);
   const TechniqueEntry* find(const std::string& name) const;
   std::vector<std::string> names() const;
-  // Creates `name` with its defaults overridden by `params`; throws ConfigError on unknown
-  // names or bad values (naming `where`).
+  // `name`'s defaults overridden by `params`, range-checked and validated; throws ConfigError
+  // naming `where` on unknown names, bad values or a rejected combination.
+  ParamValues resolve(const std::string& name, const ParamValues& params,
+                      const std::string& where) const;
+  // Creates `name` with resolve()'s parameters.
   std::unique_ptr<Technique> create(const std::string& name, const ParamValues& params,
                                     const std::string& where) const;
 
@@ -123,15 +146,23 @@ class TechniqueRegistry {
   std::map<std::string, TechniqueEntry> entries_;
 };
 
+// add(), and on a refusal a message on stderr and exit(3): registration runs before main().
+void register_or_exit(TechniqueEntry entry);
+
 template <typename T>
 struct TechniqueRegistrar {
-  TechniqueRegistrar() {
-    TechniqueRegistry::instance().add(
-        {T::describe(), [](const ParamValues& p) { return std::make_unique<T>(p); }});
+  explicit TechniqueRegistrar(const char* source) {
+    TechniqueEntry e;
+    e.info = T::describe();
+    e.create = [](const ParamValues& p) { return std::make_unique<T>(p); };
+    if constexpr (requires(const ParamValues& p, const std::string& w) { T::validate(p, w); })
+      e.validate = [](const ParamValues& p, const std::string& w) { T::validate(p, w); };
+    e.source = source;
+    register_or_exit(std::move(e));
   }
 };
 
 #define RL_REGISTER_TECHNIQUE(Class) \
-  static const ::rl::TechniqueRegistrar<Class> rl_technique_registrar_##Class
+  static const ::rl::TechniqueRegistrar<Class> rl_technique_registrar_##Class(__FILE__)
 
 }  // namespace rl

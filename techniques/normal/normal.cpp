@@ -7,12 +7,13 @@ class NormalMapping final : public Described<NormalMapping, ShaderTechnique> {
  public:
   using Described::Described;
   static TechniqueInfo describe() {
-    return {"normal",
-            "Normal mapping",
-            "Book chapter 5, 'Parallax mapping' and Figure 5.9 (the normal-map baseline); "
-            "Chapter 3 bump mapping",
-            {Effect::DepthCorrect},
-            {}};
+    return {.name = "normal",
+            .title = "Normal mapping",
+            .citation =
+                "Book chapter 5, 'Parallax mapping' and Figure 5.9 (the normal-map baseline); "
+                "Chapter 3 bump mapping",
+            .effects = {Effect::DepthCorrect},
+            .params = {}};
   }
 
  protected:

@@ -7,17 +7,28 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
  public:
   using Described::Described;
   static TechniqueInfo describe() {
-    return {"relief",
-            "Relief mapping (linear + binary search)",
+    return {
+        .name = "relief",
+        .title = "Relief mapping (linear + binary search)",
+        .citation =
             "Book chapter 5, 'Relief Texture mapping', Listings 5.3 and 5.4 "
             "(Policarpo, Oliveira & Comba 2005)",
-            {Effect::SelfShadow, Effect::DepthCorrect},
-            {{"linear_steps", ParamKind::Int, 10, 2, 1024,
-              "linear search steps through the depth range (Listing 5.3: 10, or 20 in its "
-              "double-precision variant)"},
-             {"binary_steps", ParamKind::Int, 5, 0, 32,
-              "binary search refinements after the linear search (Listing 5.3: 5)"}},
-            true};
+        .effects = {Effect::SelfShadow, Effect::DepthCorrect},
+        .params =
+            {{.name = "linear_steps",
+              .kind = ParamKind::Int,
+              .default_value = 10,
+              .min_value = 2,
+              .max_value = 1024,
+              .doc = "linear search steps through the depth range (Listing 5.3: 10, or 20 in its "
+                     "double-precision variant)"},
+             {.name = "binary_steps",
+              .kind = ParamKind::Int,
+              .default_value = 5,
+              .min_value = 0,
+              .max_value = 32,
+              .doc = "binary search refinements after the linear search (Listing 5.3: 5)"}},
+        .box_proxy = true};
   }
 
  protected:

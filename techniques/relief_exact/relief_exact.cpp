@@ -7,13 +7,14 @@ class ReliefExact final : public Described<ReliefExact, ShaderTechnique> {
  public:
   using Described::Described;
   static TechniqueInfo describe() {
-    return {"relief_exact",
-            "Exact texel traversal (centerline to centerline)",
-            "Baboud & Decoret 2006, Section 3.3 'Rasterization-based intersection' "
-            "(2D Amanatides & Woo 1987)",
-            {Effect::SelfShadow, Effect::DepthCorrect},
-            {},
-            true};
+    return {.name = "relief_exact",
+            .title = "Exact texel traversal (centerline to centerline)",
+            .citation =
+                "Baboud & Decoret 2006, Section 3.3 'Rasterization-based intersection' "
+                "(2D Amanatides & Woo 1987)",
+            .effects = {Effect::SelfShadow, Effect::DepthCorrect},
+            .params = {},
+            .box_proxy = true};
   }
 
  protected:

@@ -7,13 +7,14 @@ class ReliefExactBilinear final : public Described<ReliefExactBilinear, ShaderTe
  public:
   using Described::Described;
   static TechniqueInfo describe() {
-    return {"relief_exact_bilinear",
-            "Exact bilinear traversal (centerline walk, exact ray-patch solve per cell)",
-            "Beyond Baboud & Decoret 2006, Section 3.3: solves the saddle case of their "
-            "Figure 3 exactly",
-            {Effect::SelfShadow, Effect::DepthCorrect},
-            {},
-            true};
+    return {.name = "relief_exact_bilinear",
+            .title = "Exact bilinear traversal (centerline walk, exact ray-patch solve per cell)",
+            .citation =
+                "Beyond Baboud & Decoret 2006, Section 3.3: solves the saddle case of their "
+                "Figure 3 exactly",
+            .effects = {Effect::SelfShadow, Effect::DepthCorrect},
+            .params = {},
+            .box_proxy = true};
   }
 
  protected:

@@ -12,24 +12,54 @@ class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
   }
   static TechniqueInfo describe() {
     return {
-        "relief_robust",
-        "Robust binary search with safety radii",
-        "Baboud & Decoret 2006, Sections 3.4-3.5 (safety radius, robust binary search, "
-        "Figures 5-8, 12)",
-        {Effect::SelfShadow, Effect::DepthCorrect},
-        {{"binary_steps", ParamKind::Int, 8, 1, 32, "binary search steps once the ray is below"},
-         {"exact_zero_radius", ParamKind::Bool, 0, 0, 1,
-          "solve zero-radius columns exactly instead of clamping the radius to 1"},
-         {"error_allowed", ParamKind::Float, 0, 0, 1,
-          "depth a ray may dip into a feature unseen: larger radii, faster, silhouette "
-          "errors up to this depth (Figure 12)"},
-         {"directions", ParamKind::Int, 16, 4, 256, "ray azimuths sampled by the precompute"},
-         {"max_radius", ParamKind::Int, 0, 0, 255,
-          "largest radius stored, texels; 0 = follow the texture (min(255, larger side))"},
-         {"ignore_blocked", ParamKind::Bool, 1, 0, 1,
-          "Section 3.5 as written: rays blocked before the texel are ignored; 0 = conservative "
-          "radii that also hold for blocked rays"}},
-        true};
+        .name = "relief_robust",
+        .title = "Robust binary search with safety radii",
+        .citation =
+            "Baboud & Decoret 2006, Sections 3.4-3.5 (safety radius, robust binary search, "
+            "Figures 5-8, 12)",
+        .effects = {Effect::SelfShadow, Effect::DepthCorrect},
+        .params =
+            {{.name = "binary_steps",
+              .kind = ParamKind::Int,
+              .default_value = 8,
+              .min_value = 1,
+              .max_value = 32,
+              .doc = "binary search steps once the ray is below"},
+             {.name = "exact_zero_radius",
+              .kind = ParamKind::Bool,
+              .default_value = 0,
+              .min_value = 0,
+              .max_value = 1,
+              .doc = "solve zero-radius columns exactly instead of clamping the radius to 1"},
+             {.name = "error_allowed",
+              .kind = ParamKind::Float,
+              .default_value = 0,
+              .min_value = 0,
+              .max_value = 1,
+              .doc = "depth a ray may dip into a feature unseen: larger radii, faster, silhouette "
+                     "errors up to this depth (Figure 12)"},
+             {.name = "directions",
+              .kind = ParamKind::Int,
+              .default_value = 16,
+              .min_value = 4,
+              .max_value = 256,
+              .doc = "ray azimuths sampled by the precompute"},
+             {.name = "max_radius",
+              .kind = ParamKind::Int,
+              .default_value = 0,
+              .min_value = 0,
+              .max_value = 255,
+              .doc =
+                  "largest radius stored, texels; 0 = follow the texture (min(255, larger side))"},
+             {.name = "ignore_blocked",
+              .kind = ParamKind::Bool,
+              .default_value = 1,
+              .min_value = 0,
+              .max_value = 1,
+              .doc = "Section 3.5 as written: rays blocked before the texel are ignored; 0 = "
+                     "conservative "
+                     "radii that also hold for blocked rays"}},
+        .box_proxy = true};
   }
 
   void prepare(const ReliefMap& map) override {

@@ -7,19 +7,35 @@ class ReliefSilhouette final : public Described<ReliefSilhouette, ShaderTechniqu
  public:
   using Described::Described;
   static TechniqueInfo describe() {
-    return {"relief_silhouette",
+    return {
+        .name = "relief_silhouette",
+        .title =
             "Relief mapping with curvature silhouettes (bent rays through a per-vertex quadric)",
+        .citation =
             "Book chapter 5, 'Silhouette edges and Relief Texture mapping', Listings 5.5-5.7, "
             "Equations 5.1-5.3 (Oliveira & Policarpo 2005)",
-            {Effect::Silhouette, Effect::DepthCorrect},
-            {{"linear_steps", ParamKind::Int, 10, 2, 1024,
-              "linear search samples over [0, t_max] (Listing 5.6: 10)"},
-             {"binary_steps", ParamKind::Int, 6, 0, 32,
-              "binary search refinements after the linear search (Listing 5.6: 6)"},
-             {"exact_distance", ParamKind::Bool, 0, 0, 1,
-              "1: ray-quadric distance of Equation 5.2 with the discriminant test; 0: the "
-              "vertical distance of Equation 5.3 (the chapter's 'twofold speedup')"}},
-            false};
+        .effects = {Effect::Silhouette, Effect::DepthCorrect},
+        .params =
+            {{.name = "linear_steps",
+              .kind = ParamKind::Int,
+              .default_value = 10,
+              .min_value = 2,
+              .max_value = 1024,
+              .doc = "linear search samples over [0, t_max] (Listing 5.6: 10)"},
+             {.name = "binary_steps",
+              .kind = ParamKind::Int,
+              .default_value = 6,
+              .min_value = 0,
+              .max_value = 32,
+              .doc = "binary search refinements after the linear search (Listing 5.6: 6)"},
+             {.name = "exact_distance",
+              .kind = ParamKind::Bool,
+              .default_value = 0,
+              .min_value = 0,
+              .max_value = 1,
+              .doc = "1: ray-quadric distance of Equation 5.2 with the discriminant test; 0: the "
+                     "vertical distance of Equation 5.3 (the chapter's 'twofold speedup')"}},
+        .box_proxy = false};
   }
 
  protected:

@@ -1,0 +1,103 @@
+#include "sweep/config_toml.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "core/error.h"
+#include "sweep/cells.h"
+
+namespace rl {
+
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const std::string& where, const std::string& what) {
+  throw ConfigError(where + ": " + what);
+}
+
+void check_keys(const toml::table& t, const std::set<std::string>& allowed, const Src& src,
+                const std::string& section) {
+  for (auto&& [k, v] : t) {
+    if (!allowed.count(std::string(k.str()))) {
+      std::string known;
+      for (const auto& a : allowed) known += (known.empty() ? "" : ", ") + a;
+      fail(src.at(v),
+           "unknown key '" + std::string(k.str()) + "' in " + section + " (known: " + known + ")");
+    }
+  }
+}
+
+double number(const toml::node& n, const Src& src, const std::string& key) {
+  if (auto v = n.value<double>(); v && (n.is_integer() || n.is_floating_point())) return *v;
+  if (n.is_boolean()) return n.value<bool>().value() ? 1.0 : 0.0;
+  fail(src.at(n), "'" + key + "' must be a number");
+}
+
+std::string string_of(const toml::node& n, const Src& src, const std::string& key) {
+  if (auto v = n.value<std::string>()) return *v;
+  fail(src.at(n), "'" + key + "' must be a string");
+}
+
+// A scalar or an array of scalars, as a list of numbers.
+std::vector<double> number_list(const toml::node& n, const Src& src, const std::string& key) {
+  std::vector<double> out;
+  if (const toml::array* a = n.as_array()) {
+    if (a->empty()) fail(src.at(n), "'" + key + "' must not be empty");
+    for (const toml::node& e : *a) out.push_back(number(e, src, key));
+  } else {
+    out.push_back(number(n, src, key));
+  }
+  return out;
+}
+
+std::vector<std::string> string_list(const toml::node& n, const Src& src, const std::string& key) {
+  std::vector<std::string> out;
+  if (const toml::array* a = n.as_array()) {
+    for (const toml::node& e : *a) out.push_back(string_of(e, src, key));
+  } else {
+    out.push_back(string_of(n, src, key));
+  }
+  return out;
+}
+
+glm::dvec3 vec3_of(const toml::node& n, const Src& src, const std::string& key) {
+  std::vector<double> v = number_list(n, src, key);
+  if (v.size() != 3) fail(src.at(n), "'" + key + "' must be an array of 3 numbers");
+  return {v[0], v[1], v[2]};
+}
+
+std::string resolve_path(const std::string& p, const std::string& base_dir, const Src& src,
+                         const toml::node& n) {
+  fs::path path(p);
+  if (path.is_absolute()) {
+    if (!fs::exists(path)) fail(src.at(n), "file not found: " + p);
+    return path.string();
+  }
+  for (const fs::path& dir : {fs::path(base_dir), fs::path(RELIEFLAB_SOURCE_DIR)}) {
+    fs::path candidate = dir / path;
+    if (fs::exists(candidate)) return fs::weakly_canonical(candidate).string();
+  }
+  fail(src.at(n),
+       "file not found: " + p + " (looked in " + base_dir + " and " + RELIEFLAB_SOURCE_DIR + ")");
+}
+
+bool is_measured(const std::string& name) {
+  const auto& m = measured_columns();
+  return std::find(m.begin(), m.end(), name) != m.end();
+}
+
+std::string measured_list() {
+  std::string out;
+  for (const auto& m : measured_columns()) out += (out.empty() ? "" : ", ") + m;
+  return out;
+}
+
+int positive_int(const toml::node& n, const Src& src, const std::string& key, int lo, int hi) {
+  double v = number(n, src, key);
+  if (v != std::floor(v) || v < lo || v > hi)
+    fail(src.at(n), "'" + key + "' must be an integer in [" + std::to_string(lo) + ", " +
+                        std::to_string(hi) + "], got " + std::to_string(v));
+  return int(v);
+}
+
+}  // namespace rl

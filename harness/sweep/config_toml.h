@@ -1,0 +1,40 @@
+#pragma once
+// Reading TOML values for the sweep config, with messages naming file, line and key
+// ("file:line: what"). No file is opened here: paths are resolved, not read.
+#include <set>
+#include <string>
+#include <vector>
+
+#include <toml++/toml.h>
+#include <glm/glm.hpp>
+
+namespace rl {
+
+// Context for messages: "file:line: what".
+struct Src {
+  std::string file;
+  std::string at(const toml::node& n) const {
+    return file + ":" + std::to_string(n.source().begin.line);
+  }
+};
+
+[[noreturn]] void fail(const std::string& where, const std::string& what);
+// Fails on a key of `t` not in `allowed`, listing the known ones.
+void check_keys(const toml::table& t, const std::set<std::string>& allowed, const Src& src,
+                const std::string& section);
+double number(const toml::node& n, const Src& src, const std::string& key);  // bools as 0/1
+std::string string_of(const toml::node& n, const Src& src, const std::string& key);
+// A scalar or an array of scalars, as a list.
+std::vector<double> number_list(const toml::node& n, const Src& src, const std::string& key);
+std::vector<std::string> string_list(const toml::node& n, const Src& src, const std::string& key);
+glm::dvec3 vec3_of(const toml::node& n, const Src& src, const std::string& key);
+int positive_int(const toml::node& n, const Src& src, const std::string& key, int lo, int hi);
+// A file path from the config: absolute, or relative to `base_dir`, then to the repository
+// root; fails when it does not exist.
+std::string resolve_path(const std::string& p, const std::string& base_dir, const Src& src,
+                         const toml::node& n);
+// Is `name` a measured column of rows.csv (tables' values, plots' axes)? And all of them.
+bool is_measured(const std::string& name);
+std::string measured_list();
+
+}  // namespace rl

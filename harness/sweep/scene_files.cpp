@@ -1,0 +1,75 @@
+#include "sweep/scene_files.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include <OpenImageIO/imageio.h>
+
+#include "core/error.h"
+#include "core/hash.h"
+#include "relief/mesh_bake.h"
+
+namespace rl {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A file's content hash, hex.
+std::string content_hash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return hex64(fnv1a64(bytes));
+}
+
+std::string file_name(const std::string& path) {
+  return fs::path(path).filename().string();
+}
+
+// "file.obj:0123abcd...": a file's name and content hash, as canonical descriptions hold it.
+std::string file_id(const std::string& path) {
+  return file_name(path) + ":" + content_hash(path);
+}
+
+}  // namespace
+
+void read_scene_files(ParsedScene& parsed) {
+  SceneDesc& s = parsed.scene;
+  ReliefSourceDesc& r = s.relief;
+  nlohmann::json& canon = parsed.canon;
+  auto mesh_at = [&](const std::string& site, const std::string& path) {
+    try {
+      return load_mesh(path);
+    } catch (const ConfigError& e) {
+      throw ConfigError(site + ": scene '" + s.name + "': " + e.what());
+    }
+  };
+  if (!r.normal_path.empty() || !r.depth_path.empty()) {
+    const std::string& sized = r.depth_path.empty() ? r.normal_path : r.depth_path;
+    auto in = OIIO::ImageInput::open(sized);
+    if (!in)
+      throw ConfigError(parsed.sites.relief + ": cannot read image " + sized + ": " +
+                        OIIO::geterror());
+    r.native = {in->spec().width, in->spec().height};
+    for (const std::string* p : {&r.normal_path, &r.depth_path, &r.color_path})
+      if (!p->empty()) canon["relief"]["files"].push_back({file_name(*p), content_hash(*p)});
+  }
+  if (!r.mesh_path.empty()) {
+    canon["relief"]["mesh"] = file_id(r.mesh_path);
+    // A baked mesh keeps its proportions: the relief depth follows from the footprint.
+    const BakeFrame frame = bake_frame(mesh_at(parsed.sites.relief, r.mesh_path), r.mesh_up);
+    s.depth = s.size * frame.height / frame.side;
+    canon["depth"] = s.depth;
+  }
+  if (s.base.kind == "file") {
+    if (mesh_at(parsed.sites.base, s.base.path).uvs.empty())
+      throw ConfigError(parsed.sites.base + ": base mesh " + s.base.path +
+                        " has no texture coordinates; a relief needs a uv mapping");
+    canon["base_file"] = file_id(s.base.path);
+  }
+  for (size_t i = 0; i < s.objects.size(); ++i) {
+    const std::string& shape = s.objects[i].shape;
+    if (shape != "sphere" && shape != "cube") canon["objects"][i][0] = file_id(shape);
+  }
+}
+
+}  // namespace rl

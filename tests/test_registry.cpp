@@ -1,0 +1,224 @@
+// The plugin interface: registration refuses what would silently break a sweep (a taken name,
+// inconsistent metadata, a parameter name meaning two things), and a plugin's cross-parameter
+// check runs for every setting of a config before anything is written. Paired settings
+// (`sets`) combine with the parameter lists as documented.
+#include <filesystem>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "support/test_support.h"
+#include "sweep/cells.h"
+#include "sweep/config.h"
+#include "sweep/config_technique.h"
+#include "technique/technique.h"
+
+namespace rl {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A throwaway plugin with a cross-parameter rule, as a POM-like technique would have.
+class PairedSamples final : public Technique {
+ public:
+  using Technique::Technique;
+  static TechniqueInfo describe() {
+    return {.name = "test_paired_samples",
+            .title = "Test plugin: paired sample counts",
+            .citation = "tests/test_registry.cpp",
+            .params = {{.name = "min_samples",
+                        .kind = ParamKind::Int,
+                        .default_value = 8,
+                        .min_value = 1,
+                        .max_value = 256,
+                        .doc = "fewest samples"},
+                       {.name = "max_samples",
+                        .kind = ParamKind::Int,
+                        .default_value = 32,
+                        .min_value = 1,
+                        .max_value = 256,
+                        .doc = "most samples"}}};
+  }
+  static void validate(const ParamValues& p, const std::string& where) {
+    if (p.at("min_samples") > p.at("max_samples"))
+      throw ConfigError(where + ": min_samples must not exceed max_samples");
+  }
+  const TechniqueInfo& info() const override {
+    static const TechniqueInfo i = describe();
+    return i;
+  }
+  void render(const FrameInput&, RenderTarget::Kind) override {}
+  std::vector<ProbeHit> probe(const ReliefMap&, const GpuRelief&, const std::vector<ProbeRay>& r,
+                              glm::dvec2) override {
+    return std::vector<ProbeHit>(r.size());
+  }
+};
+
+// Registers T for the scope of a test, as RL_REGISTER_TECHNIQUE would.
+template <typename T>
+struct ScopedPlugin {
+  ScopedPlugin() {
+    TechniqueRegistrar<T> registrar(__FILE__);
+    (void)registrar;
+  }
+  ~ScopedPlugin() { TechniqueRegistry::instance().remove(T::describe().name); }
+};
+
+TechniqueEntry entry_with(TechniqueInfo info) {
+  TechniqueEntry e;
+  e.info = std::move(info);
+  e.create = [](const ParamValues& p) { return std::make_unique<PairedSamples>(p); };
+  e.source = "tests/test_registry.cpp";
+  return e;
+}
+
+std::string refusal(TechniqueEntry e) {
+  try {
+    TechniqueRegistry::instance().add(std::move(e));
+  } catch (const std::logic_error& err) {
+    return err.what();
+  }
+  return "";
+}
+
+TEST(Registry, RefusesADuplicateNameNamingBothPlugins) {
+  const size_t before = TechniqueRegistry::instance().names().size();
+  TechniqueInfo copy = TechniqueRegistry::instance().find("relief")->info;
+  const std::string message = refusal(entry_with(copy));
+  EXPECT_NE(message.find("'relief' is registered twice"), std::string::npos) << message;
+  EXPECT_NE(message.find("techniques/relief/relief.cpp"), std::string::npos) << message;
+  EXPECT_NE(message.find("tests/test_registry.cpp"), std::string::npos) << message;
+  EXPECT_EQ(TechniqueRegistry::instance().names().size(), before);
+  // The original entry is intact.
+  EXPECT_EQ(TechniqueRegistry::instance().find("relief")->info.title, copy.title);
+}
+
+TEST(Registry, RefusesInconsistentMetadata) {
+  auto with_param = [](ParamSpec p) {
+    TechniqueInfo info = PairedSamples::describe();
+    info.name = "test_bad_metadata";
+    info.params = {p};
+    return entry_with(info);
+  };
+  const ParamSpec good = PairedSamples::describe().params[0];
+  ParamSpec swapped = good;
+  swapped.min_value = 256;
+  swapped.max_value = 1;
+  EXPECT_NE(refusal(with_param(swapped)).find("min 256"), std::string::npos);
+  ParamSpec outside = good;
+  outside.default_value = 0;
+  EXPECT_NE(refusal(with_param(outside)).find("default 0"), std::string::npos);
+  ParamSpec fractional = good;
+  fractional.default_value = 2.5;
+  EXPECT_NE(refusal(with_param(fractional)).find("whole number"), std::string::npos);
+  ParamSpec wide_bool = good;
+  wide_bool.kind = ParamKind::Bool;
+  wide_bool.default_value = 1;
+  EXPECT_NE(refusal(with_param(wide_bool)).find("bool ranges over [0, 1]"), std::string::npos);
+  ParamSpec undocumented = good;
+  undocumented.doc.clear();
+  EXPECT_NE(refusal(with_param(undocumented)).find("doc"), std::string::npos);
+  TechniqueInfo twice = PairedSamples::describe();
+  twice.name = "test_bad_metadata";
+  twice.params.push_back(twice.params[0]);
+  EXPECT_NE(refusal(entry_with(twice)).find("declared twice"), std::string::npos);
+  TechniqueInfo bad_name = PairedSamples::describe();
+  bad_name.name = "Test Plugin";
+  EXPECT_NE(refusal(entry_with(bad_name)).find("lower-case"), std::string::npos);
+  EXPECT_EQ(TechniqueRegistry::instance().find("test_bad_metadata"), nullptr);
+}
+
+TEST(Registry, ASharedParameterNameMeansOneQuantity) {
+  // linear_steps is an int of relief's; a float of the same name would share its column.
+  TechniqueInfo info = PairedSamples::describe();
+  info.name = "test_shared_name";
+  info.params[0].name = "linear_steps";
+  info.params[0].kind = ParamKind::Float;
+  const std::string message = refusal(entry_with(info));
+  EXPECT_NE(message.find("'linear_steps'"), std::string::npos) << message;
+  EXPECT_NE(message.find("one name, one quantity"), std::string::npos) << message;
+  // The same kind is fine (relief and relief_silhouette share linear_steps).
+  info.params[0].kind = ParamKind::Int;
+  info.params[0].min_value = 1;
+  EXPECT_EQ(refusal(entry_with(info)), "");
+  TechniqueRegistry::instance().remove("test_shared_name");
+}
+
+const char* kPairedConfig = R"(
+[sweep]
+name = "paired"
+elevations = [45]
+viewports = [8]
+frames = 1
+warmup = 0
+[[scene]]
+name = "flat"
+relief = { procedural = "flat", resolution = 8 }
+[[technique]]
+name = "test_paired_samples"
+)";
+
+TEST(Registry, ACrossParameterViolationIsAConfigErrorBeforeAnythingIsWritten) {
+  ScopedPlugin<PairedSamples> plugin;
+  const std::string dir = test::scratch_dir("violation");
+  fs::create_directories(dir);
+  // One bad setting among good ones in the product: 16 > 8.
+  const std::string text = std::string(kPairedConfig) + "min_samples = [4, 16]\nmax_samples = 8\n";
+  try {
+    test::run_sweep_in(text, dir);
+    FAIL() << "the violation was not caught";
+  } catch (const ConfigError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("sweep.toml:11"), std::string::npos) << m;  // the [[technique]] line
+    EXPECT_NE(m.find("min_samples = 16, max_samples = 8"), std::string::npos) << m;
+    EXPECT_NE(m.find("must not exceed"), std::string::npos) << m;
+  }
+  EXPECT_FALSE(fs::exists(dir + "/out")) << "a rejected config wrote its output folder";
+  // The registry's create() applies the same check.
+  EXPECT_THROW(TechniqueRegistry::instance().create(
+                   "test_paired_samples", {{"min_samples", 64}, {"max_samples", 8}}, "test"),
+               ConfigError);
+}
+
+TEST(Registry, SetsPairValuesAndCombineWithTheLists) {
+  ScopedPlugin<PairedSamples> plugin;
+  const std::string text = std::string(kPairedConfig) +
+                           "sets = [{ min_samples = 8, max_samples = 16 }, { min_samples = 32, "
+                           "max_samples = 64 }, { max_samples = 4 }]\n";
+  // The third set leaves min_samples at its default (8) > 4: rejected.
+  EXPECT_THROW(parse_sweep_config(text, "paired.toml", "."), ConfigError);
+  const std::string good = std::string(kPairedConfig) +
+                           "sets = [{ min_samples = 8, max_samples = 16 }, { min_samples = 32, "
+                           "max_samples = 64 }]\n";
+  const SweepConfig config = parse_sweep_config(good, "paired.toml", ".");
+  const std::vector<ParamValues> settings = parameter_settings(config.techniques[0]);
+  ASSERT_EQ(settings.size(), 2u);  // paired, not 2 x 2
+  EXPECT_EQ(settings[0], (ParamValues{{"min_samples", 8}, {"max_samples", 16}}));
+  EXPECT_EQ(settings[1], (ParamValues{{"min_samples", 32}, {"max_samples", 64}}));
+  EXPECT_EQ(expand_cells(config).size(), 2u);
+  // A parameter is listed or in sets, not both.
+  EXPECT_THROW(parse_sweep_config(good + "min_samples = [1, 2]\n", "paired.toml", "."),
+               ConfigError);
+  // Lists still combine as a product: relief's 2 x 3 settings.
+  const SweepConfig product = parse_sweep_config(
+      R"(
+[sweep]
+name = "product"
+elevations = [45]
+[[scene]]
+name = "flat"
+relief = { procedural = "flat", resolution = 8 }
+[[technique]]
+name = "relief"
+linear_steps = [8, 16]
+binary_steps = [0, 4, 8]
+)",
+      "product.toml", ".");
+  const std::vector<ParamValues> grid = parameter_settings(product.techniques[0]);
+  ASSERT_EQ(grid.size(), 6u);
+  EXPECT_EQ(grid[1], (ParamValues{{"linear_steps", 8}, {"binary_steps", 4}}));
+}
+
+}  // namespace
+}  // namespace rl
