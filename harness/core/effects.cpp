@@ -7,8 +7,7 @@ namespace rl {
 
 const std::vector<Effect>& all_effects() {
   static const std::vector<Effect> effects = {Effect::SelfShadow, Effect::Silhouette,
-                                              Effect::DepthCorrect, Effect::AmbientOcclusion,
-                                              Effect::TwoSided};
+                                              Effect::DepthCorrect};
   return effects;
 }
 
@@ -27,10 +26,6 @@ std::string effect_name(Effect e) {
       return "silhouette";
     case Effect::DepthCorrect:
       return "depth_correct";
-    case Effect::AmbientOcclusion:
-      return "ambient_occlusion";
-    case Effect::TwoSided:
-      return "two_sided";
   }
   return "unknown";
 }

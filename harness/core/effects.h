@@ -9,11 +9,11 @@
 namespace rl {
 
 enum class Effect : uint32_t {
-  SelfShadow = 1u << 0,        // shadow ray through the relief (chapter 5, Listing 5.3)
-  Silhouette = 1u << 1,        // discard rays leaving the relief volume (curved bases)
-  DepthCorrect = 1u << 2,      // write the depth of the found hit
-  AmbientOcclusion = 1u << 3,  // texture-space AO (Limberger et al.)
-  TwoSided = 1u << 4,          // relief impostors seen from both sides (Policarpo 2006)
+  SelfShadow = 1u << 0,    // shadow ray through the relief (chapter 5, Listing 5.3)
+  Silhouette = 1u << 1,    // discard rays leaving the relief volume (curved bases)
+  DepthCorrect = 1u << 2,  // write the depth of the found hit
+  // Only effects something implements are declared, so `relieflab list` never advertises one
+  // nothing does (texture-space AO and two-sided impostors arrive with their issues).
 };
 
 class EffectSet {

@@ -17,6 +17,15 @@ RTCRayHit embree_ray(const glm::dvec3& o, const glm::dvec3& d, double t0, double
   return rh;
 }
 
+bool embree_occluded(RTCScene scene, const glm::dvec3& o, const glm::dvec3& d, double t0,
+                     double t1) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray = embree_ray(o, d, t0, t1).ray;
+  rtcOccluded1(scene, &context, &ray);
+  return ray.tfar < 0;  // Embree sets tfar = -inf on occlusion
+}
+
 RTCScene embree_triangle_scene(RTCDevice device, const TriangleMesh& mesh,
                                const std::function<glm::dvec3(const glm::dvec3&)>& to_space) {
   RTCScene scene = rtcNewScene(device);

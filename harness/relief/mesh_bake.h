@@ -7,22 +7,11 @@
 
 #include <glm/glm.hpp>
 
+#include "core/triangle_mesh.h"
 #include "relief/relief_map.h"
-#include "scene/scene.h"
+#include "relief/reverse_projection.h"
 
 namespace rl {
-
-struct TriangleMesh {
-  std::string name;
-  std::vector<glm::vec3> positions;
-  std::vector<glm::vec2> uvs;  // per position when every part of the file has them, else empty
-  std::vector<glm::uvec3> triangles;
-  glm::dvec3 lo{0}, hi{0};  // bounding box
-};
-
-// Loads OBJ, PLY and other formats Assimp reads, triangulated, as one mesh. Throws
-// ConfigError naming the file if it cannot be read or holds no triangles.
-TriangleMesh load_mesh(const std::string& path);
 
 // The bake's box: the mesh's footprint, squared and padded by `margin` (a fraction of its
 // side) so the border texels are floor, seen from `up` (0, 1, 2 = x, y, z).

@@ -307,11 +307,7 @@ DisplacedHit DisplacedTruth::intersect(const glm::dvec3& origin, const glm::dvec
 bool DisplacedTruth::occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,
                               double t_max) const {
   ++shadow_rays_;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  RTCRay ray = embree_ray(origin, direction, t_min, t_max).ray;
-  rtcOccluded1(scene_, &context, &ray);
-  return ray.tfar < 0;
+  return embree_occluded(scene_, origin, direction, t_min, t_max);
 }
 
 }  // namespace rl

@@ -133,12 +133,8 @@ TruthHit HeightfieldTruth::intersect(const glm::dvec3& origin, const glm::dvec3&
 bool HeightfieldTruth::occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,
                                 double t_max) const {
   ++shadow_rays_;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
   return walk(origin, direction, t_min, t_max, [&](const glm::dvec3& local, double t0, double t1) {
-    RTCRay ray = embree_ray(local, direction, t0, t1).ray;
-    rtcOccluded1(scene_, &context, &ray);
-    return ray.tfar < 0;  // Embree sets tfar = -inf on occlusion
+    return embree_occluded(scene_, local, direction, t0, t1);
   });
 }
 

@@ -52,11 +52,7 @@ TruthHit MeshTruth::intersect(const glm::dvec3& origin, const glm::dvec3& direct
 bool MeshTruth::occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,
                          double t_max) const {
   ++shadow_rays_;
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  RTCRayHit rh = embree_ray(origin, direction, t_min, t_max);
-  rtcOccluded1(scene_, &ctx, &rh.ray);
-  return rh.ray.tfar < 0;
+  return embree_occluded(scene_, origin, direction, t_min, t_max);
 }
 
 }  // namespace rl

@@ -1,0 +1,24 @@
+#pragma once
+// A triangle mesh as loaded from a file: the lowest layer's geometry, shared by the mesh bake
+// (relief/), base meshes (scene/), the truths and Embree helpers (core/).
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace rl {
+
+struct TriangleMesh {
+  std::string name;
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec2> uvs;  // per position when every part of the file has them, else empty
+  std::vector<glm::uvec3> triangles;
+  glm::dvec3 lo{0}, hi{0};  // bounding box
+};
+
+// Loads OBJ, PLY and other formats Assimp reads, triangulated, as one mesh. Throws
+// ConfigError naming the file if it cannot be read, holds no triangles, or is non-finite,
+// out of range (beyond 1e15), malformed or degenerate.
+TriangleMesh load_mesh(const std::string& path);
+
+}  // namespace rl

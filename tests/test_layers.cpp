@@ -1,0 +1,54 @@
+// The harness's folders form layers, each including only those below it: core; gl, relief and
+// metrics on core; scene on relief; truth and technique on scene; sweep on all of those; the
+// CLI on top. A cycle (relief <-> scene once did) fails here, naming the file and include.
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(Layers, HarnessFoldersIncludeOnlyTheLayersBelowThem) {
+  const std::map<std::string, std::set<std::string>> allowed = {
+      {"core", {"core"}},
+      {"gl", {"core", "gl"}},
+      {"relief", {"core", "relief"}},
+      {"metrics", {"core", "metrics"}},
+      {"scene", {"core", "relief", "scene"}},
+      {"truth", {"core", "relief", "scene", "truth"}},
+      {"technique", {"core", "gl", "relief", "scene", "technique"}},
+      {"sweep", {"core", "gl", "relief", "scene", "metrics", "truth", "technique", "sweep"}},
+      {"cli", {"core", "gl", "relief", "scene", "metrics", "truth", "technique", "sweep"}},
+  };
+  const fs::path harness = fs::path(RELIEFLAB_SOURCE_DIR) / "harness";
+  const std::regex include(R"re(^\s*#\s*include\s+"([a-z_]+)/)re");
+  int files = 0, includes = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(harness)) {
+    const std::string ext = entry.path().extension().string();
+    if (ext != ".h" && ext != ".cpp") continue;
+    const std::string folder = fs::relative(entry.path(), harness).begin()->string();
+    ASSERT_TRUE(allowed.count(folder)) << "harness/" << folder << " has no layer: add it here";
+    ++files;
+    std::ifstream in(entry.path());
+    int line_no = 0;
+    for (std::string line; std::getline(in, line);) {
+      ++line_no;
+      std::smatch m;
+      if (!std::regex_search(line, m, include)) continue;
+      ++includes;
+      EXPECT_TRUE(allowed.at(folder).count(m[1].str()))
+          << fs::relative(entry.path(), harness).string() << ":" << line_no << " includes "
+          << m[1].str() << "/ from the " << folder << " layer";
+    }
+  }
+  EXPECT_GT(files, 50);
+  EXPECT_GT(includes, 100);
+}
+
+}  // namespace
