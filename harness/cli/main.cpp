@@ -1,9 +1,13 @@
 // relieflab: run config-driven sweeps of relief-mapping techniques against Embree truth.
 //   relieflab run [CONFIG] [--out DIR]   run a sweep (the built-in default without CONFIG)
-//   relieflab list                       techniques with citation, effects and parameters
+//   relieflab list [--markdown]          techniques with citation, effects and parameters
+//   relieflab docs --update [--root DIR] rewrite the generated tables in README.md and
+//                                        techniques/*/README.md (technique/technique_docs.h)
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -13,6 +17,7 @@
 #include "sweep/config.h"
 #include "sweep/runner.h"
 #include "technique/technique.h"
+#include "technique/technique_docs.h"
 
 namespace {
 
@@ -42,6 +47,35 @@ void print_list() {
   }
 }
 
+void print_markdown() {
+  for (const auto& [key, text] : rl::generated_blocks())
+    std::printf("<!-- %s -->\n%s\n", key.c_str(), text.c_str());
+}
+
+// Rewrites the generated blocks of README.md and every techniques/*/README.md under `root`;
+// returns how many files changed.
+int update_docs(const std::string& root) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> files = {fs::path(root) / "README.md"};
+  for (const auto& e : fs::directory_iterator(fs::path(root) / "techniques"))
+    if (fs::exists(e.path() / "README.md")) files.push_back(e.path() / "README.md");
+  const auto blocks = rl::generated_blocks();
+  int changed = 0;
+  for (const fs::path& f : files) {
+    std::ifstream in(f);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    const std::string text = ss.str(), updated = rl::update_generated_blocks(text, blocks);
+    if (updated == text) continue;
+    const fs::path tmp = f.string() + ".tmp";
+    std::ofstream(tmp) << updated;
+    fs::rename(tmp, f);
+    std::printf("updated %s\n", f.string().c_str());
+    ++changed;
+  }
+  return changed;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -60,14 +94,27 @@ int main(int argc, char** argv) {
                   "Output folder (default: out/<sweep name>); re-running into it resumes");
   run->add_flag("-q,--quiet", quiet, "No per-cell progress lines");
 
-  app.add_subcommand("list",
-                     "List techniques (citation, effects, parameters) and procedural reliefs");
+  bool markdown = false;
+  CLI::App* list = app.add_subcommand(
+      "list", "List techniques (citation, effects, parameters) and procedural reliefs");
+  list->add_flag("--markdown", markdown,
+                 "The generated Markdown tables (README technique table, parameter tables)");
+  std::string docs_root = ".";
+  bool docs_update = false;
+  CLI::App* docs = app.add_subcommand(
+      "docs", "Rewrite the generated tables in README.md and techniques/*/README.md");
+  docs->add_flag("--update", docs_update, "Rewrite the files (required)")->required();
+  docs->add_option("--root", docs_root, "Repository root (default: the current folder)");
 
   CLI11_PARSE(app, argc, argv);
 
   try {
     if (app.got_subcommand("list")) {
-      print_list();
+      markdown ? print_markdown() : print_list();
+      return 0;
+    }
+    if (app.got_subcommand("docs")) {
+      std::printf("%d file(s) updated\n", update_docs(docs_root));
       return 0;
     }
     rl::SweepConfig config =

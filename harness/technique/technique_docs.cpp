@@ -1,0 +1,96 @@
+#include "technique/technique_docs.h"
+
+#include <stdexcept>
+
+namespace rl {
+namespace {
+
+const std::string kOpen = "<!-- generated: ";
+const std::string kOpenTail = " (relieflab docs --update) -->";
+const std::string kClose = "<!-- end generated -->";
+
+// Table cells hold no raw '|'.
+std::string cell(const std::string& s) {
+  std::string out;
+  for (char c : s) out += c == '|' ? std::string("\\|") : std::string(1, c);
+  return out;
+}
+
+std::string effects_cell(const EffectSet& effects) {
+  std::string out;
+  for (Effect e : effects.list()) out += (out.empty() ? "" : ", ") + ("`" + effect_name(e) + "`");
+  return out.empty() ? "none" : out;
+}
+
+}  // namespace
+
+std::string techniques_markdown() {
+  std::string out =
+      "| technique | what | source | effects | proxies |\n| --- | --- | --- | --- | --- |\n";
+  const auto& registry = TechniqueRegistry::instance();
+  for (const std::string& name : registry.names()) {
+    const TechniqueInfo& info = registry.find(name)->info;
+    out += "| [`" + name + "`](techniques/" + name + "/README.md) | " + cell(info.title) + " | " +
+           cell(info.citation) + " | " + effects_cell(info.effects) + " | base" +
+           (info.box_proxy ? ", box" : "") + " |\n";
+  }
+  return out;
+}
+
+std::string interface_markdown(const TechniqueInfo& info) {
+  std::string out = "Effects it can simulate: " + effects_cell(info.effects) + ". Draws: the base" +
+                    (info.box_proxy ? " or the relief's box proxy" : "") + ".\n\n";
+  if (info.params.empty()) return out + "Parameters: none.\n";
+  out += "| parameter | kind | default | range | meaning |\n| --- | --- | ---: | --- | --- |\n";
+  for (const ParamSpec& p : info.params) {
+    const std::string range =
+        p.kind == ParamKind::Bool
+            ? "true / false"
+            : "[" + format_param(p, p.min_value) + ", " + format_param(p, p.max_value) + "]";
+    out += "| `" + p.name + "` | " + param_kind_name(p.kind) + " | " +
+           format_param(p, p.default_value) + " | " + range + " | " + cell(p.doc) + " |\n";
+  }
+  return out;
+}
+
+std::map<std::string, std::string> generated_blocks() {
+  std::map<std::string, std::string> blocks = {{"techniques", techniques_markdown()}};
+  const auto& registry = TechniqueRegistry::instance();
+  for (const std::string& name : registry.names())
+    blocks["interface of " + name] = interface_markdown(registry.find(name)->info);
+  return blocks;
+}
+
+std::vector<std::string> generated_block_keys(const std::string& text) {
+  std::vector<std::string> keys;
+  for (size_t at = text.find(kOpen); at != std::string::npos; at = text.find(kOpen, at + 1)) {
+    const size_t key_end = text.find(kOpenTail, at);
+    if (key_end == std::string::npos) break;
+    keys.push_back(text.substr(at + kOpen.size(), key_end - at - kOpen.size()));
+  }
+  return keys;
+}
+
+std::string update_generated_blocks(const std::string& text,
+                                    const std::map<std::string, std::string>& blocks) {
+  std::string out;
+  size_t pos = 0;
+  while (true) {
+    const size_t open = text.find(kOpen, pos);
+    if (open == std::string::npos) break;
+    const size_t key_end = text.find(kOpenTail, open);
+    if (key_end == std::string::npos) break;
+    const std::string key = text.substr(open + kOpen.size(), key_end - open - kOpen.size());
+    const size_t body = key_end + kOpenTail.size() + 1;  // after the marker's newline
+    const size_t close = text.find(kClose, body);
+    if (close == std::string::npos)
+      throw std::runtime_error("generated block '" + key + "' has no " + kClose);
+    out += text.substr(pos, body - pos);
+    auto it = blocks.find(key);
+    out += it != blocks.end() ? it->second : text.substr(body, close - body);
+    pos = close;
+  }
+  return out + text.substr(pos);
+}
+
+}  // namespace rl

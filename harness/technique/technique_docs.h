@@ -1,0 +1,32 @@
+#pragma once
+// Documentation generated from the registry, so the README's technique table and each
+// technique README's parameter table cannot drift from describe(). A Markdown file carries a
+// generated block between
+//   <!-- generated: KEY (relieflab docs --update) -->   and   <!-- end generated -->
+// with KEY "techniques" (README.md) or "interface of NAME" (techniques/NAME/README.md).
+// `relieflab list --markdown` prints the blocks; `relieflab docs --update` rewrites them in
+// place; tests/test_docs.cpp fails when a committed block differs.
+#include <map>
+#include <string>
+
+#include "technique/technique.h"
+
+namespace rl {
+
+// | technique | what | source | effects | proxies |, one row per registered technique.
+std::string techniques_markdown();
+// Its effects and proxies, then | parameter | kind | default | range | meaning | (or "none").
+std::string interface_markdown(const TechniqueInfo& info);
+
+// Every generated block's key and content for the registry's techniques.
+std::map<std::string, std::string> generated_blocks();
+
+// `text` with the content of each generated block whose key is in `blocks` replaced; blocks
+// of unknown keys are left as they are. Throws std::runtime_error on an unterminated block.
+std::string update_generated_blocks(const std::string& text,
+                                    const std::map<std::string, std::string>& blocks);
+
+// The keys of the generated blocks `text` holds, in order.
+std::vector<std::string> generated_block_keys(const std::string& text);
+
+}  // namespace rl

@@ -1,0 +1,82 @@
+// Documentation that cannot drift: the README's technique table and every technique README's
+// interface table are generated from the registry (technique/technique_docs.h). These tests
+// fail when a committed block differs from what describe() says now; the fix is
+// `relieflab docs --update`. They iterate the registry, so a new plugin without a README (or
+// with a stale one) fails the day it lands.
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+#include "technique/technique.h"
+#include "technique/technique_docs.h"
+
+namespace rl {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kRepo = fs::path(RELIEFLAB_TEST_DIR).parent_path();
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The file with its block `key` regenerated equals the file: the block is current.
+void expect_block_current(const fs::path& file, const std::string& key) {
+  ASSERT_TRUE(fs::exists(file)) << file << " is missing";
+  const std::string text = read_text(file);
+  const auto keys = generated_block_keys(text);
+  ASSERT_EQ(std::count(keys.begin(), keys.end(), key), 1)
+      << file << " must hold one generated block '" << key << "'";
+  const auto blocks = generated_blocks();
+  EXPECT_EQ(update_generated_blocks(text, {{key, blocks.at(key)}}), text)
+      << file << ": block '" << key << "' is stale; run `relieflab docs --update`";
+}
+
+TEST(Docs, ReadmeTechniqueTableMatchesTheRegistry) {
+  expect_block_current(kRepo / "README.md", "techniques");
+}
+
+TEST(Docs, EveryTechniqueHasAReadmeWithItsCurrentInterface) {
+  const auto names = TechniqueRegistry::instance().names();
+  ASSERT_FALSE(names.empty());
+  for (const std::string& name : names) {
+    SCOPED_TRACE(name);
+    expect_block_current(kRepo / "techniques" / name / "README.md", "interface of " + name);
+  }
+}
+
+TEST(Docs, TechniqueTableListsEveryTechniqueAndItsParameters) {
+  const std::string table = techniques_markdown();
+  for (const std::string& name : TechniqueRegistry::instance().names()) {
+    EXPECT_NE(table.find("[`" + name + "`]"), std::string::npos) << name;
+    const TechniqueInfo& info = TechniqueRegistry::instance().find(name)->info;
+    const std::string iface = interface_markdown(info);
+    for (const ParamSpec& p : info.params)
+      EXPECT_NE(iface.find("| `" + p.name + "` |"), std::string::npos) << name << "." << p.name;
+  }
+}
+
+TEST(Docs, UpdateReplacesOnlyKnownBlocksAndKeepsTheRest) {
+  const std::string open = "<!-- generated: a (relieflab docs --update) -->\n";
+  const std::string open_b = "<!-- generated: b (relieflab docs --update) -->\n";
+  const std::string close = "<!-- end generated -->";
+  const std::string text =
+      "intro\n" + open + "old a\n" + close + "\nmiddle\n" + open_b + "old b\n" + close + "\nend\n";
+  EXPECT_EQ(
+      update_generated_blocks(text, {{"a", "new a\n"}}),
+      "intro\n" + open + "new a\n" + close + "\nmiddle\n" + open_b + "old b\n" + close + "\nend\n");
+  EXPECT_EQ(generated_block_keys(text), (std::vector<std::string>{"a", "b"}));
+  EXPECT_THROW(update_generated_blocks("x\n" + open + "never closed\n", {{"a", "y"}}),
+               std::runtime_error);
+}
+
+}  // namespace
+}  // namespace rl
