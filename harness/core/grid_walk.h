@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include <glm/glm.hpp>
+
 namespace rl {
 
 // Calls visit(i, j, t_enter, t_exit) for each cell (i, j) = [i, i+1) x [j, j+1) that the
@@ -43,6 +45,22 @@ bool walk_grid_2d(double x0, double y0, double dx, double dy, double t_min, doub
     }
   }
   return false;
+}
+
+// Texture-space truths repeat one tile: calls query(local_origin, t0, t1) for each tile cell
+// (I, J) = [offset + I, offset + I + 1) x ... the ray (u, v, depth) crosses, with the origin
+// moved into the tile at I = J = 0, until query returns true. The intervals overlap slightly,
+// so a hit exactly on a tile edge is found from either side.
+template <typename Query>
+bool walk_tiles(const glm::dvec3& origin, const glm::dvec3& direction, double t_min, double t_max,
+                const glm::dvec2& offset, Query&& query) {
+  return walk_grid_2d(origin.x - offset.x, origin.y - offset.y, direction.x, direction.y, t_min,
+                      t_max, [&](long I, long J, double t_enter, double t_exit) {
+                        const double eps = 1e-7 * (1.0 + t_exit);
+                        const glm::dvec3 local = origin - glm::dvec3(double(I), double(J), 0.0);
+                        return query(local, std::max(t_min, t_enter - eps),
+                                     std::min(t_max, t_exit + eps));
+                      });
 }
 
 }  // namespace rl

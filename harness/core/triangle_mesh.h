@@ -13,7 +13,8 @@ struct TriangleMesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec2> uvs;  // per position when every part of the file has them, else empty
   std::vector<glm::uvec3> triangles;
-  glm::dvec3 lo{0}, hi{0};  // bounding box
+  std::vector<glm::vec3> triangle_colors;  // per triangle albedo, or empty (neutral)
+  glm::dvec3 lo{0}, hi{0};                 // bounding box
 };
 
 // Loads OBJ, PLY and other formats Assimp reads, triangulated, as one mesh. Throws

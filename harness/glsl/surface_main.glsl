@@ -90,6 +90,10 @@ void main() {
   if (on_floor) discard;
 #endif
   if (!h.hit && !on_floor) discard;  // a walk stopped by its cell cap
+#elif defined(RL_EMPTY_FLOOR)
+  // The base drawn over an empty floor (a non-height-field pattern): a ray that finds no
+  // surface, or only the floor, went through the pattern's gaps.
+  if (!h.hit || h.depth >= 1.0 - 1e-4) discard;
 #endif
 
   // The point the technique claims: its hit uv at its hit depth, in the base's frame.
@@ -110,9 +114,15 @@ void main() {
   vec4 hit_clip = rl_view_projection * vec4(hit_world, 1.0);
   gl_FragDepth = clamp(0.5 * hit_clip.z / hit_clip.w + 0.5, 0.0, 1.0);
 #endif
+#ifdef RL_HIT_ATTRIBUTES
+  // The technique's own normal and colour of the hit (e.g. a multilayer map's layer).
+  vec3 tn, albedo;
+  rl_hit_attributes(h, tn, albedo);
+#else
   vec3 tn = rl_decode_normal(RL_FETCH(rl_relief, h.uv));
-  vec3 n = normalize(tn.x * normalize(v_dpdu) + tn.y * normalize(v_dpdv) + tn.z * N);
   vec3 albedo = RL_FETCH(rl_color, h.uv).rgb;
+#endif
+  vec3 n = normalize(tn.x * normalize(v_dpdu) + tn.y * normalize(v_dpdv) + tn.z * N);
   vec3 to_light = normalize(rl_light - hit_world);
 
   bool in_shadow = false;

@@ -69,12 +69,29 @@ uint64_t ReliefMap::content_hash() const {
   uint64_t h = fnv1a64(&width, sizeof width);
   h = fnv1a64(&height, sizeof height, h);
   h = fnv1a64(relief.data(), relief.size() * sizeof(glm::vec4), h);
-  return fnv1a64(color.data(), color.size() * sizeof(glm::vec4), h);
+  h = fnv1a64(color.data(), color.size() * sizeof(glm::vec4), h);
+  if (layers.empty()) return h;
+  h = fnv1a64(&layers.count, sizeof layers.count, h);
+  h = fnv1a64(layers.depth.data(), layers.depth.size() * sizeof(float), h);
+  h = fnv1a64(layers.normal.data(), layers.normal.size() * sizeof(glm::vec3), h);
+  return fnv1a64(layers.color.data(), layers.color.size() * sizeof(glm::vec3), h);
+}
+
+int LayerStack::used(size_t texel) const {
+  const size_t texels = count ? depth.size() / count : 0;
+  int n = 0;
+  for (int l = 0; l < count; ++l) n += depth[l * texels + texel] < 1.0f;
+  return n;
 }
 
 size_t ReliefMap::gpu_bytes() const {
   size_t texel = quantized ? 4 : 16;
   return static_cast<size_t>(width) * height * texel * 2;
+}
+
+glm::vec3 layer_normal_from_xy(float x, float y, int layer) {
+  const float z = std::sqrt(std::max(0.0f, 1.0f - (x * x + y * y)));
+  return {x, y, layer % 2 ? -z : z};
 }
 
 glm::dvec3 decode_normal(const glm::dvec4& rgba) {
@@ -87,6 +104,17 @@ void quantize_8bit(ReliefMap& map) {
   auto q = [](float v) { return std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f; };
   for (auto& t : map.relief) t = glm::vec4(q(t.r), q(t.g), q(t.b), q(t.a));
   for (auto& c : map.color) c = glm::vec4(q(c.r), q(c.g), q(c.b), 1.0f);
+  LayerStack& layers = map.layers;
+  const size_t texels = size_t(map.width) * map.height;
+  for (size_t k = 0; k < layers.depth.size(); ++k) {
+    layers.depth[k] = q(layers.depth[k]);
+    // Stored as the paper does: x and y in 8 bits each, z rebuilt with the layer's sign.
+    const glm::vec3 n = layers.normal[k];
+    layers.normal[k] = layer_normal_from_xy(q(n.x * 0.5f + 0.5f) * 2.0f - 1.0f,
+                                            q(n.y * 0.5f + 0.5f) * 2.0f - 1.0f, int(k / texels));
+    const glm::vec3 c = layers.color[k];
+    layers.color[k] = glm::vec3(q(c.r), q(c.g), q(c.b));
+  }
   map.quantized = true;
 }
 

@@ -11,6 +11,32 @@
 
 namespace rl {
 
+// Several depth layers per texel (Policarpo & Oliveira 2006, Section 3): every crossing of
+// a vertical bake ray with a closed surface, sorted top to bottom, so a point at depth d is
+// inside the surface when an odd number of layers lie above it. Layer l of texel i is at
+// [l * texels + i]; unused layers have depth 1 (the paper's convention). Normals are unit
+// tangent-space normals (z out of the base) pointing out of the solid: up on even layers
+// (where a downward ray enters), down on odd ones. Sampled with GL_NEAREST (Section 6).
+struct LayerStack {
+  int count = 0;  // layers per texel (0: the map is a heightfield); at most kMaxLayers
+  std::vector<float> depth;
+  std::vector<glm::vec3> normal;
+  std::vector<glm::vec3> color;
+  // What the bake could not keep: texels whose ray crossed more surfaces than `count`, and
+  // the most crossings any texel's ray had (the pattern's depth complexity).
+  long overflow_texels = 0;
+  int max_crossings = 0;
+  // Crossings whose mesh winding disagreed with their order (an even crossing facing down, an
+  // odd one facing up): 0 for a closed, consistently wound mesh. They are stored oriented by
+  // the order, which is what the inside test needs.
+  long misoriented_crossings = 0;
+
+  static constexpr int kMaxLayers = 8;
+  bool empty() const { return count == 0; }
+  // How many layers texel i uses (depth < 1).
+  int used(size_t texel) const;
+};
+
 struct ReliefMap {
   std::string name;
   int width = 0;
@@ -18,6 +44,7 @@ struct ReliefMap {
   std::vector<glm::vec4> relief;  // rgb: normal * 0.5 + 0.5, a: depth; row 0 is v = 0.5 / height
   std::vector<glm::vec4> color;   // rgb colour (linear), a = 1
   bool quantized = false;         // every channel holds an exact multiple of 1/255
+  LayerStack layers;              // non-height-field maps: their layers; `relief` is the top one
 
   size_t index(int x, int y) const;  // wraps like GL_REPEAT
   float depth_texel(int x, int y) const { return relief[index(x, y)].a; }
@@ -34,6 +61,10 @@ struct ReliefMap {
 
 // Decodes an encoded normal like the shaders do: normalize(rgb * 2 - 1).
 glm::dvec3 decode_normal(const glm::dvec4& rgba);
+
+// A layer's normal as the shaders rebuild it from its stored x and y (Section 3: z =
+// sqrt(max(0, 1 - x^2 - y^2))), negative on odd (back) layers (Appendix A).
+glm::vec3 layer_normal_from_xy(float x, float y, int layer);
 
 // Rounds every channel to the nearest multiple of 1/255 (8-bit textures, as in the papers).
 void quantize_8bit(ReliefMap& map);

@@ -1,7 +1,9 @@
 #include "scene/relief_asset.h"
 
 #include "relief/image_io.h"
+#include "relief/layer_bake.h"
 #include "relief/mesh_bake.h"
+#include "relief/pattern_mesh.h"
 #include "relief/procedural.h"
 
 namespace rl {
@@ -24,6 +26,13 @@ ReliefMap build_relief_asset(const SceneDesc& scene, int resolution) {
   if (!scene.relief.mesh_path.empty()) {
     const TriangleMesh mesh = load_mesh(scene.relief.mesh_path);
     map = bake_mesh(mesh, bake_frame(mesh, scene.relief.mesh_up), resolution, scene.projection);
+  } else if (scene.relief.pattern_mesh()) {
+    // Baked at the map's resolution; normals as seen on this scene's base.
+    const TriangleMesh mesh = make_pattern_mesh(scene.relief.procedural, scene.relief.options,
+                                                "scene '" + scene.name + "'");
+    map = bake_layers(with_neighbour_tiles(mesh), pattern_frame(), size.width, size.height,
+                      scene.relief.layers,
+                      {glm::length(base.dpdu()), glm::length(base.dpdv()), scene.depth});
   } else if (!scene.relief.procedural.empty()) {
     map = make_procedural(scene.relief.procedural, resolution, scene.relief.options,
                           scene.depth / base.texel_world(resolution), "scene '" + scene.name + "'");

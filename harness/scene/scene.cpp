@@ -1,5 +1,7 @@
 #include "scene/scene.h"
 
+#include "relief/pattern_mesh.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -17,6 +19,21 @@ PlanarBase planar_base(const SceneDesc& scene) {
   b.depth = scene.depth;
   b.aspect = scene.relief.aspect();
   return b;
+}
+
+const char* truth_level_name(TruthLevel level) {
+  switch (level) {
+    case TruthLevel::Mesh:
+      return "mesh";
+    case TruthLevel::Layers:
+      return "layers";
+    default:
+      return "sampled";
+  }
+}
+
+bool ReliefSourceDesc::pattern_mesh() const {
+  return is_pattern_mesh(procedural);
 }
 
 MapSize ReliefSourceDesc::size_at(int texture_res) const {

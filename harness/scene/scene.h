@@ -37,7 +37,10 @@ struct ReliefSourceDesc {
   std::string mesh_path;   // a mesh baked into the map (Baboud & Decoret)
   int mesh_up = 1;         // its up axis: 0, 1, 2 = x, y, z
   double reverse_cop = 0;  // reverse perspective: centre of projection depth (> 1), or 0
+  int layers = 0;          // > 0: baked into that many depth layers (a mesh or a pattern)
   MapSize native;          // size when texture_res = 0 ("native")
+  // A non-height-field pattern generated as a mesh (relief/pattern_mesh.h): weave, helix.
+  bool pattern_mesh() const;
   // The map's size at a sweep's texture_res (the longer side; 0 = native).
   MapSize size_at(int texture_res) const;
   // World length of the map along v over its length along u: a planar quad keeps its texels
@@ -60,7 +63,11 @@ enum class Proxy { Base, Box };
 
 // What the truth traces: the relief as the technique samples it (the bilinear heightfield of
 // the map), or, for a baked mesh, the mesh itself (includes representation error).
-enum class TruthLevel { Sampled, Mesh };
+// A multilayer map adds the truth of its own layers (nearest sampled), so search error and
+// representation error split there too.
+enum class TruthLevel { Sampled, Mesh, Layers };
+// "sampled", "mesh", "layers": the config's and the rows' name of a level.
+const char* truth_level_name(TruthLevel level);
 
 // The surface the relief is mapped onto. "plane" is the planar quad of PlanarBase (the
 // heightfield truth); every other kind is a base mesh displaced along its normals (chapter 5):

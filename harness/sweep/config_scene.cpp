@@ -5,111 +5,13 @@
 #include <set>
 
 #include "core/error.h"
-#include "relief/procedural.h"
+#include "sweep/config_relief.h"
 
 namespace rl {
 namespace {
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
-
-ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std::string& base_dir,
-                              json& canon) {
-  const toml::table* t = node.as_table();
-  if (!t) fail(src.at(node), "'relief' must be a table, e.g. { procedural = \"bricks\" }");
-  check_keys(*t,
-             {"procedural", "resolution", "options", "normal", "depth", "color", "convention",
-              "flip_green", "normalize", "mesh", "up", "reverse_perspective"},
-             src, "relief");
-  ReliefSourceDesc r;
-  const bool procedural = t->contains("procedural");
-  const bool images = t->contains("normal") || t->contains("depth");
-  const bool mesh = t->contains("mesh");
-  if (int(procedural) + int(images) + int(mesh) != 1)
-    fail(src.at(node),
-         "relief needs exactly one of 'procedural', image files ('normal' and/or "
-         "'depth') or 'mesh'");
-  if (mesh) {
-    for (const char* k : {"color", "convention", "flip_green", "normalize", "options"})
-      if (t->contains(k))
-        fail(src.at(node), std::string("'") + k + "' does not apply to a mesh relief");
-    const toml::node& mn = *t->get("mesh");
-    r.mesh_path = resolve_path(string_of(mn, src, "mesh"), base_dir, src, mn);
-    if (auto* n = t->get("up")) {
-      const std::string up = string_of(*n, src, "up");
-      if (up != "x" && up != "y" && up != "z")
-        fail(src.at(*n), "'up' must be \"x\", \"y\" or \"z\"");
-      r.mesh_up = up[0] - 'x';
-    }
-    if (auto* n = t->get("resolution")) {
-      const int res = positive_int(*n, src, "resolution", 2, 8192);
-      r.native = {res, res};
-    }
-    canon["up"] = r.mesh_up;
-    if (auto* n = t->get("reverse_perspective")) {
-      r.reverse_cop = number(*n, src, "reverse_perspective");
-      if (!(r.reverse_cop > 1) || !std::isfinite(r.reverse_cop))
-        fail(src.at(*n),
-             "'reverse_perspective' is the depth of the centre of projection below the "
-             "top, in box depths: it must be > 1, got " +
-                 std::to_string(r.reverse_cop));
-      canon["reverse_perspective"] = r.reverse_cop;
-    }
-    canon["resolution"] = r.native.width;
-    return r;
-  }
-  if (t->contains("up") || t->contains("reverse_perspective"))
-    fail(src.at(node), "'up' and 'reverse_perspective' apply to mesh reliefs only");
-  if (procedural) {
-    r.procedural = string_of(*t->get("procedural"), src, "procedural");
-    bool known = false;
-    for (const auto& k : procedural_kinds()) known |= k.name == r.procedural;
-    if (!known) {
-      std::string names;
-      for (const auto& k : procedural_kinds()) names += (names.empty() ? "" : ", ") + k.name;
-      fail(src.at(*t->get("procedural")),
-           "unknown procedural relief '" + r.procedural + "' (known: " + names + ")");
-    }
-    if (auto* n = t->get("resolution")) {
-      const int res = positive_int(*n, src, "resolution", 2, 8192);
-      r.native = {res, res};
-    }
-    if (auto* o = t->get("options")) {
-      const toml::table* ot = o->as_table();
-      if (!ot) fail(src.at(*o), "'options' must be a table");
-      for (auto&& [k, v] : *ot)
-        r.options[std::string(k.str())] = number(v, src, std::string(k.str()));
-      // Validate option names now (make_procedural checks them the same way).
-      make_procedural(r.procedural, 4, r.options, 1.0, src.at(*o));
-    }
-    canon["procedural"] = r.procedural;
-    canon["options"] = r.options;
-    canon["resolution"] = r.native.width;
-    return r;
-  }
-  if (t->contains("resolution") || t->contains("options"))
-    fail(src.at(node), "'resolution' and 'options' apply to procedural reliefs only");
-  if (auto* n = t->get("normal"))
-    r.normal_path = resolve_path(string_of(*n, src, "normal"), base_dir, src, *n);
-  if (auto* n = t->get("depth"))
-    r.depth_path = resolve_path(string_of(*n, src, "depth"), base_dir, src, *n);
-  if (auto* n = t->get("color"))
-    r.color_path = resolve_path(string_of(*n, src, "color"), base_dir, src, *n);
-  if (auto* n = t->get("convention")) {
-    std::string c = string_of(*n, src, "convention");
-    if (c != "height" && c != "depth")
-      fail(src.at(*n),
-           "'convention' must be \"height\" (1 = top) or \"depth\" (0 = top), got \"" + c + "\"");
-    r.height_convention = c == "height";
-  }
-  if (auto* n = t->get("flip_green")) r.flip_green = number(*n, src, "flip_green") != 0;
-  if (auto* n = t->get("normalize")) r.normalize = number(*n, src, "normalize") != 0;
-  // The native size (any aspect) and the files' hashes come from read_scene_files().
-  canon["convention"] = r.height_convention ? "height" : "depth";
-  canon["flip_green"] = r.flip_green;
-  canon["normalize"] = r.normalize;
-  return r;
-}
 
 // base = "sphere" (generated kinds, the teapot) or a mesh file with uvs; segments = N.
 // Only non-default values enter the canonical description, so planar cells keep their keys.
@@ -242,14 +144,22 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
   if (auto* n = t.get("light")) s.light_position = vec3_of(*n, src, "light");
   if (auto* n = t.get("truth")) {
     const std::string level = string_of(*n, src, "truth");
-    if (level != "sampled" && level != "mesh")
+    if (level != "sampled" && level != "mesh" && level != "layers")
       fail(src.at(*n),
-           "'truth' must be \"sampled\" (the map's heightfield) or \"mesh\" (the baked mesh)");
-    s.truth = level == "mesh" ? TruthLevel::Mesh : TruthLevel::Sampled;
-    if (s.truth == TruthLevel::Mesh && s.relief.mesh_path.empty())
-      fail(src.at(*n), "truth = \"mesh\" needs a mesh relief (relief = { mesh = \"...\" })");
+           "'truth' must be \"sampled\" (the map's heightfield), \"mesh\" (the mesh or pattern "
+           "the map was baked from) or \"layers\" (a multilayer map's own layers)");
+    s.truth = level == "mesh" ? TruthLevel::Mesh
+                              : (level == "layers" ? TruthLevel::Layers : TruthLevel::Sampled);
+    if (s.truth == TruthLevel::Mesh && s.relief.mesh_path.empty() && !s.relief.pattern_mesh())
+      fail(src.at(*n),
+           "truth = \"mesh\" needs a mesh relief (relief = { mesh = \"...\" }) or "
+           "a pattern (weave, helix)");
+    if (s.truth == TruthLevel::Layers && s.relief.layers == 0)
+      fail(src.at(*n), "truth = \"layers\" needs a multilayer relief (a pattern, or 'layers')");
+  } else if (s.relief.pattern_mesh()) {
+    s.truth = TruthLevel::Mesh;  // a pattern is measured against the geometry it stands for
   }
-  s.empty_floor = !s.relief.mesh_path.empty();
+  s.empty_floor = !s.relief.mesh_path.empty() || s.relief.pattern_mesh();
   if (auto* n = t.get("floor")) {
     const std::string f = string_of(*n, src, "floor");
     if (f != "solid" && f != "empty")
@@ -283,7 +193,7 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
   parse_objects(t, src, base_dir, s, canon);
   canon["name"] = s.name;
   canon["proxy"] = s.proxy == Proxy::Box ? "box" : "base";
-  canon["truth"] = s.truth == TruthLevel::Mesh ? "mesh" : "sampled";
+  canon["truth"] = truth_level_name(s.truth);
   canon["floor"] = s.empty_floor ? "empty" : "solid";
   s.projection.cop = s.relief.reverse_cop;
   if (s.projection.active() && s.proxy != Proxy::Box)
@@ -292,7 +202,22 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
   if (s.projection.active() && s.effects.has(Effect::SelfShadow))
     fail(src.at(node),
          "scene '" + s.name + "': self_shadow is not supported with reverse_perspective yet");
-  if (s.truth == TruthLevel::Mesh && s.proxy != Proxy::Box)
+  if (s.relief.layers > 0) {
+    // Not built yet: relief impostors (a baked object's layers in its box), multilayer
+    // silhouettes on curved bases, and a floor under a pattern.
+    const std::string no = "scene '" + s.name + "': a multilayer relief ";
+    if (!s.relief.mesh_path.empty())
+      fail(src.at(node), no + "from a mesh file (relief impostors) is not supported yet; "
+                              "patterns (weave, helix) are");
+    if (s.proxy == Proxy::Box)
+      fail(src.at(node), no + "is drawn on its base; proxy = \"box\" "
+                              "is not supported yet");
+    if (s.base.curved()) fail(src.at(node), no + "needs the planar base for now");
+    if (!s.empty_floor)
+      fail(src.at(node), no + "has an empty floor (its gaps show the background); "
+                              "floor = \"solid\" is not supported yet");
+  }
+  if (s.truth == TruthLevel::Mesh && !s.relief.mesh_path.empty() && s.proxy != Proxy::Box)
     fail(src.at(node),
          "scene '" + s.name +
              "': truth = \"mesh\" needs proxy = \"box\" (the mesh is an object in its box)");

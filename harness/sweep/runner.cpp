@@ -275,7 +275,17 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     row["effects"] = join_effects(scene.effects);
     row["texture_size"] =
         std::to_string(asset->map.width) + "x" + std::to_string(asset->map.height);
-    row["truth"] = scene.truth == TruthLevel::Mesh ? "mesh" : "sampled";
+    // A multilayer map's bake: layers per texel, texels whose ray crossed more surfaces than
+    // that (what the representation lost), and the most crossings of any texel.
+    const LayerStack& layers = asset->map.layers;
+    row["layers"] = layers.count;
+    row["layer_overflow_pct"] =
+        layers.empty() ? nlohmann::ordered_json()
+                       : nlohmann::ordered_json(100.0 * double(layers.overflow_texels) /
+                                                (double(asset->map.width) * asset->map.height));
+    row["depth_complexity"] =
+        layers.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(layers.max_crossings);
+    row["truth"] = truth_level_name(scene.truth);
     row["renderer"] = gl.renderer();
     row["key"] = cell.key;
     if (config.write_images) {

@@ -23,7 +23,7 @@ ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Ki
   for (Effect e : effects.list()) d.defines[effect_define(e)] = "1";
   if (target == RenderTarget::Kind::GBuffer) d.defines["RL_GBUFFER"] = "1";
   if (variant.proxy == Proxy::Box) d.defines["RL_PROXY_BOX"] = "1";
-  if (variant.proxy == Proxy::Box && variant.empty_floor) d.defines["RL_EMPTY_FLOOR"] = "1";
+  if (variant.empty_floor) d.defines["RL_EMPTY_FLOOR"] = "1";
   if (variant.reverse_perspective) d.defines["RL_REVERSE_PERSPECTIVE"] = "1";
   return d;
 }

@@ -97,45 +97,32 @@ HeightfieldTruth::~HeightfieldTruth() {
   if (device_) rtcReleaseDevice(device_);
 }
 
-template <typename CellQuery>
-bool HeightfieldTruth::walk(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,
-                            double t_max, CellQuery&& query) const {
-  // Tile cell (I, J) covers u in [offset + I, offset + I + 1); the tile geometry sits at I = J = 0.
-  return walk_grid_2d(origin.x - offset_.x, origin.y - offset_.y, direction.x, direction.y, t_min,
-                      t_max, [&](long I, long J, double t_enter, double t_exit) {
-                        // Slightly overlapping intervals: a hit exactly on a tile edge is found
-                        // from either side.
-                        const double eps = 1e-7 * (1.0 + t_exit);
-                        const glm::dvec3 local = origin - glm::dvec3(double(I), double(J), 0.0);
-                        return query(local, std::max(t_min, t_enter - eps),
-                                     std::min(t_max, t_exit + eps));
-                      });
-}
-
 TruthHit HeightfieldTruth::intersect(const glm::dvec3& origin, const glm::dvec3& direction,
                                      double t_min, double t_max) const {
   ++primary_rays_;
   TruthHit result;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  walk(origin, direction, t_min, t_max, [&](const glm::dvec3& local, double t0, double t1) {
-    RTCRayHit rh = embree_ray(local, direction, t0, t1);
-    rtcIntersect1(scene_, &context, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    result.hit = true;
-    result.t = rh.ray.tfar;
-    result.point = origin + direction * result.t;
-    return true;
-  });
+  walk_tiles(origin, direction, t_min, t_max, offset_,
+             [&](const glm::dvec3& local, double t0, double t1) {
+               RTCRayHit rh = embree_ray(local, direction, t0, t1);
+               rtcIntersect1(scene_, &context, &rh);
+               if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+               result.hit = true;
+               result.t = rh.ray.tfar;
+               result.point = origin + direction * result.t;
+               return true;
+             });
   return result;
 }
 
 bool HeightfieldTruth::occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,
                                 double t_max) const {
   ++shadow_rays_;
-  return walk(origin, direction, t_min, t_max, [&](const glm::dvec3& local, double t0, double t1) {
-    return embree_occluded(scene_, local, direction, t0, t1);
-  });
+  return walk_tiles(origin, direction, t_min, t_max, offset_,
+                    [&](const glm::dvec3& local, double t0, double t1) {
+                      return embree_occluded(scene_, local, direction, t0, t1);
+                    });
 }
 
 }  // namespace rl

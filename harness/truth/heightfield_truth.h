@@ -43,10 +43,6 @@ class HeightfieldTruth final : public TruthSurface {
   RTCScene scene() const { return scene_; }  // one tile, for benchmarks against raw Embree
 
  private:
-  template <typename CellQuery>
-  bool walk(const glm::dvec3& origin, const glm::dvec3& direction, double t_min, double t_max,
-            CellQuery&& query) const;
-
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   int subdivision_ = 1;

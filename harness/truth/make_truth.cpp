@@ -5,14 +5,24 @@
 #include "core/elapsed.h"
 #include "scene/base_mesh.h"
 
+#include "relief/layer_bake.h"
 #include "relief/mesh_bake.h"
+#include "relief/pattern_mesh.h"
 #include "truth/heightfield_truth.h"
+#include "truth/layers_truth.h"
 #include "truth/mesh_truth.h"
 
 namespace rl {
 
 std::unique_ptr<TruthSurface> make_truth(const SceneDesc& scene, const ReliefMap& map,
                                          double tolerance) {
+  if (scene.truth == TruthLevel::Layers) return std::make_unique<LayersTruth>(map);
+  if (scene.truth == TruthLevel::Mesh && scene.relief.pattern_mesh()) {
+    const TriangleMesh mesh = make_pattern_mesh(scene.relief.procedural, scene.relief.options,
+                                                "scene '" + scene.name + "'");
+    return std::make_unique<MeshTruth>(with_neighbour_tiles(mesh), pattern_frame(),
+                                       ReverseProjection{}, true);
+  }
   if (scene.truth == TruthLevel::Mesh) {
     const TriangleMesh mesh = load_mesh(scene.relief.mesh_path);
     return std::make_unique<MeshTruth>(mesh, bake_frame(mesh, scene.relief.mesh_up),

@@ -4,11 +4,13 @@
 
 #include "core/elapsed.h"
 #include "core/embree_util.h"
+#include "core/grid_walk.h"
 
 namespace rl {
 
 MeshTruth::MeshTruth(const TriangleMesh& mesh, const BakeFrame& frame,
-                     const ReverseProjection& projection) {
+                     const ReverseProjection& projection, bool tiled)
+    : colors_(mesh.triangle_colors), tiled_(tiled) {
   const auto start = std::chrono::steady_clock::now();
   device_ = rtcNewDevice(nullptr);
   scene_ = embree_triangle_scene(device_, mesh, [&](const glm::dvec3& p) {
@@ -37,22 +39,37 @@ TruthHit MeshTruth::intersect(const glm::dvec3& origin, const glm::dvec3& direct
   ++primary_rays_;
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  RTCRayHit rh = embree_ray(origin, direction, t_min, t_max);
-  rtcIntersect1(scene_, &ctx, &rh);
   TruthHit h;
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
-  h.hit = true;
-  h.t = rh.ray.tfar;
-  h.point = origin + direction * h.t;
-  h.has_normal = true;
-  h.normal = affine_normals_[rh.hit.primID];  // oriented towards the viewer by render_truth
+  auto query = [&](const glm::dvec3& local, double t0, double t1) {
+    RTCRayHit rh = embree_ray(local, direction, t0, t1);
+    rtcIntersect1(scene_, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    h.hit = true;
+    h.t = rh.ray.tfar;
+    h.point = origin + direction * h.t;
+    h.has_normal = true;
+    h.normal = affine_normals_[rh.hit.primID];  // oriented towards the viewer by render_truth
+    if (!colors_.empty()) {
+      h.has_albedo = true;
+      h.albedo = glm::dvec3(colors_[rh.hit.primID]);
+    }
+    return true;
+  };
+  if (tiled_)
+    walk_tiles(origin, direction, t_min, t_max, glm::dvec2(0), query);
+  else
+    query(origin, t_min, t_max);
   return h;
 }
 
 bool MeshTruth::occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,
                          double t_max) const {
   ++shadow_rays_;
-  return embree_occluded(scene_, origin, direction, t_min, t_max);
+  auto query = [&](const glm::dvec3& local, double t0, double t1) {
+    return embree_occluded(scene_, local, direction, t0, t1);
+  };
+  return tiled_ ? walk_tiles(origin, direction, t_min, t_max, glm::dvec2(0), query)
+                : query(origin, t_min, t_max);
 }
 
 }  // namespace rl

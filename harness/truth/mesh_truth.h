@@ -1,7 +1,8 @@
 #pragma once
-// The "source" truth of a baked relief: the original mesh, mapped into the bake's texture
-// space and traced by Embree. Against it a technique's error includes the representation
-// error of the heightfield (overhangs, resolution, quantisation), not only its search error.
+// The "source" truth of a baked relief: the original mesh (or a procedural pattern mesh),
+// mapped into the bake's texture space and traced by Embree. Against it a technique's error
+// includes the representation error of the heightfield (overhangs, resolution, quantisation), not
+// only its search error.
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -13,8 +14,11 @@ namespace rl {
 
 class MeshTruth final : public TruthSurface {
  public:
+  // `tiled`: the mesh is one tile of a periodic pattern with its neighbours
+  // (relief/pattern_mesh.h with_neighbour_tiles) and rays walk
+  // the tiles they cross, as the heightfield truth does.
   MeshTruth(const TriangleMesh& mesh, const BakeFrame& frame,
-            const ReverseProjection& projection = {});
+            const ReverseProjection& projection = {}, bool tiled = false);
   ~MeshTruth() override;
   MeshTruth(const MeshTruth&) = delete;
   MeshTruth& operator=(const MeshTruth&) = delete;
@@ -32,6 +36,8 @@ class MeshTruth final : public TruthSurface {
   RTCScene scene_ = nullptr;
   double build_ms_ = 0;
   std::vector<glm::dvec3> affine_normals_;  // per triangle, in the bake box's affine space
+  std::vector<glm::vec3> colors_;           // per triangle, or empty
+  bool tiled_ = false;
 };
 
 }  // namespace rl

@@ -78,6 +78,7 @@ bool trace_primary(const TruthSurface& truth, const ReliefMap& map, const SceneD
   const glm::dvec3 start = o + d * t_start;
   const double t_bottom = (bottom - start.z) / d.z;
   h = truth.intersect(start, d, 0.0, t_bottom);
+  if (!h.hit && scene.empty_floor) return false;  // through a pattern's gaps: background
   if (!h.hit) {
     // Rounding let the ray through the floor; it is inside the relief there.
     ++unresolved;
@@ -165,7 +166,11 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
           const glm::dvec3 tn = decode_normal(map.sample_relief(uv.x, uv.y));
           glm::dvec3 n = glm::normalize(tn.x * glm::normalize(base.dpdu()) +
                                         tn.y * glm::normalize(base.dpdv()) + tn.z * base.normal());
-          if (h.has_normal) {
+          if (h.tangent_normal) {
+            const glm::dvec3 m = glm::normalize(h.normal);
+            n = glm::normalize(m.x * glm::normalize(base.dpdu()) +
+                               m.y * glm::normalize(base.dpdv()) + m.z * base.normal());
+          } else if (h.has_normal) {
             // The surface's own normal (mesh truth), from texture space (u, v, depth) to world
             // by the inverse transpose of the base's scaling; facing the viewer.
             const glm::dvec3 m = h.normal;
@@ -173,7 +178,8 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
                                           m.y / glm::length(base.dpdv()), -m.z / base.depth));
             if (glm::dot(n, dir) > 0) n = -n;
           }
-          const glm::dvec3 albedo(map.sample_color(uv.x, uv.y));
+          const glm::dvec3 albedo =
+              h.has_albedo ? h.albedo : glm::dvec3(map.sample_color(uv.x, uv.y));
           const glm::dvec3 to_light = glm::normalize(scene.light_position - world);
           bool in_shadow = false;
           if (shadows) {

@@ -16,6 +16,11 @@ struct TruthHit {
   glm::dvec3 point;  // (u, v, depth) of the hit, u and v not wrapped
   bool has_normal = false;
   glm::dvec3 normal{0, 0, -1};  // surface normal in the base's affine (u, v, depth) space, if known
+  // The normal is instead a tangent-frame shading normal (x along u, y along v, z out of the
+  // base), as a map stores it: a truth of the stored layers shades like the technique does.
+  bool tangent_normal = false;
+  bool has_albedo = false;  // the surface's own colour (a pattern's threads, a layer's colour)
+  glm::dvec3 albedo{0};
 };
 
 class TruthSurface {

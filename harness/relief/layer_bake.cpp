@@ -1,0 +1,119 @@
+#include "relief/layer_bake.h"
+
+#include <algorithm>
+#include <atomic>
+#include <stdexcept>
+
+#include <embree3/rtcore.h>
+
+#include "core/embree_util.h"
+#include "core/parallel.h"
+
+namespace rl {
+namespace {
+
+constexpr int kMaxCrossings = 256;  // bounds the walk along one bake ray
+const glm::vec3 kNeutral(0.78f, 0.74f, 0.70f);
+
+struct Crossing {
+  double depth;
+  glm::vec3 normal;  // outward, tangent frame
+  glm::vec3 color;
+};
+
+}  // namespace
+
+BakeFrame pattern_frame() {
+  BakeFrame f;
+  f.up = 2;
+  f.axis_u = 0;
+  f.axis_v = 1;
+  f.origin = glm::dvec3(0);
+  f.side = 1;
+  f.height = 1;
+  return f;
+}
+
+ReliefMap bake_layers(const TriangleMesh& mesh, const BakeFrame& frame, int width, int height,
+                      int layers, const glm::dvec3& world_scale) {
+  if (layers < 1 || layers > LayerStack::kMaxLayers)
+    throw std::invalid_argument("bake_layers: 1 to 8 layers");
+  RTCDevice device = rtcNewDevice(nullptr);
+  RTCScene scene = embree_triangle_scene(device, mesh);
+  const size_t texels = size_t(width) * height;
+
+  ReliefMap map;
+  map.name = mesh.name;
+  map.width = width;
+  map.height = height;
+  map.relief.assign(texels, glm::vec4(0.5f, 0.5f, 1.0f, 1.0f));
+  map.color.assign(texels, glm::vec4(kNeutral, 1.0f));
+  LayerStack& stack = map.layers;
+  stack.count = layers;
+  stack.depth.assign(texels * layers, 1.0f);
+  stack.normal.assign(texels * layers, glm::vec3(0, 0, 1));
+  stack.color.assign(texels * layers, kNeutral);
+  std::atomic<long> overflow{0};
+  std::atomic<int> max_crossings{0};
+  std::atomic<long> misoriented{0};
+
+  parallel_for(texels, [&](size_t begin, size_t end) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    std::vector<Crossing> found;
+    for (size_t i = begin; i < end; ++i) {
+      const glm::dvec3 a0((i % width + 0.5) / width, (i / width + 0.5) / height, -1e-6);
+      const glm::dvec3 o = frame.mesh_from_texture(a0);
+      const glm::dvec3 d = frame.mesh_from_texture(a0 + glm::dvec3(0, 0, 1)) - o;
+      found.clear();
+      double t0 = 0;
+      bool last_entering = false;
+      while (found.size() < size_t(kMaxCrossings)) {
+        RTCRayHit rh = embree_ray(o, d, t0, 1.0 + 2e-6);
+        rtcIntersect1(scene, &ctx, &rh);
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+        const double t = rh.ray.tfar, depth = a0.z + t;  // t counts depth units
+        t0 = t + 1e-7;
+        const glm::dvec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+        const bool entering = glm::dot(ng, d) < 0;
+        // A ray through a shared edge may report both triangles at one depth: one crossing.
+        if (!found.empty() && depth - found.back().depth < 1e-6 && entering == last_entering)
+          continue;
+        last_entering = entering;
+        const glm::dvec3 nt = frame.texture_normal(ng);  // (u, v, depth) space
+        glm::dvec3 n = glm::normalize(
+            glm::dvec3(nt.x / world_scale.x, nt.y / world_scale.y, -nt.z / world_scale.z));
+        // Outward by the crossing order: up where the ray enters (even), down where it leaves.
+        const bool even = found.size() % 2 == 0;
+        if (entering != even) ++misoriented;
+        if ((even && n.z < 0) || (!even && n.z > 0)) n = -n;
+        const glm::vec3 color =
+            mesh.triangle_colors.empty() ? kNeutral : mesh.triangle_colors[rh.hit.primID];
+        found.push_back({depth, glm::vec3(n), color});
+      }
+      const int crossings = int(found.size());
+      if (crossings > layers) ++overflow;
+      int seen = max_crossings.load();
+      while (crossings > seen && !max_crossings.compare_exchange_weak(seen, crossings)) {
+      }
+      for (int l = 0; l < std::min(crossings, layers); ++l) {
+        const size_t k = size_t(l) * texels + i;
+        stack.depth[k] = float(std::clamp(found[l].depth, 0.0, 1.0));
+        stack.normal[k] = found[l].normal;
+        stack.color[k] = found[l].color;
+      }
+      if (crossings > 0) {
+        map.relief[i] = glm::vec4(found[0].normal * 0.5f + 0.5f, stack.depth[i]);
+        map.color[i] = glm::vec4(found[0].color, 1.0f);
+      }
+    }
+  });
+  stack.overflow_texels = overflow.load();
+  stack.max_crossings = max_crossings.load();
+  stack.misoriented_crossings = misoriented.load();
+  rtcReleaseScene(scene);
+  rtcReleaseDevice(device);
+  return map;
+}
+
+}  // namespace rl

@@ -1,0 +1,127 @@
+// Relief mapping of non-height-field surface details, Policarpo & Oliveira 2006.
+#include <algorithm>
+
+#include "technique/shader_technique.h"
+
+namespace rl {
+
+class Multilayer final : public Described<Multilayer, ShaderTechnique> {
+ public:
+  using Described::Described;
+  ~Multilayer() override { release(); }
+  static TechniqueInfo describe() {
+    return {.name = "multilayer",
+            .title = "Multilayer relief mapping (non-height-field details, up to 8 layers)",
+            .citation =
+                "Policarpo & Oliveira 2006, 'Relief Mapping of Non-Height-Field Surface Details', "
+                "Sections 3.1-3.2, Algorithms 1-2, Appendix A",
+            .effects = {Effect::SelfShadow, Effect::DepthCorrect},
+            .params = {{.name = "linear_steps",
+                        .kind = ParamKind::Int,
+                        .default_value = 32,
+                        .min_value = 2,
+                        .max_value = 1024,
+                        .doc = "linear search samples down to depth 1 (Algorithm 1)"},
+                       {.name = "binary_steps",
+                        .kind = ParamKind::Int,
+                        .default_value = 5,
+                        .min_value = 0,
+                        .max_value = 32,
+                        .doc = "binary search refinements (Algorithm 2; Appendix A: 5)"},
+                       {.name = "linear_filter",
+                        .kind = ParamKind::Bool,
+                        .default_value = 0,
+                        .min_value = 0,
+                        .max_value = 1,
+                        .doc = "sample layers with GL_LINEAR instead of the paper's nearest "
+                               "(Section 6: filtering mixes surface and empty texels into skins)"},
+                       {.name = "interface_fix",
+                        .kind = ParamKind::Bool,
+                        .default_value = 1,
+                        .min_value = 0,
+                        .max_value = 1,
+                        .doc = "Section 3.2: of the last inside and outside samples, keep the one "
+                               "on the texel with more layers"}}};
+  }
+
+  // Uploads the layers as the paper stores them: per group of four, one RGBA texel of depths,
+  // one of normal x and one of normal y (z is rebuilt); colours one slice per layer. A map
+  // without layers is its heightfield as one layer (Section 3: G, B, A = 1).
+  void prepare(const ReliefMap& map) override {
+    release();
+    const size_t texels = size_t(map.width) * map.height;
+    const int count = map.layers.empty() ? 1 : map.layers.count;
+    groups_ = (count + 3) / 4;
+    auto depth_at = [&](int l, size_t i) {
+      if (map.layers.empty()) return l == 0 ? map.relief[i].a : 1.0f;
+      return l < count ? map.layers.depth[l * texels + i] : 1.0f;
+    };
+    auto normal_at = [&](int l, size_t i) {
+      if (map.layers.empty())
+        return l == 0 ? glm::vec3(decode_normal(glm::dvec4(map.relief[i]))) : glm::vec3(0, 0, 1);
+      return l < count ? map.layers.normal[l * texels + i] : glm::vec3(0, 0, 1);
+    };
+    std::vector<glm::vec4> depth(texels * groups_), nx(depth.size()), ny(depth.size());
+    std::vector<glm::vec4> color(texels * count);
+    for (int g = 0; g < groups_; ++g)
+      for (size_t i = 0; i < texels; ++i)
+        for (int k = 0; k < 4; ++k) {
+          const int l = 4 * g + k;
+          depth[g * texels + i][k] = depth_at(l, i);
+          const glm::vec3 n = normal_at(l, i);
+          nx[g * texels + i][k] = n.x * 0.5f + 0.5f;
+          ny[g * texels + i][k] = n.y * 0.5f + 0.5f;
+        }
+    for (int l = 0; l < count; ++l)
+      for (size_t i = 0; i < texels; ++i)
+        color[l * texels + i] =
+            map.layers.empty() ? map.color[i] : glm::vec4(map.layers.color[l * texels + i], 1.0f);
+    const GLenum format = map.quantized ? GL_RGBA8 : GL_RGBA32F;
+    const GLenum filter = param("linear_filter") != 0 ? GL_LINEAR : GL_NEAREST;
+    bytes_ = 0;
+    auto upload = [&](GLuint& tex, const std::vector<glm::vec4>& data, int slices) {
+      glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &tex);
+      glTextureStorage3D(tex, 1, format, map.width, map.height, slices);
+      glTextureSubImage3D(tex, 0, 0, 0, 0, map.width, map.height, slices, GL_RGBA, GL_FLOAT,
+                          data.data());
+      glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, filter);
+      glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, filter);
+      glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
+      glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
+      bytes_ += texels * slices * (map.quantized ? 4 : 16);
+    };
+    upload(textures_[0], depth, groups_);
+    upload(textures_[1], nx, groups_);
+    upload(textures_[2], ny, groups_);
+    upload(textures_[3], color, count);
+  }
+  size_t memory_bytes() const override { return bytes_; }
+
+ protected:
+  std::string intersect_file() const override { return "techniques/multilayer/multilayer.glsl"; }
+  Defines parameter_defines() const override {
+    return {{"RL_LINEAR_STEPS", std::to_string(int(param("linear_steps")))},
+            {"RL_BINARY_STEPS", std::to_string(int(param("binary_steps")))},
+            {"RL_INTERFACE_FIX", param("interface_fix") != 0 ? "1" : "0"},
+            {"RL_LAYER_GROUPS", std::to_string(groups_)}};
+  }
+  void bind_resources(GLuint) const override {
+    for (int k = 0; k < 4; ++k) glBindTextureUnit(4 + k, textures_[k]);
+  }
+
+ private:
+  void release() {
+    for (GLuint& t : textures_)
+      if (t) {
+        glDeleteTextures(1, &t);
+        t = 0;
+      }
+  }
+  GLuint textures_[4] = {0, 0, 0, 0};
+  int groups_ = 1;
+  size_t bytes_ = 0;
+};
+
+RL_REGISTER_TECHNIQUE(Multilayer);
+
+}  // namespace rl

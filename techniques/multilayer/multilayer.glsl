@@ -1,0 +1,99 @@
+// Relief mapping of non-height-field surface details: Policarpo & Oliveira 2006, Section 3.1
+// (Algorithms 1 and 2: linear then binary search against all layers in parallel, inside = an
+// odd number of layers above the point), Section 3.2 (the interface fix) and Appendix A (the
+// layer whose depth is nearest the hit gives normal and colour; back layers' normals point
+// down). Layers come in groups of four, one RGBA texel per group: RL_LAYER_GROUPS is 1 (up to
+// 4 layers) or 2 (up to 8, the paper's Section 6). Unused layers have depth 1.
+#include "harness/glsl/relief_common.glsl"
+
+#define RL_HIT_ATTRIBUTES 1
+
+layout(binding = 4) uniform sampler2DArray rl_layer_depth;  // slice g: layers 4g .. 4g + 3
+layout(binding = 5) uniform sampler2DArray rl_layer_nx;     // x of each layer's normal, * 0.5 + 0.5
+layout(binding = 6) uniform sampler2DArray rl_layer_ny;     // y, likewise
+layout(binding = 7) uniform sampler2DArray rl_layer_color;  // slice l: layer l's colour
+
+// (layers above depth d, layers used) at uv: the parallel comparison of Algorithm 1.
+ivec2 rl_layer_counts(vec2 uv, float d) {
+  ivec2 c = ivec2(0);
+  for (int g = 0; g < RL_LAYER_GROUPS; g++) {
+    vec4 layers = RL_FETCH(rl_layer_depth, vec3(uv, float(g)));
+    c.x += int(dot(vec4(lessThan(layers, vec4(d))), vec4(1.0)));
+    c.y += int(dot(vec4(lessThan(layers, vec4(1.0))), vec4(1.0)));
+  }
+  return c;
+}
+
+RlHit rl_intersect(vec3 p, vec3 s) {
+  // Algorithm 1: equal steps down to depth 1; the first sample inside a solid stops it.
+  float size = (1.0 - p.z) / float(RL_LINEAR_STEPS);
+  float t = 0.0;
+  int used_in = 0, used_out = -1;
+  bool found = false;
+  for (int i = 1; i <= RL_LINEAR_STEPS; i++) {
+    t = size * float(i);
+    ivec2 c = rl_layer_counts(p.xy + s.xy * t, p.z + t);
+    if ((c.x & 1) == 1) {
+      used_in = c.y;
+      found = true;
+      break;
+    }
+    used_out = c.y;
+  }
+  if (!found) {
+    // Through every solid: the ray leaves at the bottom (a gap of the pattern).
+    RlHit miss = rl_hit_on_ray(p, s, 1.0 - p.z, false);
+    miss.layer = -1;
+    return miss;
+  }
+  // Algorithm 2: bisect between the last outside and the first inside sample.
+  float lo = t - size, hi = t;
+  for (int i = 0; i < RL_BINARY_STEPS; i++) {
+    float mid = 0.5 * (lo + hi);
+    ivec2 c = rl_layer_counts(p.xy + s.xy * mid, p.z + mid);
+    if ((c.x & 1) == 1) {
+      hi = mid;
+      used_in = c.y;
+    } else {
+      lo = mid;
+      used_out = c.y;
+    }
+  }
+  float best = hi;
+#if RL_INTERFACE_FIX
+  // Section 3.2: where the last inside and outside samples straddle texels with different
+  // layer counts, the one with more layers holds the surface the ray met.
+  if (used_out > used_in) best = lo;
+#endif
+  RlHit h = rl_hit_on_ray(p, s, best, true);
+  // Appendix A: the layer nearest in depth is the one hit.
+  float nearest = 2.0;
+  h.layer = 0;
+  for (int g = 0; g < RL_LAYER_GROUPS; g++) {
+    vec4 layers = RL_FETCH(rl_layer_depth, vec3(h.uv, float(g)));
+    for (int k = 0; k < 4; k++) {
+      float gap = abs(layers[k] - h.depth);
+      if (layers[k] < 1.0 && gap < nearest) {
+        nearest = gap;
+        h.layer = 4 * g + k;
+      }
+    }
+  }
+  return h;
+}
+
+// The hit layer's normal (x and y stored, z rebuilt, negative on back layers) and colour; a
+// miss shades with the map's own normal and colour where it ends.
+void rl_hit_attributes(RlHit h, out vec3 tn, out vec3 albedo) {
+  if (h.layer < 0) {
+    tn = rl_decode_normal(RL_FETCH(rl_relief, h.uv));
+    albedo = RL_FETCH(rl_color, h.uv).rgb;
+    return;
+  }
+  int g = h.layer / 4, k = h.layer % 4;
+  float x = RL_FETCH(rl_layer_nx, vec3(h.uv, float(g)))[k] * 2.0 - 1.0;
+  float y = RL_FETCH(rl_layer_ny, vec3(h.uv, float(g)))[k] * 2.0 - 1.0;
+  float z = sqrt(max(0.0, 1.0 - (x * x + y * y)));
+  tn = vec3(x, y, (h.layer & 1) == 1 ? -z : z);
+  albedo = RL_FETCH(rl_layer_color, vec3(h.uv, float(h.layer))).rgb;
+}

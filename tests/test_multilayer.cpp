@@ -1,0 +1,296 @@
+// Non-height-field relief (Policarpo & Oliveira 2006): the layer bake on meshes with known
+// crossings, the procedural patterns' closedness and orientation, the multilayer search
+// against the exact truth of its own layers (probe rays, hard cases included), and the gain
+// over a heightfield on the weave against the pattern mesh itself.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "gl/context.h"
+#include "relief/layer_bake.h"
+#include "relief/pattern_mesh.h"
+#include "scene/relief_asset.h"
+#include "support/test_support.h"
+#include "technique/gpu_scene.h"
+#include "truth/layers_truth.h"
+
+namespace rl {
+namespace {
+
+// Axis-aligned boxes in a pattern's mesh space (x = u, y = v, z = -depth), outward-wound
+// unless `flip`; each box spans u, v in [lo, hi] and depth [top, bottom].
+TriangleMesh boxes(const std::vector<std::tuple<double, double, double, double>>& spans,
+                   bool flip = false) {
+  TriangleMesh m;
+  for (const auto& [lo, hi, top, bottom] : spans) {
+    const uint32_t b = uint32_t(m.positions.size());
+    for (int k = 0; k < 8; ++k)
+      m.positions.emplace_back(k & 1 ? hi : lo, k & 2 ? hi : lo, k & 4 ? -top : -bottom);
+    // Faces as quads (a, b, c, d) counter-clockwise seen from outside.
+    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                             {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& q : quads) {
+      glm::uvec3 t0(b + q[0], b + q[1], b + q[2]), t1(b + q[0], b + q[2], b + q[3]);
+      if (flip) std::swap(t0.y, t0.z), std::swap(t1.y, t1.z);
+      m.triangles.push_back(t0);
+      m.triangles.push_back(t1);
+    }
+  }
+  m.lo = glm::dvec3(0, 0, -1);
+  m.hi = glm::dvec3(1, 1, 0);
+  return m;
+}
+
+TEST(LayerBake, AFloatingSlabHasTwoExactLayersFacingOut) {
+  for (bool flip : {false, true}) {
+    SCOPED_TRACE(flip ? "wound inward" : "wound outward");
+    const ReliefMap map =
+        bake_layers(boxes({{0.25, 0.75, 0.3, 0.6}}, flip), pattern_frame(), 16, 16, 4, {1, 1, 1});
+    const LayerStack& L = map.layers;
+    const size_t texels = 256;
+    ASSERT_EQ(L.count, 4);
+    EXPECT_EQ(L.max_crossings, 2);
+    EXPECT_EQ(L.overflow_texels, 0);
+    EXPECT_EQ(L.misoriented_crossings, flip ? 2 * 8 * 8 : 0);
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 16; ++x) {
+        const size_t i = size_t(y) * 16 + x;
+        const bool inside = x >= 4 && x < 12 && y >= 4 && y < 12;
+        ASSERT_EQ(L.used(i), inside ? 2 : 0) << x << "," << y;
+        EXPECT_EQ(map.relief[i].a, inside ? L.depth[i] : 1.0f);
+        if (!inside) continue;
+        EXPECT_NEAR(L.depth[i], 0.3, 1e-5);
+        EXPECT_NEAR(L.depth[texels + i], 0.6, 1e-5);
+        EXPECT_EQ(L.depth[2 * texels + i], 1.0f);         // unused: the paper's 1.0
+        EXPECT_NEAR(L.normal[i].z, 1.0, 1e-6);            // top: out of the solid, up
+        EXPECT_NEAR(L.normal[texels + i].z, -1.0, 1e-6);  // bottom: down
+      }
+  }
+}
+
+TEST(LayerBake, CrossingsBeyondTheLayersAreCountedAndTheTopOnesKept) {
+  // Three stacked slabs: depth complexity 6 (the 8-layer case).
+  const TriangleMesh stack =
+      boxes({{0.25, 0.75, 0.1, 0.2}, {0.25, 0.75, 0.4, 0.5}, {0.25, 0.75, 0.7, 0.8}});
+  const ReliefMap four = bake_layers(stack, pattern_frame(), 8, 8, 4, {1, 1, 1});
+  const ReliefMap eight = bake_layers(stack, pattern_frame(), 8, 8, 8, {1, 1, 1});
+  EXPECT_EQ(four.layers.max_crossings, 6);
+  EXPECT_EQ(four.layers.overflow_texels, 4 * 4);
+  EXPECT_EQ(eight.layers.overflow_texels, 0);
+  const size_t centre = 4 * 8 + 4;
+  EXPECT_EQ(four.layers.used(centre), 4);
+  EXPECT_EQ(eight.layers.used(centre), 6);
+  EXPECT_NEAR(four.layers.depth[3 * 64 + centre], 0.5, 1e-5);  // the 4th crossing is kept
+  EXPECT_NEAR(eight.layers.depth[5 * 64 + centre], 0.8, 1e-5);
+}
+
+TEST(PatternMesh, TilesCloseUpAndAreWoundOutward) {
+  for (const char* kind : {"weave", "helix"}) {
+    SCOPED_TRACE(kind);
+    const TriangleMesh mesh = make_pattern_mesh(kind, {}, "test");
+    // Every directed edge has its opposite once, with positions compared modulo the tile:
+    // the tubes' open ends on the tile border meet the next tile's.
+    auto key = [&](uint32_t v) {
+      const glm::dvec3 p(mesh.positions[v]);
+      auto wrap = [](double x) { return long(std::lround((x - std::floor(x + 1e-6)) * 1e5)); };
+      return std::make_tuple(wrap(p.x), wrap(p.y), long(std::lround(p.z * 1e5)));
+    };
+    std::map<std::pair<decltype(key(0)), decltype(key(0))>, int> edges;
+    for (const glm::uvec3& t : mesh.triangles)
+      for (int k = 0; k < 3; ++k) ++edges[{key(t[k]), key(t[(k + 1) % 3])}];
+    long unmatched = 0;
+    for (const auto& [e, n] : edges) unmatched += n != 1 || edges.count({e.second, e.first}) != 1;
+    EXPECT_EQ(unmatched, 0);
+    const ReliefMap map =
+        bake_layers(with_neighbour_tiles(mesh), pattern_frame(), 64, 64, 4, {1, 1, 1});
+    EXPECT_EQ(map.layers.misoriented_crossings, 0);
+    EXPECT_EQ(map.layers.overflow_texels, 0);
+    EXPECT_EQ(map.layers.max_crossings, 4);
+  }
+  EXPECT_THROW(make_pattern_mesh("weave", {{"amplitude", 0.05}}, "test"), ConfigError);
+  EXPECT_THROW(make_pattern_mesh("helix", {{"radius", 0.4}}, "test"), ConfigError);
+  EXPECT_THROW(make_pattern_mesh("weave", {{"knots", 1}}, "test"), ConfigError);
+}
+
+SceneDesc weave_scene(int resolution, TruthLevel truth) {
+  SceneDesc s;
+  s.name = "weave";
+  s.relief.procedural = "weave";
+  s.relief.layers = 4;
+  s.relief.native = {resolution, resolution};
+  s.truth = truth;
+  s.empty_floor = true;
+  s.tile = 2;
+  s.depth = 0.15;
+  return s;
+}
+
+struct ProbeSetup {
+  ReliefMap map;
+  std::unique_ptr<GpuRelief> gpu;
+  std::unique_ptr<Technique> technique;
+};
+
+ProbeSetup multilayer_on(const SceneDesc& scene, const ParamValues& params) {
+  GlContext::shared();
+  ProbeSetup p;
+  p.map = build_relief_asset(scene, scene.relief.native.longer());
+  p.gpu = std::make_unique<GpuRelief>(p.map);
+  p.technique = TechniqueRegistry::instance().create("multilayer", params, "test");
+  p.technique->prepare(p.map);
+  return p;
+}
+
+// Every fetch of one search: linear + binary + the layer choice, per group of four layers.
+int fetch_bound(const ParamValues& params, int groups) {
+  return (int(params.at("linear_steps")) + int(params.at("binary_steps")) + 1) * groups;
+}
+
+TEST(MultilayerProbe, FindsTheFirstHitOfItsOwnLayers) {
+  const SceneDesc scene = weave_scene(64, TruthLevel::Layers);
+  const ParamValues params = {{"linear_steps", 256}, {"binary_steps", 10}};
+  ProbeSetup p = multilayer_on(scene, params);
+  const LayersTruth truth(p.map);
+  const auto rays = test::random_tangent_rays(4096, 10, 80, 0.15 * 2, 7, 0.0);
+  const auto hits = p.technique->probe(p.map, *p.gpu, test::as_probe_rays(rays), {0.3, 0.3});
+  int agree = 0, close = 0, truth_hits = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const TruthHit t = truth.intersect(rays[i].origin, rays[i].direction, 0.0, 1.0);
+    truth_hits += t.hit;
+    ASSERT_TRUE(std::isfinite(hits[i].t) && std::isfinite(hits[i].depth));
+    ASSERT_LE(hits[i].fetches, fetch_bound(params, 1));
+    if (t.hit != hits[i].hit) continue;
+    ++agree;
+    if (!t.hit || std::abs(hits[i].depth - t.point.z) < 2.0 / 256) ++close;
+  }
+  // The search misses only slivers thinner than one of 256 steps along the ray (the sides of
+  // the threads' texel columns): 99.2% of rays agree on hit or miss, 97.0% also on the depth
+  // (measured); the rest found a later surface.
+  EXPECT_GT(truth_hits, 1000);
+  EXPECT_GE(agree, int(rays.size()) * 99 / 100) << agree;
+  EXPECT_GE(close, int(rays.size()) * 96 / 100) << close;
+  std::printf("probe vs layers: %d of %zu agree, %d within 2/256 in depth\n", agree, rays.size(),
+              close);
+}
+
+TEST(MultilayerProbe, HardCasesStayFiniteAndBounded) {
+  const SceneDesc scene = weave_scene(64, TruthLevel::Layers);
+  const ParamValues params = {{"linear_steps", 32}, {"binary_steps", 5}};
+  ProbeSetup p = multilayer_on(scene, params);
+  const LayerStack& L = p.map.layers;
+  std::vector<ProbeRay> rays;
+  // Grazing between layers: rays at 1-4 degrees starting mid-depth, inside the gaps.
+  for (const auto& r : test::random_tangent_rays(512, 1, 4, 0.3, 11, 0.5))
+    rays.push_back(test::as_probe_rays({r})[0]);
+  // Straight down through texels with no layer at all, and starting exactly on a layer.
+  std::vector<size_t> empty_texels, layered_texels;
+  for (size_t i = 0; i < 64 * 64; ++i)
+    (L.used(i) == 0 ? empty_texels : layered_texels).push_back(i);
+  ASSERT_FALSE(empty_texels.empty());
+  ASSERT_FALSE(layered_texels.empty());
+  auto centre = [](size_t i) { return glm::vec2((i % 64 + 0.5f) / 64, (i / 64 + 0.5f) / 64); };
+  const size_t down_first = rays.size();
+  for (size_t k = 0; k < 64; ++k)
+    rays.push_back(
+        {glm::vec3(centre(empty_texels[k * empty_texels.size() / 64]), 0.0f), glm::vec3(0, 0, 1)});
+  const size_t on_layer_first = rays.size();
+  // Starting on the top layer of texels whose solid is at least two steps thick (a thinner
+  // sliver is stepped over, as any linear search does).
+  std::vector<size_t> thick;
+  for (size_t i : layered_texels)
+    if (L.depth[4096 + i] - L.depth[i] > 2.0 * (1.0 - L.depth[i]) / 32) thick.push_back(i);
+  ASSERT_GT(thick.size(), 64u);
+  for (size_t k = 0; k < 64; ++k) {
+    const size_t i = thick[k * thick.size() / 64];
+    rays.push_back({glm::vec3(centre(i), L.depth[i]), glm::vec3(0, 0, 1)});
+  }
+  const auto hits = p.technique->probe(p.map, *p.gpu, rays, {0.3, 0.3});
+  for (size_t i = 0; i < rays.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(hits[i].t) && std::isfinite(hits[i].depth)) << i;
+    ASSERT_LE(hits[i].fetches, fetch_bound(params, 1)) << i;
+    ASSERT_GE(hits[i].layer, hits[i].hit ? 0 : -1) << i;
+    ASSERT_LT(hits[i].layer, 4) << i;
+  }
+  for (size_t i = down_first; i < on_layer_first; ++i)
+    EXPECT_FALSE(hits[i].hit) << "a ray through an empty texel column hit something";
+  for (size_t i = on_layer_first; i < rays.size(); ++i) {
+    // Entering exactly at a layer's depth: the first step is already inside.
+    EXPECT_TRUE(hits[i].hit);
+    EXPECT_NEAR(hits[i].depth, rays[i].origin.z, (1.0 - rays[i].origin.z) / 32 + 1e-5);
+  }
+}
+
+TEST(Multilayer, BeatsTheHeightfieldOnTheWeaveAgainstTheMesh) {
+  const SceneDesc scene = weave_scene(128, TruthLevel::Mesh);
+  for (double el : {60.0, 30.0}) {
+    SCOPED_TRACE(el);
+    const test::Measured ml = test::measure(scene, "multilayer", {}, View{el, 30}, 128);
+    const test::Measured hf =
+        test::measure(scene, "relief", {{"linear_steps", 32}}, View{el, 30}, 128);
+    EXPECT_GT(ml.metrics.truth_covered_px, 2000);  // a fitted camera: the quad in view
+    EXPECT_EQ(ml.metrics.nonfinite_px, 0);
+    // The heightfield extrudes every thread down to the floor; the layers keep the gaps.
+    EXPECT_LT(ml.metrics.wrong_pct, 0.6 * hf.metrics.wrong_pct);
+    EXPECT_LT(ml.metrics.false_pct, 0.6 * hf.metrics.false_pct);
+    std::printf(
+        "weave %2.0f deg: multilayer wrong %.2f%% (false %.2f%%), relief wrong %.2f%% "
+        "(false %.2f%%)\n",
+        el, ml.metrics.wrong_pct, ml.metrics.false_pct, hf.metrics.wrong_pct, hf.metrics.false_pct);
+  }
+}
+
+TEST(Multilayer, AgainstItsOwnLayersOnlySearchErrorRemains) {
+  const SceneDesc scene = weave_scene(128, TruthLevel::Layers);
+  const test::Measured m =
+      test::measure(scene, "multilayer", {{"linear_steps", 128}}, View{45, 30}, 128);
+  // The truth samples the layers as the technique does: no false coverage, and what is
+  // missed are threads thinner than a linear step along the ray.
+  EXPECT_LE(m.metrics.false_pct, 0.1);
+  EXPECT_LE(m.metrics.missed_pct, 1.0);
+  EXPECT_LE(m.metrics.wrong_pct, 3.0);
+  // Linear filtering mixes surface and empty texels (Section 6's "skins"): more wrong pixels.
+  const test::Measured skins = test::measure(
+      scene, "multilayer", {{"linear_steps", 128}, {"linear_filter", 1}}, View{45, 30}, 128);
+  std::printf(
+      "weave 45 deg vs layers: nearest wrong %.2f%% (false %.2f%%), linear wrong %.2f%% "
+      "(false %.2f%%)\n",
+      m.metrics.wrong_pct, m.metrics.false_pct, skins.metrics.wrong_pct, skins.metrics.false_pct);
+  EXPECT_GT(skins.metrics.wrong_pct, m.metrics.wrong_pct);
+}
+
+TEST(Multilayer, ShadowRaysOnlyWhenAskedAndTheyAgreeWithTheLayers) {
+  SceneDesc scene = weave_scene(64, TruthLevel::Layers);
+  const test::Measured plain =
+      test::measure(scene, "multilayer", {{"linear_steps", 64}}, View{45, 30});
+  EXPECT_EQ(plain.truth_stats.shadow_rays, 0u);
+  scene.effects.add(Effect::SelfShadow);
+  const test::Measured shadowed =
+      test::measure(scene, "multilayer", {{"linear_steps", 64}}, View{45, 30});
+  EXPECT_GT(shadowed.truth_stats.shadow_rays, 0u);
+  std::printf("weave shadows vs layers: disagree %.2f%%\n", shadowed.metrics.shadow_disagree_pct);
+  // Measured 9.2%; where the two disagree has not been analysed pixel by pixel yet (a known
+  // limit in the technique README).
+  EXPECT_LE(shadowed.metrics.shadow_disagree_pct, 10.0);
+}
+
+TEST(Multilayer, EveryTechniqueDrawsTheWeaveFinitely) {
+  // A non-height-field scene is one more hard case for every registered technique: the
+  // heightfield ones see its top layer. Outputs finite, whatever their error.
+  const SceneDesc scene = weave_scene(64, TruthLevel::Mesh);
+  for (const std::string& name : TechniqueRegistry::instance().names()) {
+    const TechniqueInfo& info = TechniqueRegistry::instance().find(name)->info;
+    if (!info.effects.contains_all(scene.effects)) continue;
+    SCOPED_TRACE(name);
+    const test::Measured m = test::measure(scene, name, {}, View{20, 30}, 64);
+    EXPECT_EQ(m.metrics.nonfinite_px, 0);
+    for (const auto& [column, value] : m.metrics.named())
+      EXPECT_TRUE(std::isfinite(value)) << column;
+  }
+}
+
+}  // namespace
+}  // namespace rl
