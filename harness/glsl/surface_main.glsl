@@ -60,8 +60,20 @@ void main() {
   vec3 N = normalize(v_normal);
   vec3 V = normalize(v_world - rl_eye);
   vec3 tv = rl_texture_direction(V, N);
+#ifdef RL_IMPOSTOR
+  // Relief impostors (Policarpo & Oliveira 2006, Section 4): the quad runs through the
+  // object's middle (depth 0.5) and is seen from either side; the search covers the whole
+  // depth range along the ray, downward from the front, upward from behind, and a ray that
+  // meets no layer shows what lies behind the impostor.
+  if (tv.z == 0.0) discard;
+  vec3 s = tv / abs(tv.z);
+  RlHit h = rl_intersect(vec3(v_uv, 0.5) - 0.5 * s, s);
+  if (!h.hit) discard;
+#else
   if (tv.z <= 0.0) discard;  // base seen from below: no relief there
-#ifdef RL_REVERSE_PERSPECTIVE
+#endif
+#if defined(RL_IMPOSTOR)
+#elif defined(RL_REVERSE_PERSPECTIVE)
   // Lines stay lines: the ray through the projected eye and the projected fragment.
   vec3 a_frag = vec3(v_uv, v_entry_depth);
   vec3 p_tex = rl_project(a_frag);
@@ -90,7 +102,7 @@ void main() {
   if (on_floor) discard;
 #endif
   if (!h.hit && !on_floor) discard;  // a walk stopped by its cell cap
-#elif defined(RL_EMPTY_FLOOR)
+#elif defined(RL_EMPTY_FLOOR) && !defined(RL_IMPOSTOR)
   // The base drawn over an empty floor (a non-height-field pattern): a ray that finds no
   // surface, or only the floor, went through the pattern's gaps.
   if (!h.hit || h.depth >= 1.0 - 1e-4) discard;

@@ -35,7 +35,7 @@ BakeFrame pattern_frame() {
 }
 
 ReliefMap bake_layers(const TriangleMesh& mesh, const BakeFrame& frame, int width, int height,
-                      int layers, const glm::dvec3& world_scale) {
+                      int layers, const glm::dvec3& world_scale, bool close_open) {
   if (layers < 1 || layers > LayerStack::kMaxLayers)
     throw std::invalid_argument("bake_layers: 1 to 8 layers");
   RTCDevice device = rtcNewDevice(nullptr);
@@ -56,6 +56,7 @@ ReliefMap bake_layers(const TriangleMesh& mesh, const BakeFrame& frame, int widt
   std::atomic<long> overflow{0};
   std::atomic<int> max_crossings{0};
   std::atomic<long> misoriented{0};
+  std::atomic<long> odd{0};
 
   parallel_for(texels, [&](size_t begin, size_t end) {
     RTCIntersectContext ctx;
@@ -91,6 +92,10 @@ ReliefMap bake_layers(const TriangleMesh& mesh, const BakeFrame& frame, int widt
             mesh.triangle_colors.empty() ? kNeutral : mesh.triangle_colors[rh.hit.primID];
         found.push_back({depth, glm::vec3(n), color});
       }
+      if (found.size() % 2) {
+        ++odd;
+        if (close_open) found.pop_back();
+      }
       const int crossings = int(found.size());
       if (crossings > layers) ++overflow;
       int seen = max_crossings.load();
@@ -111,6 +116,7 @@ ReliefMap bake_layers(const TriangleMesh& mesh, const BakeFrame& frame, int widt
   stack.overflow_texels = overflow.load();
   stack.max_crossings = max_crossings.load();
   stack.misoriented_crossings = misoriented.load();
+  stack.odd_texels = odd.load();
   rtcReleaseScene(scene);
   rtcReleaseDevice(device);
   return map;

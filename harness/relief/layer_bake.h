@@ -14,9 +14,11 @@ namespace rl {
 // the tangent frame the shaders shade with. Layer colours come from the mesh's triangle
 // colours (neutral without). Crossings beyond `layers` are dropped and counted
 // (LayerStack::overflow_texels); a mesh whose winding disagrees with the crossing order is
-// oriented by the order (even layers enter the solid, odd ones leave it).
+// oriented by the order (even layers enter the solid, odd ones leave it). `close_open`: a
+// texel with an odd number of crossings (an open mesh) drops its deepest one, so its column
+// gets a hole instead of a solid curtain down to the bottom (objects in a box, impostors).
 ReliefMap bake_layers(const TriangleMesh& mesh, const BakeFrame& frame, int width, int height,
-                      int layers, const glm::dvec3& world_scale);
+                      int layers, const glm::dvec3& world_scale, bool close_open = false);
 
 // The frame of a pattern mesh (relief/pattern_mesh.h), which is built in texture space.
 BakeFrame pattern_frame();

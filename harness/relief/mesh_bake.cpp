@@ -30,7 +30,7 @@ glm::dvec3 BakeFrame::texture_normal(const glm::dvec3& n) const {
   return glm::normalize(glm::dvec3(n[axis_u] * side, n[axis_v] * side, -n[up] * height));
 }
 
-BakeFrame bake_frame(const TriangleMesh& mesh, int up, double margin) {
+BakeFrame bake_frame(const TriangleMesh& mesh, int up, double margin, double depth_margin) {
   if (up < 0 || up > 2) throw ConfigError("mesh up axis must be x, y or z");
   BakeFrame f;
   f.up = up;
@@ -39,11 +39,11 @@ BakeFrame bake_frame(const TriangleMesh& mesh, int up, double margin) {
   f.axis_v = (up + 2) % 3;
   const glm::dvec3 extent = mesh.hi - mesh.lo;
   f.side = std::max(extent[f.axis_u], extent[f.axis_v]) * (1 + 2 * margin);
-  f.height = std::max(extent[up], 1e-9);
+  f.height = std::max(extent[up], 1e-9) * (1 + 2 * depth_margin);
   const glm::dvec3 centre = 0.5 * (mesh.lo + mesh.hi);
   f.origin[f.axis_u] = centre[f.axis_u] - 0.5 * f.side;
   f.origin[f.axis_v] = centre[f.axis_v] - 0.5 * f.side;
-  f.origin[up] = mesh.hi[up];
+  f.origin[up] = mesh.hi[up] + depth_margin * std::max(extent[up], 1e-9);
   return f;
 }
 

@@ -27,7 +27,10 @@ struct BakeFrame {
   glm::dvec3 texture_normal(const glm::dvec3& n) const;
 };
 
-BakeFrame bake_frame(const TriangleMesh& mesh, int up, double margin = 0.04);
+// `depth_margin` pads the depth range likewise (a fraction of the height on each side): layers
+// at depth 0 or 1 would be lost to 8-bit quantisation (1.0 marks an unused layer).
+BakeFrame bake_frame(const TriangleMesh& mesh, int up, double margin = 0.04,
+                     double depth_margin = 0.0);
 
 // Bake at resolution^2: per texel centre a ray from the box top, straight down, or with a
 // reverse projection towards its centre of projection (Section 4); the texture-space depth

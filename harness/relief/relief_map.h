@@ -30,6 +30,10 @@ struct LayerStack {
   // odd one facing up): 0 for a closed, consistently wound mesh. They are stored oriented by
   // the order, which is what the inside test needs.
   long misoriented_crossings = 0;
+  // Texels whose ray crossed the surface an odd number of times: an open or non-manifold mesh
+  // (the Utah teapot's spout and rim); a closed mesh has none. An impostor's bake drops the
+  // deepest crossing there (a hole rather than a solid curtain below the last layer).
+  long odd_texels = 0;
 
   static constexpr int kMaxLayers = 8;
   bool empty() const { return count == 0; }

@@ -19,13 +19,22 @@ ReliefImageSource image_source(const ReliefSourceDesc& relief) {
   return src;
 }
 
+BakeFrame relief_bake_frame(const ReliefSourceDesc& relief, const TriangleMesh& mesh) {
+  return bake_frame(mesh, relief.mesh_up, 0.04, relief.layers > 0 ? 0.02 : 0.0);
+}
+
 ReliefMap build_relief_asset(const SceneDesc& scene, int resolution) {
   const PlanarBase base = planar_base(scene);
   const MapSize size = scene.relief.size_at(resolution);
   ReliefMap map;
   if (!scene.relief.mesh_path.empty()) {
     const TriangleMesh mesh = load_mesh(scene.relief.mesh_path);
-    map = bake_mesh(mesh, bake_frame(mesh, scene.relief.mesh_up), resolution, scene.projection);
+    const BakeFrame frame = relief_bake_frame(scene.relief, mesh);
+    if (scene.relief.layers > 0)
+      map = bake_layers(mesh, frame, resolution, resolution, scene.relief.layers,
+                        {glm::length(base.dpdu()), glm::length(base.dpdv()), scene.depth}, true);
+    else
+      map = bake_mesh(mesh, frame, resolution, scene.projection);
   } else if (scene.relief.pattern_mesh()) {
     // Baked at the map's resolution; normals as seen on this scene's base.
     const TriangleMesh mesh = make_pattern_mesh(scene.relief.procedural, scene.relief.options,

@@ -90,8 +90,9 @@ BaseGeometry make_base_geometry(const SceneDesc& scene) {
     return g;
   }
   const glm::vec2 corners[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  const double quad_depth = scene.impostor() ? 0.5 : 0.0;  // an impostor's quad: its middle
   for (const glm::vec2& c : corners)
-    g.vertices.push_back(vertex({c.x * scene.tile, c.y * scene.tile, 0}));
+    g.vertices.push_back(vertex({c.x * scene.tile, c.y * scene.tile, quad_depth}));
   g.indices = {0, 1, 2, 0, 2, 3};
   return g;
 }
@@ -186,6 +187,7 @@ Camera make_camera(const SceneDesc& scene, const View& view, int width, int heig
   // Aim at the top of the relief: at grazing elevations a target inside the relief would put
   // the eye below the top plane.
   cam.target = glm::dvec3(0, 0, 0);
+  if (scene.impostor()) cam.target.z = -0.5 * scene.depth;  // the quad through its middle
   const glm::dvec3 dir(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
   cam.eye = cam.target + dir * distance;
   // d(dir)/d(elevation): perpendicular to the view direction at every elevation, so the

@@ -119,6 +119,9 @@ struct SceneDesc {
   double fov_deg = 40;
   double distance = 0;        // camera distance to the quad centre; 0 = fit the quad in view
   double shadow_bias = 0.02;  // depth units (Listing 5.3's shadow_threshold)
+  // A relief impostor (Policarpo & Oliveira 2006, Section 4): a mesh baked into depth layers,
+  // drawn on one quad through its middle (depth 0.5) and seen from either side.
+  bool impostor() const { return relief.layers > 0 && !relief.mesh_path.empty(); }
 };
 
 // The planar base: texture space (u, v, depth) <-> world. The quad spans [-size/2, size/2] in

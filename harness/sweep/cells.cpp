@@ -20,10 +20,10 @@ const std::vector<std::string>& measured_columns() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> n;
     for (const auto& [name, value] : ImageMetrics().named()) n.push_back(name);
-    for (const char* c :
-         {"elev_min_deg", "elev_max_deg", "frame_ms", "frame_ms_min", "frame_ms_iqr",
-          "frames_timed", "precompute_ms", "memory_bytes", "truth_bound", "truth_subdivision",
-          "truth_ms", "truth_unresolved_px", "layers", "layer_overflow_pct", "depth_complexity"})
+    for (const char* c : {"elev_min_deg", "elev_max_deg", "frame_ms", "frame_ms_min",
+                          "frame_ms_iqr", "frames_timed", "precompute_ms", "memory_bytes",
+                          "truth_bound", "truth_subdivision", "truth_ms", "truth_unresolved_px",
+                          "layers", "layer_overflow_pct", "layer_odd_pct", "depth_complexity"})
       n.push_back(c);
     return n;
   }();

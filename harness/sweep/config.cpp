@@ -53,17 +53,20 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
     if (auto* v = t->get("name")) c.name = string_of(*v, src, "name");
     if (auto* v = t->get("elevations")) elevations = number_list(*v, src, "elevations");
     if (auto* v = t->get("azimuths")) azimuths = number_list(*v, src, "azimuths");
+    // Negative elevations look from below: only relief impostors are seen from there.
     for (double e : elevations)
-      if (!(e > 0 && e <= 90))
+      if (!(e >= -90 && e <= 90 && e != 0))
         fail(src.at(*t->get("elevations")),
-             "elevations must be in (0, 90] degrees, got " + std::to_string(e));
+             "elevations must be in (0, 90] degrees (or [-90, 0) for relief impostors), got " +
+                 std::to_string(e));
     if (auto* v = t->get("views")) {
       const toml::array* a = v->as_array();
       if (!a) fail(src.at(*v), "'views' must be an array of [elevation, azimuth] pairs");
       for (const toml::node& e : *a) {
         std::vector<double> pair = number_list(e, src, "views");
-        if (pair.size() != 2 || !(pair[0] > 0 && pair[0] <= 90))
-          fail(src.at(e), "each view must be [elevation in (0, 90], azimuth]");
+        if (pair.size() != 2 || !(pair[0] >= -90 && pair[0] <= 90 && pair[0] != 0))
+          fail(src.at(e),
+               "each view must be [elevation in (0, 90] (or [-90, 0) for impostors), azimuth]");
         c.views.push_back({pair[0], pair[1]});
       }
     }
@@ -126,6 +129,12 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
     json& sc = parsed.canon;
     c.scenes.push_back(parsed.scene);
     SceneDesc& scene = c.scenes.back();
+    for (const View& v : c.views)
+      if (v.elevation_deg < 0 && !scene.impostor())
+        fail(src.at(n), "scene '" + scene.name + "' is seen from below (elevation " +
+                            std::to_string(v.elevation_deg) +
+                            "), which only relief impostors (a mesh with 'layers') can be; "
+                            "give it a sweep of its own");
     if (scene.framing == Framing::Fill) {
       // Lengthen the quad (whole tiles more) for the grazing-est view of the sweep.
       double min_el = 90, max_aspect = 0;

@@ -156,8 +156,12 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
            "a pattern (weave, helix)");
     if (s.truth == TruthLevel::Layers && s.relief.layers == 0)
       fail(src.at(*n), "truth = \"layers\" needs a multilayer relief (a pattern, or 'layers')");
-  } else if (s.relief.pattern_mesh()) {
-    s.truth = TruthLevel::Mesh;  // a pattern is measured against the geometry it stands for
+    if (s.truth == TruthLevel::Sampled && s.relief.layers > 0)
+      fail(src.at(*n),
+           "a multilayer relief has no single heightfield to sample; its truths are "
+           "\"mesh\" (what it was baked from) and \"layers\" (its own layers)");
+  } else if (s.relief.layers > 0) {
+    s.truth = TruthLevel::Mesh;  // measured against the geometry it stands for
   }
   s.empty_floor = !s.relief.mesh_path.empty() || s.relief.pattern_mesh();
   if (auto* n = t.get("floor")) {
@@ -203,12 +207,13 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
     fail(src.at(node),
          "scene '" + s.name + "': self_shadow is not supported with reverse_perspective yet");
   if (s.relief.layers > 0) {
-    // Not built yet: relief impostors (a baked object's layers in its box), multilayer
-    // silhouettes on curved bases, and a floor under a pattern.
+    // Not built yet: layers in a box proxy, multilayer silhouettes on curved bases, a floor
+    // under a pattern, shadows on impostors.
     const std::string no = "scene '" + s.name + "': a multilayer relief ";
-    if (!s.relief.mesh_path.empty())
-      fail(src.at(node), no + "from a mesh file (relief impostors) is not supported yet; "
-                              "patterns (weave, helix) are");
+    if (s.impostor() && s.effects.has(Effect::SelfShadow))
+      fail(src.at(node), "scene '" + s.name +
+                             "': self_shadow on a relief impostor is not "
+                             "supported yet");
     if (s.proxy == Proxy::Box)
       fail(src.at(node), no + "is drawn on its base; proxy = \"box\" "
                               "is not supported yet");
@@ -217,7 +222,8 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
       fail(src.at(node), no + "has an empty floor (its gaps show the background); "
                               "floor = \"solid\" is not supported yet");
   }
-  if (s.truth == TruthLevel::Mesh && !s.relief.mesh_path.empty() && s.proxy != Proxy::Box)
+  if (s.truth == TruthLevel::Mesh && !s.relief.mesh_path.empty() && !s.impostor() &&
+      s.proxy != Proxy::Box)
     fail(src.at(node),
          "scene '" + s.name +
              "': truth = \"mesh\" needs proxy = \"box\" (the mesh is an object in its box)");

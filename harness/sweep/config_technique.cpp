@@ -139,6 +139,10 @@ void check_technique_sweep(const TechniqueSweep& ts, const std::vector<SceneDesc
                          " requested by scene '" + s.name +
                          "' (it supports: " + join_effects(info.effects) +
                          "); restrict it with scenes = [...] or drop the effect");
+    if (runs && s.impostor() && !info.impostor)
+      fail(ts.where, "technique '" + ts.name + "' cannot render scene '" + s.name +
+                         "', a relief impostor (a mesh baked into layers, seen from both "
+                         "sides); restrict it with scenes = [...]");
     if (runs && s.proxy == Proxy::Box && !info.box_proxy)
       fail(ts.where, "technique '" + ts.name + "' cannot render scene '" + s.name +
                          "' with proxy = \"box\" (it only shades the base surface); restrict "

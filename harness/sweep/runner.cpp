@@ -283,6 +283,10 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
         layers.empty() ? nlohmann::ordered_json()
                        : nlohmann::ordered_json(100.0 * double(layers.overflow_texels) /
                                                 (double(asset->map.width) * asset->map.height));
+    row["layer_odd_pct"] =
+        layers.empty() ? nlohmann::ordered_json()
+                       : nlohmann::ordered_json(100.0 * double(layers.odd_texels) /
+                                                (double(asset->map.width) * asset->map.height));
     row["depth_complexity"] =
         layers.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(layers.max_crossings);
     row["truth"] = truth_level_name(scene.truth);

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/hash.h"
 #include "relief/mesh_bake.h"
+#include "scene/relief_asset.h"
 
 namespace rl {
 namespace {
@@ -56,7 +57,7 @@ void read_scene_files(ParsedScene& parsed) {
   if (!r.mesh_path.empty()) {
     canon["relief"]["mesh"] = file_id(r.mesh_path);
     // A baked mesh keeps its proportions: the relief depth follows from the footprint.
-    const BakeFrame frame = bake_frame(mesh_at(parsed.sites.relief, r.mesh_path), r.mesh_up);
+    const BakeFrame frame = relief_bake_frame(r, mesh_at(parsed.sites.relief, r.mesh_path));
     s.depth = s.size * frame.height / frame.side;
     canon["depth"] = s.depth;
   }

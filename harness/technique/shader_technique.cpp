@@ -10,7 +10,7 @@
 namespace rl {
 
 SurfaceVariant ShaderTechnique::variant_of(const SceneDesc& scene) {
-  return {scene.proxy, scene.empty_floor, scene.projection.active()};
+  return {scene.proxy, scene.empty_floor, scene.projection.active(), scene.impostor()};
 }
 
 ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Kind target,
@@ -25,6 +25,7 @@ ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Ki
   if (variant.proxy == Proxy::Box) d.defines["RL_PROXY_BOX"] = "1";
   if (variant.empty_floor) d.defines["RL_EMPTY_FLOOR"] = "1";
   if (variant.reverse_perspective) d.defines["RL_REVERSE_PERSPECTIVE"] = "1";
+  if (variant.impostor) d.defines["RL_IMPOSTOR"] = "1";
   return d;
 }
 

@@ -15,6 +15,7 @@ struct SurfaceVariant {
   Proxy proxy = Proxy::Base;
   bool empty_floor = false;
   bool reverse_perspective = false;
+  bool impostor = false;
 };
 
 class ShaderTechnique : public Technique {

@@ -35,6 +35,7 @@ struct TechniqueInfo {
   EffectSet effects;     // effects it can simulate when a scene asks for them
   std::vector<ParamSpec> params;
   bool box_proxy = false;  // can render a scene's bounding-box proxy (Proxy::Box)
+  bool impostor = false;   // can render a relief impostor (SceneDesc::impostor(), both sides)
 };
 
 // Throws std::logic_error naming the technique when its metadata is inconsistent: an empty or

@@ -32,14 +32,15 @@ std::string techniques_markdown() {
     const TechniqueInfo& info = registry.find(name)->info;
     out += "| [`" + name + "`](techniques/" + name + "/README.md) | " + cell(info.title) + " | " +
            cell(info.citation) + " | " + effects_cell(info.effects) + " | base" +
-           (info.box_proxy ? ", box" : "") + " |\n";
+           (info.box_proxy ? ", box" : "") + (info.impostor ? ", impostor" : "") + " |\n";
   }
   return out;
 }
 
 std::string interface_markdown(const TechniqueInfo& info) {
   std::string out = "Effects it can simulate: " + effects_cell(info.effects) + ". Draws: the base" +
-                    (info.box_proxy ? " or the relief's box proxy" : "") + ".\n\n";
+                    (info.box_proxy ? " or the relief's box proxy" : "") +
+                    (info.impostor ? "; relief impostors, from both sides" : "") + ".\n\n";
   if (info.params.empty()) return out + "Parameters: none.\n";
   out += "| parameter | kind | default | range | meaning |\n| --- | --- | ---: | --- | --- |\n";
   for (const ParamSpec& p : info.params) {

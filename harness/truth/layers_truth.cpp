@@ -6,7 +6,8 @@
 
 namespace rl {
 
-LayersTruth::LayersTruth(const ReliefMap& map) : width_(map.width), height_(map.height) {
+LayersTruth::LayersTruth(const ReliefMap& map, bool tiled)
+    : width_(map.width), height_(map.height), tiled_(tiled) {
   if (!map.layers.empty()) {
     count_ = map.layers.count;
     depth_ = map.layers.depth;
@@ -25,6 +26,7 @@ LayersTruth::LayersTruth(const ReliefMap& map) : width_(map.width), height_(map.
 bool LayersTruth::column_hit(long i, long j, const glm::dvec3& o, const glm::dvec3& d, double t0,
                              double t1, TruthHit& hit) const {
   const long w = width_, h = height_;
+  if (!tiled_ && (i < 0 || j < 0 || i >= w || j >= h)) return false;
   const size_t texel = size_t(((j % h) + h) % h) * w + size_t(((i % w) + w) % w);
   const size_t texels = size_t(w) * h;
   float layers[LayerStack::kMaxLayers];

@@ -16,7 +16,9 @@ namespace rl {
 class LayersTruth final : public TruthSurface {
  public:
   // A map without layers is taken as one layer: its heightfield under nearest sampling.
-  explicit LayersTruth(const ReliefMap& map);
+  // `tiled`: the map repeats (GL_REPEAT, a pattern); otherwise it is one object in its box
+  // (an impostor) and outside the box there is nothing.
+  explicit LayersTruth(const ReliefMap& map, bool tiled = true);
 
   TruthHit intersect(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,
                      double t_max) const override;
@@ -34,6 +36,7 @@ class LayersTruth final : public TruthSurface {
                  double t_max) const;
 
   int width_ = 0, height_ = 0, count_ = 0;
+  bool tiled_ = true;
   std::vector<float> depth_;  // [layer * texels + texel], unused = 1
   std::vector<glm::vec3> normal_, color_;
 };

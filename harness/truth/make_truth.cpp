@@ -4,6 +4,7 @@
 
 #include "core/elapsed.h"
 #include "scene/base_mesh.h"
+#include "scene/relief_asset.h"
 
 #include "relief/layer_bake.h"
 #include "relief/mesh_bake.h"
@@ -16,7 +17,8 @@ namespace rl {
 
 std::unique_ptr<TruthSurface> make_truth(const SceneDesc& scene, const ReliefMap& map,
                                          double tolerance) {
-  if (scene.truth == TruthLevel::Layers) return std::make_unique<LayersTruth>(map);
+  if (scene.truth == TruthLevel::Layers)
+    return std::make_unique<LayersTruth>(map, !scene.impostor());
   if (scene.truth == TruthLevel::Mesh && scene.relief.pattern_mesh()) {
     const TriangleMesh mesh = make_pattern_mesh(scene.relief.procedural, scene.relief.options,
                                                 "scene '" + scene.name + "'");
@@ -25,7 +27,7 @@ std::unique_ptr<TruthSurface> make_truth(const SceneDesc& scene, const ReliefMap
   }
   if (scene.truth == TruthLevel::Mesh) {
     const TriangleMesh mesh = load_mesh(scene.relief.mesh_path);
-    return std::make_unique<MeshTruth>(mesh, bake_frame(mesh, scene.relief.mesh_up),
+    return std::make_unique<MeshTruth>(mesh, relief_bake_frame(scene.relief, mesh),
                                        scene.projection);
   }
   return std::make_unique<HeightfieldTruth>(map, tolerance);

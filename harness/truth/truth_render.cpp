@@ -41,6 +41,18 @@ bool clip_to_box(const glm::dvec3& o, const glm::dvec3& d, double tile, double& 
 bool trace_primary(const TruthSurface& truth, const ReliefMap& map, const SceneDesc& scene,
                    const glm::dvec3& o, const glm::dvec3& d, double bottom, double& t_start,
                    TruthHit& h, std::atomic<long>& unresolved) {
+  if (scene.impostor()) {
+    // The quad through the object's middle, seen from either side: the ray is searched over
+    // the whole depth range where it crosses the quad's footprint.
+    if (d.z == 0) return false;
+    const double t_quad = (0.5 - o.z) / d.z;
+    const glm::dvec3 at = o + d * t_quad;
+    if (t_quad <= 0 || at.x < 0 || at.y < 0 || at.x > scene.tile || at.y > scene.tile) return false;
+    const double t0 = (0.0 - o.z) / d.z, t1 = (1.0 - o.z) / d.z;
+    t_start = std::min(t0, t1);
+    h = truth.intersect(o + d * t_start, d, 0.0, std::max(t0, t1) - t_start);
+    return h.hit;
+  }
   if (d.z <= 0) return false;  // never descends into the relief
   if (scene.proxy == Proxy::Box) {
     // The solid under the heightfield, clipped to the box [0, tile]^2 x [0, 1].

@@ -41,7 +41,8 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
                         .min_value = 0,
                         .max_value = 1,
                         .doc = "Section 3.2: of the last inside and outside samples, keep the one "
-                               "on the texel with more layers"}}};
+                               "on the texel with more layers"}},
+            .impostor = true};
   }
 
   // Uploads the layers as the paper stores them: per group of four, one RGBA texel of depths,

@@ -16,6 +16,11 @@ layout(binding = 7) uniform sampler2DArray rl_layer_color;  // slice l: layer l'
 // (layers above depth d, layers used) at uv: the parallel comparison of Algorithm 1.
 ivec2 rl_layer_counts(vec2 uv, float d) {
   ivec2 c = ivec2(0);
+#ifdef RL_IMPOSTOR
+  // An impostor is one object in its box, not a tiling: outside it there is nothing (the
+  // truth traces the mesh once).
+  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return c;
+#endif
   for (int g = 0; g < RL_LAYER_GROUPS; g++) {
     vec4 layers = RL_FETCH(rl_layer_depth, vec3(uv, float(g)));
     c.x += int(dot(vec4(lessThan(layers, vec4(d))), vec4(1.0)));
@@ -24,15 +29,28 @@ ivec2 rl_layer_counts(vec2 uv, float d) {
   return c;
 }
 
+// The point of the ray p + t s at t. Depth runs with s.z = +1 (down) or -1 (up: an impostor
+// seen from behind, Section 4), so t always counts depth units travelled.
+RlHit rl_layer_hit(vec3 p, vec3 s, float t, bool hit) {
+  RlHit h;
+  h.t = t;
+  h.uv = p.xy + s.xy * t;
+  h.depth = p.z + s.z * t;
+  h.layer = -1;
+  h.hit = hit;
+  return h;
+}
+
 RlHit rl_intersect(vec3 p, vec3 s) {
-  // Algorithm 1: equal steps down to depth 1; the first sample inside a solid stops it.
-  float size = (1.0 - p.z) / float(RL_LINEAR_STEPS);
+  // Algorithm 1: equal steps to the far side of the depth range (depth 1 down, 0 up); the
+  // first sample inside a solid stops it. The inside test does not depend on the direction.
+  float size = (s.z > 0.0 ? 1.0 - p.z : p.z) / float(RL_LINEAR_STEPS);
   float t = 0.0;
   int used_in = 0, used_out = -1;
   bool found = false;
   for (int i = 1; i <= RL_LINEAR_STEPS; i++) {
     t = size * float(i);
-    ivec2 c = rl_layer_counts(p.xy + s.xy * t, p.z + t);
+    ivec2 c = rl_layer_counts(p.xy + s.xy * t, p.z + s.z * t);
     if ((c.x & 1) == 1) {
       used_in = c.y;
       found = true;
@@ -40,17 +58,13 @@ RlHit rl_intersect(vec3 p, vec3 s) {
     }
     used_out = c.y;
   }
-  if (!found) {
-    // Through every solid: the ray leaves at the bottom (a gap of the pattern).
-    RlHit miss = rl_hit_on_ray(p, s, 1.0 - p.z, false);
-    miss.layer = -1;
-    return miss;
-  }
+  // Through every solid: the ray leaves the depth range (a gap of the pattern).
+  if (!found) return rl_layer_hit(p, s, t, false);
   // Algorithm 2: bisect between the last outside and the first inside sample.
   float lo = t - size, hi = t;
   for (int i = 0; i < RL_BINARY_STEPS; i++) {
     float mid = 0.5 * (lo + hi);
-    ivec2 c = rl_layer_counts(p.xy + s.xy * mid, p.z + mid);
+    ivec2 c = rl_layer_counts(p.xy + s.xy * mid, p.z + s.z * mid);
     if ((c.x & 1) == 1) {
       hi = mid;
       used_in = c.y;
@@ -65,7 +79,7 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   // layer counts, the one with more layers holds the surface the ray met.
   if (used_out > used_in) best = lo;
 #endif
-  RlHit h = rl_hit_on_ray(p, s, best, true);
+  RlHit h = rl_layer_hit(p, s, best, true);
   // Appendix A: the layer nearest in depth is the one hit.
   float nearest = 2.0;
   h.layer = 0;
