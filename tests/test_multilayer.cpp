@@ -226,6 +226,43 @@ TEST(MultilayerProbe, HardCasesStayFiniteAndBounded) {
   }
 }
 
+TEST(MultilayerProbe, EightLayersFindTheSixthSurfaceFourLayersLoseIt) {
+  // Depth complexity 6 (three stacked slabs), baked into two RGBA groups (Section 6) and into
+  // one: rays from below the second slab's bottom go down to the third slab only if its
+  // layers were kept.
+  GlContext::shared();
+  const TriangleMesh stack =
+      boxes({{0.25, 0.75, 0.1, 0.2}, {0.25, 0.75, 0.4, 0.5}, {0.25, 0.75, 0.7, 0.8}});
+  const ParamValues params = {{"linear_steps", 64}, {"binary_steps", 8}};
+  std::vector<ProbeRay> rays;
+  for (int k = 0; k < 64; ++k) {  // start between slabs 2 and 3, slanting a little
+    const float u = 0.3f + 0.4f * (k % 8) / 8, v = 0.3f + 0.4f * (k / 8) / 8;
+    rays.push_back({glm::vec3(u, v, 0.55f), glm::vec3(0.02f, 0.01f, 1.0f)});
+  }
+  for (int layers : {8, 4}) {
+    SCOPED_TRACE(layers);
+    const ReliefMap map = bake_layers(stack, pattern_frame(), 32, 32, layers, {1, 1, 1});
+    GpuRelief gpu(map);
+    auto t = TechniqueRegistry::instance().create("multilayer", params, "test");
+    t->prepare(map);
+    const auto hits = t->probe(map, gpu, rays, {1.0, 1.0});
+    const LayersTruth truth(map);
+    for (size_t i = 0; i < rays.size(); ++i) {
+      ASSERT_LE(hits[i].fetches, fetch_bound(params, layers > 4 ? 2 : 1));
+      const TruthHit h =
+          truth.intersect(glm::dvec3(rays[i].origin), glm::dvec3(rays[i].direction), 0.0, 0.45);
+      EXPECT_EQ(hits[i].hit, h.hit) << i;
+      if (layers == 8) {
+        EXPECT_TRUE(hits[i].hit);
+        EXPECT_NEAR(hits[i].depth, 0.7, 1.0 / 64) << i;
+        EXPECT_EQ(hits[i].layer, 4) << i;  // the third slab's top: layer 4, in the second group
+      } else {
+        EXPECT_FALSE(hits[i].hit) << "the 5th and 6th crossings were not kept";
+      }
+    }
+  }
+}
+
 TEST(Multilayer, BeatsTheHeightfieldOnTheWeaveAgainstTheMesh) {
   const SceneDesc scene = weave_scene(128, TruthLevel::Mesh);
   for (double el : {60.0, 30.0}) {
@@ -242,6 +279,26 @@ TEST(Multilayer, BeatsTheHeightfieldOnTheWeaveAgainstTheMesh) {
         "weave %2.0f deg: multilayer wrong %.2f%% (false %.2f%%), relief wrong %.2f%% "
         "(false %.2f%%)\n",
         el, ml.metrics.wrong_pct, ml.metrics.false_pct, hf.metrics.wrong_pct, hf.metrics.false_pct);
+  }
+}
+
+TEST(DoubleDepth, CapsTheExtrusionButFillsUnderTheCrossings) {
+  // Chapter 5's double depth keeps one solid per texel, from the first to the last surface:
+  // the gaps between threads stay open (no curtains down to the floor, unlike a heightfield),
+  // but where a thread crosses over another the space between them is filled.
+  const SceneDesc scene = weave_scene(128, TruthLevel::Mesh);
+  for (double el : {60.0, 30.0}) {
+    SCOPED_TRACE(el);
+    const ParamValues steps = {{"linear_steps", 32}};
+    const double ml =
+        test::measure(scene, "multilayer", steps, View{el, 30}, 128).metrics.wrong_pct;
+    const test::Measured dd = test::measure(scene, "double_depth", steps, View{el, 30}, 128);
+    const double hf = test::measure(scene, "relief", steps, View{el, 30}, 128).metrics.wrong_pct;
+    EXPECT_EQ(dd.metrics.nonfinite_px, 0);
+    EXPECT_LT(ml, dd.metrics.wrong_pct);
+    EXPECT_LT(dd.metrics.wrong_pct, hf);
+    std::printf("weave %2.0f deg: wrong multilayer %.2f%%, double depth %.2f%%, relief %.2f%%\n",
+                el, ml, dd.metrics.wrong_pct, hf);
   }
 }
 
@@ -274,8 +331,8 @@ TEST(Multilayer, ShadowRaysOnlyWhenAskedAndTheyAgreeWithTheLayers) {
       test::measure(scene, "multilayer", {{"linear_steps", 64}}, View{45, 30});
   EXPECT_GT(shadowed.truth_stats.shadow_rays, 0u);
   std::printf("weave shadows vs layers: disagree %.2f%%\n", shadowed.metrics.shadow_disagree_pct);
-  // Measured 9.2%; where the two disagree has not been analysed pixel by pixel yet (a known
-  // limit in the technique README).
+  // Measured 9.2%: the layers truth's nearest-sampled column tops shadow each other in
+  // staircases the technique's light search mostly misses (a known limit, technique README).
   EXPECT_LE(shadowed.metrics.shadow_disagree_pct, 10.0);
 }
 
