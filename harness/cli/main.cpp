@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 
 #include "core/error.h"
+#include "relief/pattern_mesh.h"
 #include "relief/procedural.h"
 #include "sweep/config.h"
 #include "sweep/runner.h"
@@ -45,6 +46,13 @@ void print_list() {
     std::printf("  %-9s %s\n", k.name.c_str(), k.doc.c_str());
     for (const auto& o : k.options)
       std::printf("            %s = %g: %s\n", o.name.c_str(), o.default_value, o.doc.c_str());
+  }
+  std::printf("non-height-field patterns (closed meshes baked into 'layers', default 4):\n");
+  for (const std::string& kind : rl::pattern_mesh_kinds()) {
+    std::printf("  %-9s options:", kind.c_str());
+    for (const auto& [name, value] : rl::pattern_mesh_defaults(kind))
+      std::printf(" %s = %g", name.c_str(), value);
+    std::printf("\n");
   }
 }
 

@@ -60,8 +60,15 @@ double option(std::map<std::string, double>& options, const std::string& key) {
 
 }  // namespace
 
+const std::vector<std::string>& pattern_mesh_kinds() {
+  static const std::vector<std::string> kinds = {"weave", "helix"};
+  return kinds;
+}
+
 bool is_pattern_mesh(const std::string& kind) {
-  return kind == "weave" || kind == "helix";
+  for (const std::string& k : pattern_mesh_kinds())
+    if (k == kind) return true;
+  return false;
 }
 
 std::map<std::string, double> pattern_mesh_defaults(const std::string& kind) {

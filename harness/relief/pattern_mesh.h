@@ -7,12 +7,14 @@
 // outward-oriented while each tile's mesh has open ends on the tile border.
 #include <map>
 #include <string>
+#include <vector>
 
 #include "core/triangle_mesh.h"
 
 namespace rl {
 
 // The kinds make_pattern_mesh knows ("weave", "helix").
+const std::vector<std::string>& pattern_mesh_kinds();
 bool is_pattern_mesh(const std::string& kind);
 // The options each kind takes, with defaults (for `relieflab list` and config checks).
 std::map<std::string, double> pattern_mesh_defaults(const std::string& kind);

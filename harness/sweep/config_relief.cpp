@@ -78,9 +78,11 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
     if (!known) {
       std::string names;
       for (const auto& k : procedural_kinds()) names += (names.empty() ? "" : ", ") + k.name;
+      std::string patterns;
+      for (const auto& k : pattern_mesh_kinds()) patterns += (patterns.empty() ? "" : ", ") + k;
       fail(src.at(*t->get("procedural")), "unknown procedural relief '" + r.procedural +
                                               "' (known: " + names +
-                                              "; non-height-field patterns: weave, helix)");
+                                              "; non-height-field patterns: " + patterns + ")");
     }
     if (auto* n = t->get("resolution")) {
       const int res = positive_int(*n, src, "resolution", 2, 8192);
