@@ -69,10 +69,19 @@ void main() {
   vec3 s = tv / abs(tv.z);
   RlHit h = rl_intersect(vec3(v_uv, 0.5) - 0.5 * s, s);
   if (!h.hit) discard;
+#elif defined(RL_TWO_SIDED)
+  // A pattern with gaps on a closed base (Policarpo & Oliveira 2006, Figure 1 and Section 5):
+  // through a gap the far side shows, its relief seen from inside. A back face's ray crossed
+  // the relief from depth 1 up to the base (depth 0) before reaching the fragment, so it is
+  // searched upward from there.
+  if (tv.z == 0.0) discard;
+  vec3 s = tv / abs(tv.z);
+  RlHit h = rl_intersect(tv.z > 0.0 ? vec3(v_uv, 0.0) : vec3(v_uv, 0.0) - s, s);
+  if (!h.hit) discard;
 #else
   if (tv.z <= 0.0) discard;  // base seen from below: no relief there
 #endif
-#if defined(RL_IMPOSTOR)
+#if defined(RL_IMPOSTOR) || defined(RL_TWO_SIDED)
 #elif defined(RL_REVERSE_PERSPECTIVE)
   // Lines stay lines: the ray through the projected eye and the projected fragment.
   vec3 a_frag = vec3(v_uv, v_entry_depth);
@@ -102,7 +111,7 @@ void main() {
   if (on_floor) discard;
 #endif
   if (!h.hit && !on_floor) discard;  // a walk stopped by its cell cap
-#elif defined(RL_EMPTY_FLOOR) && !defined(RL_IMPOSTOR)
+#elif defined(RL_EMPTY_FLOOR) && !defined(RL_IMPOSTOR) && !defined(RL_TWO_SIDED)
   // The base drawn over an empty floor (a non-height-field pattern): a ray that finds no
   // surface, or only the floor, went through the pattern's gaps.
   if (!h.hit || h.depth >= 1.0 - 1e-4) discard;

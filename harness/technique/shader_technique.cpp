@@ -10,7 +10,8 @@
 namespace rl {
 
 SurfaceVariant ShaderTechnique::variant_of(const SceneDesc& scene) {
-  return {scene.proxy, scene.empty_floor, scene.projection.active(), scene.impostor()};
+  return {scene.proxy, scene.empty_floor, scene.projection.active(), scene.impostor(),
+          scene.base.curved() && scene.relief.layers > 0};
 }
 
 ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Kind target,
@@ -26,6 +27,9 @@ ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Ki
   if (variant.empty_floor) d.defines["RL_EMPTY_FLOOR"] = "1";
   if (variant.reverse_perspective) d.defines["RL_REVERSE_PERSPECTIVE"] = "1";
   if (variant.impostor) d.defines["RL_IMPOSTOR"] = "1";
+  // Only a technique that searches upward too draws back faces; the others keep their
+  // one-sided search (and miss the far side through the gaps, as a heightfield would).
+  if (variant.two_sided && info().impostor) d.defines["RL_TWO_SIDED"] = "1";
   return d;
 }
 
@@ -61,6 +65,12 @@ void ShaderTechnique::render(const FrameInput& frame, RenderTarget::Kind target)
     glCullFace(GL_BACK);
   } else {
     glDisable(GL_CULL_FACE);
+  }
+  if (variant_of(s).two_sided && info().impostor && two_pass()) {
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    frame.base.draw();
+    glCullFace(GL_FRONT);
   }
   frame.base.draw();
   glDisable(GL_CULL_FACE);

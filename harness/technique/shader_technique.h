@@ -16,6 +16,7 @@ struct SurfaceVariant {
   bool empty_floor = false;
   bool reverse_perspective = false;
   bool impostor = false;
+  bool two_sided = false;  // a pattern on a closed curved base: back faces show through gaps
 };
 
 class ShaderTechnique : public Technique {
@@ -40,6 +41,10 @@ class ShaderTechnique : public Technique {
   // Binds the technique's own textures (precomputed maps) for a draw with `program`; units
   // 0-3 are the harness's (relief, colour, probe rays).
   virtual void bind_resources(GLuint program) const { (void)program; }
+  // Two-sided variants only: draw front faces, then back faces (Policarpo & Oliveira 2006,
+  // Section 5: back faces behind a found hit are then rejected by the depth test), instead of
+  // all faces in the mesh's order.
+  virtual bool two_pass() const { return false; }
 };
 
 }  // namespace rl

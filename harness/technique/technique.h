@@ -35,7 +35,9 @@ struct TechniqueInfo {
   EffectSet effects;     // effects it can simulate when a scene asks for them
   std::vector<ParamSpec> params;
   bool box_proxy = false;  // can render a scene's bounding-box proxy (Proxy::Box)
-  bool impostor = false;   // can render a relief impostor (SceneDesc::impostor(), both sides)
+  // Searches upward as well as downward: renders relief impostors (SceneDesc::impostor()) and
+  // the back faces of a pattern on a closed curved base seen through its gaps.
+  bool impostor = false;
 };
 
 // Throws std::logic_error naming the technique when its metadata is inconsistent: an empty or

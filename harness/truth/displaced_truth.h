@@ -31,6 +31,10 @@ struct DisplacedHit {
   glm::dvec3 position;  // world
   glm::dvec2 uv;
   glm::dvec3 tangent, bitangent, normal;  // the base's unit frame at the hit (shading)
+  // The surface's own shading normal (world, facing the ray) and colour, where the truth has
+  // them (a pattern mesh on the base); otherwise the map's at `uv` in the frame above.
+  bool has_surface = false;
+  glm::dvec3 surface_normal{0}, albedo{0};
 };
 
 class DisplacedTruth {

@@ -1,6 +1,7 @@
 #include "truth/make_truth.h"
 
 #include <chrono>
+#include <cmath>
 
 #include "core/elapsed.h"
 #include "scene/base_mesh.h"
@@ -12,6 +13,7 @@
 #include "truth/heightfield_truth.h"
 #include "truth/layers_truth.h"
 #include "truth/mesh_truth.h"
+#include "truth/pattern_base_truth.h"
 
 namespace rl {
 
@@ -36,12 +38,19 @@ std::unique_ptr<TruthSurface> make_truth(const SceneDesc& scene, const ReliefMap
 SceneTruth::SceneTruth(const SceneDesc& scene, const ReliefMap& map, double tolerance,
                        const BaseMesh* base) {
   const auto start = std::chrono::steady_clock::now();
-  if (scene.base.curved())
+  if (scene.base.curved() && scene.relief.pattern_mesh()) {
+    const TriangleMesh pattern = make_pattern_mesh(scene.relief.procedural, scene.relief.options,
+                                                   "scene '" + scene.name + "'");
+    pattern_ = std::make_unique<PatternBaseTruth>(
+        pattern, base ? *base : make_base_mesh(scene.base, scene.size, scene.tile),
+        scene.base.kind == "torus", scene.depth);
+  } else if (scene.base.curved()) {
     displaced_ = std::make_unique<DisplacedTruth>(
         base ? *base : make_base_mesh(scene.base, scene.size, scene.tile), map, scene.depth,
         tolerance);
-  else
+  } else {
     planar_ = make_truth(scene, map, tolerance);
+  }
   if (!scene.objects.empty()) objects_ = std::make_unique<ObjectsTruth>(scene.objects);
   build_ms_ = ms_since(start);
 }
@@ -50,16 +59,19 @@ SceneTruth::~SceneTruth() = default;
 
 GBuffer SceneTruth::render(const ReliefMap& map, const SceneDesc& scene, const Camera& camera,
                            EffectSet effects, TruthStats* stats) const {
+  if (pattern_) return render_truth(*pattern_, map, scene, camera, effects, stats, objects_.get());
   if (displaced_)
     return render_truth(*displaced_, map, scene, camera, effects, stats, objects_.get());
   return render_truth(*planar_, map, scene, camera, effects, stats, objects_.get());
 }
 
 double SceneTruth::tessellation_bound() const {
+  if (pattern_) return pattern_->tessellation_bound();
   return displaced_ ? displaced_->tessellation_bound() : planar_->tessellation_bound();
 }
 
 int SceneTruth::subdivision() const {
+  if (pattern_) return pattern_->subdivision();
   return displaced_ ? displaced_->subdivision() : planar_->subdivision();
 }
 

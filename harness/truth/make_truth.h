@@ -7,6 +7,7 @@
 #include "scene/scene.h"
 #include "truth/displaced_truth.h"
 #include "truth/objects_truth.h"
+#include "truth/pattern_base_truth.h"
 #include "truth/truth_render.h"
 #include "truth/truth_surface.h"
 
@@ -34,6 +35,7 @@ class SceneTruth {
  private:
   std::unique_ptr<TruthSurface> planar_;
   std::unique_ptr<DisplacedTruth> displaced_;
+  std::unique_ptr<PatternBaseTruth> pattern_;  // a pattern on a curved base
   std::unique_ptr<ObjectsTruth> objects_;
   double build_ms_ = 0;
 };

@@ -9,6 +9,7 @@
 #include "core/parallel.h"
 #include "truth/displaced_truth.h"
 #include "truth/objects_truth.h"
+#include "truth/pattern_base_truth.h"
 
 namespace rl {
 namespace {
@@ -219,9 +220,13 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
   return g;
 }
 
-GBuffer render_truth(const DisplacedTruth& truth, const ReliefMap& map, const SceneDesc& scene,
-                     const Camera& camera, EffectSet effects, TruthStats* stats,
-                     const ObjectsTruth* objects) {
+namespace {
+
+// A relief traced in world space (a displaced heightfield, or a pattern mapped onto the base).
+template <typename WorldTruth>
+GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const SceneDesc& scene,
+                           const Camera& camera, EffectSet effects, TruthStats* stats,
+                           const ObjectsTruth* objects) {
   const auto start = std::chrono::steady_clock::now();
   const uint64_t primary0 = truth.primary_rays(), shadow0 = truth.shadow_rays();
   const bool shadows = effects.has(Effect::SelfShadow);
@@ -243,11 +248,14 @@ GBuffer render_truth(const DisplacedTruth& truth, const ReliefMap& map, const Sc
             }
           }
           if (!h.hit) continue;
-          // Shading as the shaders do it: the map's normal in the base's frame at the hit.
-          const glm::dvec3 tn = decode_normal(map.sample_relief(h.uv.x, h.uv.y));
-          const glm::dvec3 n =
-              glm::normalize(tn.x * h.tangent + tn.y * h.bitangent + tn.z * h.normal);
-          const glm::dvec3 albedo(map.sample_color(h.uv.x, h.uv.y));
+          // Shading as the shaders do it: the map's normal in the base's frame at the hit, or
+          // the surface's own normal and colour (a pattern).
+          glm::dvec3 n = h.surface_normal, albedo = h.albedo;
+          if (!h.has_surface) {
+            const glm::dvec3 tn = decode_normal(map.sample_relief(h.uv.x, h.uv.y));
+            n = glm::normalize(tn.x * h.tangent + tn.y * h.bitangent + tn.z * h.normal);
+            albedo = glm::dvec3(map.sample_color(h.uv.x, h.uv.y));
+          }
           const glm::dvec3 to_light = glm::normalize(scene.light_position - h.position);
           bool in_shadow = false;
           if (shadows) {
@@ -269,6 +277,20 @@ GBuffer render_truth(const DisplacedTruth& truth, const ReliefMap& map, const Sc
     stats->unresolved = 0;
   }
   return g;
+}
+
+}  // namespace
+
+GBuffer render_truth(const DisplacedTruth& truth, const ReliefMap& map, const SceneDesc& scene,
+                     const Camera& camera, EffectSet effects, TruthStats* stats,
+                     const ObjectsTruth* objects) {
+  return render_world_truth(truth, map, scene, camera, effects, stats, objects);
+}
+
+GBuffer render_truth(const PatternBaseTruth& truth, const ReliefMap& map, const SceneDesc& scene,
+                     const Camera& camera, EffectSet effects, TruthStats* stats,
+                     const ObjectsTruth* objects) {
+  return render_world_truth(truth, map, scene, camera, effects, stats, objects);
 }
 
 }  // namespace rl

@@ -25,6 +25,7 @@ glm::dvec3 shade(const Material& m, const glm::dvec3& albedo, const glm::dvec3& 
 
 class ObjectsTruth;
 class DisplacedTruth;
+class PatternBaseTruth;
 
 // A relief on the planar base (texture-space truth), with the scene's objects if given.
 GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const SceneDesc& scene,
@@ -33,6 +34,11 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
 
 // A relief on a curved base (world-space displaced truth), with the scene's objects if given.
 GBuffer render_truth(const DisplacedTruth& truth, const ReliefMap& map, const SceneDesc& scene,
+                     const Camera& camera, EffectSet effects, TruthStats* stats = nullptr,
+                     const ObjectsTruth* objects = nullptr);
+
+// A non-height-field pattern on a curved base (world-space pattern mesh), with objects.
+GBuffer render_truth(const PatternBaseTruth& truth, const ReliefMap& map, const SceneDesc& scene,
                      const Camera& camera, EffectSet effects, TruthStats* stats = nullptr,
                      const ObjectsTruth* objects = nullptr);
 

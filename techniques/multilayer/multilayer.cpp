@@ -41,7 +41,14 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
                         .min_value = 0,
                         .max_value = 1,
                         .doc = "Section 3.2: of the last inside and outside samples, keep the one "
-                               "on the texel with more layers"}},
+                               "on the texel with more layers"},
+                       {.name = "two_pass",
+                        .kind = ParamKind::Bool,
+                        .default_value = 0,
+                        .min_value = 0,
+                        .max_value = 1,
+                        .doc = "pattern on a closed curved base: draw front faces, then back faces "
+                               "(Section 5's 2-pass rendering), not all faces in one pass"}},
             .impostor = true};
   }
 
@@ -106,6 +113,7 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
             {"RL_INTERFACE_FIX", param("interface_fix") != 0 ? "1" : "0"},
             {"RL_LAYER_GROUPS", std::to_string(groups_)}};
   }
+  bool two_pass() const override { return param("two_pass") != 0; }
   void bind_resources(GLuint) const override {
     for (int k = 0; k < 4; ++k) glBindTextureUnit(4 + k, textures_[k]);
   }

@@ -1,0 +1,56 @@
+#pragma once
+// Truth of a non-height-field pattern (relief/pattern_mesh.h) on a curved base: every tile
+// of the pattern mesh, its vertices (u, v, depth) mapped onto the base mesh as drawn -- the
+// point at (u, v) on its flat triangles, moved inward along the interpolated normal by
+// depth x the scene's depth, as the displaced heightfield truth does -- and traced by Embree in
+// world space with the pattern's flat triangle normals and thread colours. The mapping is
+// exact at the pattern's vertices; between them the pattern's triangles are chords (its
+// tessellation, `segments` x `sides`, bounds the deviation). Bases whose uv mapping covers
+// each uv once (sphere, torus) are supported; the config refuses others.
+#include <atomic>
+#include <cstdint>
+#include <vector>
+
+#include <embree3/rtcore.h>
+
+#include "core/triangle_mesh.h"
+#include "scene/base_mesh.h"
+#include "truth/displaced_truth.h"
+
+namespace rl {
+
+class PatternBaseTruth {
+ public:
+  // The base's uv range (its uvs' bounds) must hold whole pattern tiles; u wraps around (the
+  // seam), v wraps when `wrap_v` (a torus) and is clamped otherwise (a sphere's poles).
+  // `depth`: world depth of depth 1.
+  PatternBaseTruth(const TriangleMesh& pattern_tile, const BaseMesh& base, bool wrap_v,
+                   double depth);
+  ~PatternBaseTruth();
+  PatternBaseTruth(const PatternBaseTruth&) = delete;
+  PatternBaseTruth& operator=(const PatternBaseTruth&) = delete;
+
+  DisplacedHit intersect(const glm::dvec3& origin, const glm::dvec3& direction, double t_max) const;
+  bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,
+                double t_max) const;
+
+  double tessellation_bound() const { return 0.0; }
+  int subdivision() const { return 1; }
+  size_t triangles() const { return triangles_.size(); }
+  double build_ms() const { return build_ms_; }
+  uint64_t primary_rays() const { return primary_rays_.load(); }
+  uint64_t shadow_rays() const { return shadow_rays_.load(); }
+
+ private:
+  std::vector<glm::vec3> positions_;
+  std::vector<glm::vec2> uvs_;
+  std::vector<glm::vec3> base_normals_;  // the base's normal under each vertex
+  std::vector<glm::uvec3> triangles_;
+  std::vector<glm::vec3> colors_;
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  double build_ms_ = 0;
+  mutable std::atomic<uint64_t> primary_rays_{0}, shadow_rays_{0};
+};
+
+}  // namespace rl
