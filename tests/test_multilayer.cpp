@@ -405,6 +405,13 @@ TEST(Multilayer, TheWeaveOnASphereShowsItsFarSideThroughTheGaps) {
   EXPECT_EQ(one.technique.color, two.technique.color);
   EXPECT_LT(one.metrics.missed_pct, 2.0);
   EXPECT_GT(hf.metrics.missed_pct, 2 * one.metrics.missed_pct);
+  // Chapter 5 silhouettes on the front faces: the bent rays put fewer hits off the pattern.
+  scene.effects.add(Effect::Silhouette);
+  const test::Measured bent = test::measure(scene, "multilayer", {{"linear_steps", 32}}, view, 96);
+  std::printf("weave on a sphere: wrong %.2f%% planar, %.2f%% with silhouettes\n",
+              one.metrics.wrong_pct, bent.metrics.wrong_pct);
+  EXPECT_EQ(bent.metrics.nonfinite_px, 0);
+  EXPECT_LT(bent.metrics.wrong_pct, one.metrics.wrong_pct - 3.0);
 }
 
 TEST(Multilayer, EveryTechniqueDrawsTheWeaveFinitely) {

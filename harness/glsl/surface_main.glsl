@@ -60,6 +60,7 @@ void main() {
   vec3 N = normalize(v_normal);
   vec3 V = normalize(v_world - rl_eye);
   vec3 tv = rl_texture_direction(V, N);
+  bool t_is_world = false;  // h.t counts world units along V (bent-ray searches)
 #ifdef RL_IMPOSTOR
   // Relief impostors (Policarpo & Oliveira 2006, Section 4): the quad runs through the
   // object's middle (depth 0.5) and is seen from either side; the search covers the whole
@@ -76,7 +77,20 @@ void main() {
   // searched upward from there.
   if (tv.z == 0.0) discard;
   vec3 s = tv / abs(tv.z);
+#ifdef RL_SILHOUETTE
+  // Front faces bend their ray through the fragment's quadric (chapter 5 silhouettes, as
+  // below); the far side, seen from inside through a gap, is searched planar.
+  RlHit h;
+  if (tv.z > 0.0) {
+    vec3 metric = vec3(length(v_dpdu), length(v_dpdv), rl_depth_scale);
+    h = rl_intersect_curved(vec3(v_uv, 0.0), tv, v_curvature, metric);
+    t_is_world = true;
+  } else {
+    h = rl_intersect(vec3(v_uv, 0.0) - s, s);
+  }
+#else
   RlHit h = rl_intersect(tv.z > 0.0 ? vec3(v_uv, 0.0) : vec3(v_uv, 0.0) - s, s);
+#endif
   if (!h.hit) discard;
 #else
   if (tv.z <= 0.0) discard;  // base seen from below: no relief there
@@ -95,6 +109,7 @@ void main() {
   // units along V) and reports a miss where the ray leaves the relief: outside the silhouette.
   vec3 metric = vec3(length(v_dpdu), length(v_dpdv), rl_depth_scale);
   RlHit h = rl_intersect_curved(vec3(v_uv, 0.0), tv, v_curvature, metric);
+  t_is_world = true;
   if (!h.hit) discard;
 #else
   vec3 s = tv / tv.z;
@@ -123,12 +138,12 @@ void main() {
 #else
   vec3 a_hit = vec3(h.uv, h.depth);
 #endif
-#ifdef RL_SILHOUETTE
-  vec3 hit_world = v_world + V * h.t;  // the view ray is straight in world space
-#else
-  vec3 hit_world = v_world + v_dpdu * (a_hit.x - v_uv.x) + v_dpdv * (a_hit.y - v_uv.y) -
-                   N * ((a_hit.z - v_entry_depth) * rl_depth_scale);
-#endif
+  // A bent-ray search gives the world distance along the straight view ray; the others a point
+  // in the base's frame.
+  vec3 hit_world = t_is_world ? v_world + V * h.t
+                              : v_world + v_dpdu * (a_hit.x - v_uv.x) +
+                                    v_dpdv * (a_hit.y - v_uv.y) -
+                                    N * ((a_hit.z - v_entry_depth) * rl_depth_scale);
 #ifdef RL_DEPTH_CORRECT
   // Chapter 5, "Depth Correct": the depth of the found hit, so that other geometry (and other
   // relief objects) resolve visibility per pixel against the relief, not against its base.

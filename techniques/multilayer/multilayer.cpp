@@ -15,7 +15,7 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
             .citation =
                 "Policarpo & Oliveira 2006, 'Relief Mapping of Non-Height-Field Surface Details', "
                 "Sections 3.1-3.2, Algorithms 1-2, Appendix A",
-            .effects = {Effect::SelfShadow, Effect::DepthCorrect},
+            .effects = {Effect::SelfShadow, Effect::Silhouette, Effect::DepthCorrect},
             .params = {{.name = "linear_steps",
                         .kind = ParamKind::Int,
                         .default_value = 32,

@@ -41,16 +41,25 @@ RlHit rl_layer_hit(vec3 p, vec3 s, float t, bool hit) {
   return h;
 }
 
-RlHit rl_intersect(vec3 p, vec3 s) {
-  // Algorithm 1: equal steps to the far side of the depth range (depth 1 down, 0 up); the
-  // first sample inside a solid stops it. The inside test does not depend on the direction.
-  float size = (s.z > 0.0 ? 1.0 - p.z : p.z) / float(RL_LINEAR_STEPS);
+// The ray's depth at t: straight (p.z + s.z t), or under the base bent as the fragment's
+// quadric (book chapter 5, Eq. 5.3: Vw = s * metric is the world direction per unit t).
+float rl_ray_depth(vec3 p, vec3 s, float t, bool bent, vec2 quadric, vec3 metric) {
+  if (!bent) return p.z + s.z * t;
+  vec3 P = s * metric * t;
+  return (P.z - (quadric.x * P.x * P.x + quadric.y * P.y * P.y)) / metric.z;
+}
+
+// Algorithms 1 and 2 over t in [0, t_max] along either ray model.
+RlHit rl_layer_search(vec3 p, vec3 s, float t_max, bool bent, vec2 quadric, vec3 metric) {
+  // Algorithm 1: equal steps; the first sample inside a solid stops it. The inside test does
+  // not depend on the direction (impostors seen from behind search upward).
+  float size = t_max / float(RL_LINEAR_STEPS);
   float t = 0.0;
   int used_in = 0, used_out = -1;
   bool found = false;
   for (int i = 1; i <= RL_LINEAR_STEPS; i++) {
     t = size * float(i);
-    ivec2 c = rl_layer_counts(p.xy + s.xy * t, p.z + s.z * t);
+    ivec2 c = rl_layer_counts(p.xy + s.xy * t, rl_ray_depth(p, s, t, bent, quadric, metric));
     if ((c.x & 1) == 1) {
       used_in = c.y;
       found = true;
@@ -58,13 +67,17 @@ RlHit rl_intersect(vec3 p, vec3 s) {
     }
     used_out = c.y;
   }
-  // Through every solid: the ray leaves the depth range (a gap of the pattern).
-  if (!found) return rl_layer_hit(p, s, t, false);
+  // Through every solid: the ray leaves the depth range (a gap, or the silhouette).
+  if (!found) {
+    RlHit miss = rl_layer_hit(p, s, t, false);
+    miss.depth = rl_ray_depth(p, s, t, bent, quadric, metric);
+    return miss;
+  }
   // Algorithm 2: bisect between the last outside and the first inside sample.
   float lo = t - size, hi = t;
   for (int i = 0; i < RL_BINARY_STEPS; i++) {
     float mid = 0.5 * (lo + hi);
-    ivec2 c = rl_layer_counts(p.xy + s.xy * mid, p.z + s.z * mid);
+    ivec2 c = rl_layer_counts(p.xy + s.xy * mid, rl_ray_depth(p, s, mid, bent, quadric, metric));
     if ((c.x & 1) == 1) {
       hi = mid;
       used_in = c.y;
@@ -80,6 +93,7 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   if (used_out > used_in) best = lo;
 #endif
   RlHit h = rl_layer_hit(p, s, best, true);
+  h.depth = rl_ray_depth(p, s, best, bent, quadric, metric);
   // Appendix A: the layer nearest in depth is the one hit.
   float nearest = 2.0;
   h.layer = 0;
@@ -94,6 +108,26 @@ RlHit rl_intersect(vec3 p, vec3 s) {
     }
   }
   return h;
+}
+
+// s.z = +1 (down) or -1 (up): to the far side of the depth range.
+RlHit rl_intersect(vec3 p, vec3 s) {
+  return rl_layer_search(p, s, s.z > 0.0 ? 1.0 - p.z : p.z, false, vec2(0.0), vec3(1.0));
+}
+
+// Silhouettes (book chapter 5, Listings 5.5-5.7 with Eq. 5.3, as relief_silhouette): the
+// view ray stays straight while the base bends as the fragment's quadric (A, B); t counts
+// world units along it, up to where it reaches depth 1 or, on a convex base, returns to the
+// top (Listing 5.7). A ray that finds no solid misses: outside the silhouette, or a gap.
+RlHit rl_intersect_curved(vec3 p, vec3 s, vec2 quadric, vec3 metric) {
+  if (!(s.z > 0.0)) return rl_layer_hit(p, s, 0.0, false);
+  vec3 Vw = s * metric;
+  float f = (quadric.x * Vw.x * Vw.x + quadric.y * Vw.y * Vw.y) / metric.z;
+  float disc = s.z * s.z - 4.0 * f;
+  float t_max = 3.0e38;
+  if (disc >= 0.0) t_max = 2.0 / (s.z + sqrt(disc));  // depth 1; stable at f = 0
+  if (f > 0.0) t_max = min(t_max, s.z / f);           // back to depth 0 (convex base)
+  return rl_layer_search(p, s, t_max, true, quadric, metric);
 }
 
 // The hit layer's normal (x and y stored, z rebuilt, negative on back layers) and colour; a
