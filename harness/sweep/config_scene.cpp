@@ -219,12 +219,6 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
                               "is not supported yet");
     if (s.base.curved() && !s.relief.pattern_mesh())
       fail(src.at(node), no + "from a mesh file needs the planar base");
-    if (s.base.curved() && s.base.kind != "sphere" && s.base.kind != "torus")
-      fail(src.at(node), no + "on a curved base needs a sphere or a torus for now (a base "
-                              "whose uv mapping covers each uv once; the pattern's truth is "
-                              "mapped through it)");
-    if (s.base.curved() && (s.tile != std::round(s.tile) || s.tile < 1))
-      fail(src.at(node), no + "on a curved base needs a whole number of tiles");
     if (s.base.curved() && s.truth == TruthLevel::Layers)
       fail(src.at(node), no + "on a curved base has the pattern mesh as its truth, not "
                               "\"layers\"");

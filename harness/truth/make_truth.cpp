@@ -43,7 +43,7 @@ SceneTruth::SceneTruth(const SceneDesc& scene, const ReliefMap& map, double tole
                                                    "scene '" + scene.name + "'");
     pattern_ = std::make_unique<PatternBaseTruth>(
         pattern, base ? *base : make_base_mesh(scene.base, scene.size, scene.tile),
-        scene.base.kind == "torus", scene.depth);
+        scene.depth);
   } else if (scene.base.curved()) {
     displaced_ = std::make_unique<DisplacedTruth>(
         base ? *base : make_base_mesh(scene.base, scene.size, scene.tile), map, scene.depth,

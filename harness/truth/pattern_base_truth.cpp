@@ -7,63 +7,119 @@
 
 #include "core/elapsed.h"
 #include "core/embree_util.h"
+#include "relief/pattern_mesh.h"
 
 namespace rl {
 
-PatternBaseTruth::PatternBaseTruth(const TriangleMesh& tile_mesh, const BaseMesh& base, bool wrap_v,
+namespace {
+
+// A point of a pattern triangle clipped to a base triangle: pattern space (u, v relative to
+// the base triangle's tile, z = -depth).
+using Polygon = std::vector<glm::dvec3>;
+
+// Keeps the part of `poly` on the side of the uv line a -> b where the base triangle lies.
+Polygon clip(const Polygon& poly, const glm::dvec2& a, const glm::dvec2& b, double side) {
+  auto dist = [&](const glm::dvec3& p) {
+    return side * ((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x));
+  };
+  Polygon out;
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const glm::dvec3 &p = poly[i], &q = poly[(i + 1) % poly.size()];
+    const double dp = dist(p), dq = dist(q);
+    if (dp >= 0) out.push_back(p);
+    if ((dp >= 0) != (dq >= 0)) out.push_back(p + (q - p) * (dp / (dp - dq)));
+  }
+  return out;
+}
+
+}  // namespace
+
+PatternBaseTruth::PatternBaseTruth(const TriangleMesh& tile_mesh, const BaseMesh& base,
                                    double depth) {
   const auto start = std::chrono::steady_clock::now();
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("cannot create an Embree device");
-  // The base's triangles laid out in uv space: a ray straight down at (u, v) finds the
-  // triangle holding that uv and its barycentrics.
-  TriangleMesh flat;
-  for (const glm::dvec2& uv : base.uv) flat.positions.emplace_back(float(uv.x), float(uv.y), 0.0f);
-  flat.triangles = base.triangles;
-  RTCScene uv_scene = embree_triangle_scene(device_, flat);
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  glm::dvec2 lo(1e300), hi(-1e300);
-  for (const glm::dvec2& uv : base.uv) {
-    lo = glm::min(lo, uv);
-    hi = glm::max(hi, uv);
-  }
-  const glm::dvec2 span = hi - lo;
-  glm::dvec3 base_normal(0);
-  auto base_point = [&](glm::dvec2 uv, double d) {
-    // Tubes poke a little across the uv domain's edges: wrap u (the seam), clamp v (poles).
-    uv.x -= span.x * std::floor((uv.x - lo.x) / span.x);
-    if (wrap_v) uv.y -= span.y * std::floor((uv.y - lo.y) / span.y);
-    // Off the domain's outer edges, where a float ray could slip past the last triangle.
-    uv = glm::clamp(uv, lo + 1e-5, hi - 1e-5);
-    RTCRayHit rh = embree_ray(glm::dvec3(uv, 1.0), glm::dvec3(0, 0, -1), 0.0, 2.0);
-    rtcIntersect1(uv_scene, &ctx, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
-      throw std::runtime_error("pattern truth: uv (" + std::to_string(uv.x) + ", " +
-                               std::to_string(uv.y) + ") is on no base triangle");
-    const glm::uvec3 t = base.triangles[rh.hit.primID];
-    const double b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1 - b1 - b2;
-    const glm::dvec3 p =
-        b0 * base.position[t.x] + b1 * base.position[t.y] + b2 * base.position[t.z];
-    glm::dvec3 n = b0 * base.normal[t.x] + b1 * base.normal[t.y] + b2 * base.normal[t.z];
-    n = glm::length(n) > 0 ? glm::normalize(n) : base.normal[t.x];
-    base_normal = n;
-    return p - n * (d * depth);
+  // One tile of the pattern (it pokes a little past [0, 1]^2), binned on a grid of 1/32 tile
+  // over [-1, 2]^2.
+  const TriangleMesh& pattern = tile_mesh;
+  constexpr int kCells = 96;  // over [-1, 2]
+  auto cell_of = [](double x) {
+    return std::clamp(int(std::floor((x + 1.0) * 32.0)), 0, kCells - 1);
   };
-  for (int j = int(std::lround(lo.y)); j < int(std::lround(hi.y)); ++j)
-    for (int i = int(std::lround(lo.x)); i < int(std::lround(hi.x)); ++i) {
-      const uint32_t first = uint32_t(positions_.size());
-      for (const glm::vec3& q : tile_mesh.positions) {  // pattern space: x = u, y = v, z = -depth
-        const glm::dvec2 uv(i + q.x, j + q.y);
-        positions_.push_back(glm::vec3(base_point(uv, -q.z)));
-        base_normals_.push_back(glm::vec3(base_normal));
-        uvs_.push_back(glm::vec2(uv));
-      }
-      for (const glm::uvec3& t : tile_mesh.triangles) triangles_.push_back(t + glm::uvec3(first));
-      colors_.insert(colors_.end(), tile_mesh.triangle_colors.begin(),
-                     tile_mesh.triangle_colors.end());
+  std::vector<std::vector<uint32_t>> bins(size_t(kCells) * kCells);
+  for (uint32_t t = 0; t < pattern.triangles.size(); ++t) {
+    glm::dvec2 lo(1e300), hi(-1e300);
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec2 p(pattern.positions[pattern.triangles[t][k]]);
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
     }
-  rtcReleaseScene(uv_scene);
+    for (int j = cell_of(lo.y); j <= cell_of(hi.y); ++j)
+      for (int i = cell_of(lo.x); i <= cell_of(hi.x); ++i)
+        bins[size_t(j) * kCells + i].push_back(t);
+  }
+  std::vector<uint64_t> stamp(pattern.triangles.size(), 0);  // a triangle's last visit
+  uint64_t visits = 0;                                       // one per (base triangle, tile)
+  // Each base triangle takes the pattern over its own uv triangle, clipped to it and mapped by
+  // its barycentrics: positions and normals interpolated as drawn, depth along the normal.
+  // Neighbouring base triangles clip at their shared edge, so the mapped pattern has no cracks;
+  // a uv mapping that covers some uvs twice (a teapot's spout over its body) simply gets the
+  // pattern twice, once on each part of the surface.
+  for (uint32_t bt = 0; bt < base.triangles.size(); ++bt) {
+    const glm::uvec3 tri = base.triangles[bt];
+    const glm::dvec2 uv0 = base.uv[tri.x], uv1 = base.uv[tri.y], uv2 = base.uv[tri.z];
+    const double area = (uv1.x - uv0.x) * (uv2.y - uv0.y) - (uv1.y - uv0.y) * (uv2.x - uv0.x);
+    if (std::abs(area) < 1e-18) continue;  // collapsed in uv (a pole's row): nothing maps there
+    const double side = area > 0 ? 1.0 : -1.0;
+    const glm::dvec2 lo = glm::min(uv0, glm::min(uv1, uv2)), hi = glm::max(uv0, glm::max(uv1, uv2));
+    // Every tile whose pattern may reach into the triangle, each tile once.
+    for (int ty = int(std::floor(lo.y)) - 1; ty <= int(std::floor(hi.y)) + 1; ++ty)
+      for (int tx = int(std::floor(lo.x)) - 1; tx <= int(std::floor(hi.x)) + 1; ++tx) {
+        const glm::dvec2 shift(tx, ty);
+        const glm::dvec2 a = uv0 - shift, b = uv1 - shift, c = uv2 - shift;
+        const glm::dvec2 qlo = glm::max(lo - shift, glm::dvec2(-1.0)),
+                         qhi = glm::min(hi - shift, glm::dvec2(2.0));
+        if (qlo.x > qhi.x || qlo.y > qhi.y) continue;
+        auto map_point = [&](const glm::dvec3& q, glm::dvec3& world, glm::dvec3& n) {
+          const double w1 = ((q.x - a.x) * (c.y - a.y) - (q.y - a.y) * (c.x - a.x)) / area;
+          const double w2 = ((b.x - a.x) * (q.y - a.y) - (b.y - a.y) * (q.x - a.x)) / area;
+          const double w0 = 1 - w1 - w2;
+          const glm::dvec3 p =
+              w0 * base.position[tri.x] + w1 * base.position[tri.y] + w2 * base.position[tri.z];
+          n = w0 * base.normal[tri.x] + w1 * base.normal[tri.y] + w2 * base.normal[tri.z];
+          n = glm::length(n) > 0 ? glm::normalize(n) : base.normal[tri.x];
+          world = p + n * (q.z * depth);  // z = -depth: inward along the normal
+        };
+        const uint64_t visit = ++visits;
+        for (int j = cell_of(qlo.y); j <= cell_of(qhi.y); ++j)
+          for (int i = cell_of(qlo.x); i <= cell_of(qhi.x); ++i)
+            for (uint32_t t : bins[size_t(j) * kCells + i]) {
+              if (stamp[t] == visit) continue;
+              stamp[t] = visit;
+              Polygon poly;
+              for (int k = 0; k < 3; ++k)
+                poly.push_back(glm::dvec3(pattern.positions[pattern.triangles[t][k]]));
+              poly = clip(poly, a, b, side);
+              if (poly.size() >= 3) poly = clip(poly, b, c, side);
+              if (poly.size() >= 3) poly = clip(poly, c, a, side);
+              if (poly.size() < 3) continue;
+              const uint32_t first = uint32_t(positions_.size());
+              for (const glm::dvec3& q : poly) {
+                glm::dvec3 world, n;
+                map_point(q, world, n);
+                positions_.push_back(glm::vec3(world));
+                base_normals_.push_back(glm::vec3(n));
+                uvs_.push_back(glm::vec2(glm::dvec2(q) + shift));
+              }
+              for (uint32_t k = 1; k + 1 < poly.size(); ++k) {
+                triangles_.emplace_back(first, first + k, first + k + 1);
+                colors_.push_back(pattern.triangle_colors.empty() ? glm::vec3(0.78f, 0.74f, 0.70f)
+                                                                  : pattern.triangle_colors[t]);
+              }
+            }
+      }
+  }
+  if (triangles_.empty()) throw std::runtime_error("pattern truth: no pattern on the base");
   TriangleMesh world;
   world.positions = positions_;
   world.triangles = triangles_;
@@ -97,7 +153,7 @@ DisplacedHit PatternBaseTruth::intersect(const glm::dvec3& origin, const glm::dv
   h.normal =
       glm::normalize(b0 * glm::dvec3(base_normals_[t.x]) + b1 * glm::dvec3(base_normals_[t.y]) +
                      b2 * glm::dvec3(base_normals_[t.z]));
-  h.albedo = colors_.empty() ? glm::dvec3(0.78, 0.74, 0.70) : glm::dvec3(colors_[rh.hit.primID]);
+  h.albedo = glm::dvec3(colors_[rh.hit.primID]);
   return h;
 }
 

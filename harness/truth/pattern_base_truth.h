@@ -1,12 +1,12 @@
 #pragma once
-// Truth of a non-height-field pattern (relief/pattern_mesh.h) on a curved base: every tile
-// of the pattern mesh, its vertices (u, v, depth) mapped onto the base mesh as drawn -- the
-// point at (u, v) on its flat triangles, moved inward along the interpolated normal by
-// depth x the scene's depth, as the displaced heightfield truth does -- and traced by Embree in
-// world space with the pattern's flat triangle normals and thread colours. The mapping is
-// exact at the pattern's vertices; between them the pattern's triangles are chords (its
-// tessellation, `segments` x `sides`, bounds the deviation). Bases whose uv mapping covers
-// each uv once (sphere, torus) are supported; the config refuses others.
+// Truth of a non-height-field pattern (relief/pattern_mesh.h) on a curved base: for every
+// base triangle, the periodic pattern mesh over its uv triangle, clipped to it and mapped by
+// its barycentrics onto the base as drawn -- the point at (u, v) on the flat triangle, moved
+// inward along the interpolated normal by depth x the scene's depth, as the displaced
+// heightfield truth does -- traced by Embree in world space with the pattern's flat triangle
+// normals and thread colours. Within a base triangle the mapping is affine, so the pattern's
+// triangles stay flat and exact; across base edges the clipped pieces meet without cracks.
+// Works on any base with uvs, including mappings that cover some uvs twice (the teapot).
 #include <atomic>
 #include <cstdint>
 #include <vector>
@@ -21,11 +21,8 @@ namespace rl {
 
 class PatternBaseTruth {
  public:
-  // The base's uv range (its uvs' bounds) must hold whole pattern tiles; u wraps around (the
-  // seam), v wraps when `wrap_v` (a torus) and is clamped otherwise (a sphere's poles).
   // `depth`: world depth of depth 1.
-  PatternBaseTruth(const TriangleMesh& pattern_tile, const BaseMesh& base, bool wrap_v,
-                   double depth);
+  PatternBaseTruth(const TriangleMesh& pattern_tile, const BaseMesh& base, double depth);
   ~PatternBaseTruth();
   PatternBaseTruth(const PatternBaseTruth&) = delete;
   PatternBaseTruth& operator=(const PatternBaseTruth&) = delete;
