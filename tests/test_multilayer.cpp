@@ -14,10 +14,12 @@
 #include "gl/context.h"
 #include "relief/layer_bake.h"
 #include "relief/pattern_mesh.h"
+#include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
 #include "technique/gpu_scene.h"
 #include "truth/layers_truth.h"
+#include "truth/pattern_base_truth.h"
 
 namespace rl {
 namespace {
@@ -412,6 +414,35 @@ TEST(Multilayer, TheWeaveOnASphereShowsItsFarSideThroughTheGaps) {
               one.metrics.wrong_pct, bent.metrics.wrong_pct);
   EXPECT_EQ(bent.metrics.nonfinite_px, 0);
   EXPECT_LT(bent.metrics.wrong_pct, one.metrics.wrong_pct - 3.0);
+}
+
+TEST(PatternBaseTruth, TheWeaveMappedOntoASphereStaysInItsShell) {
+  // Every pattern point mapped onto the sphere (radius 0.5) lies between the base and one
+  // relief depth below it; rays through the centre of the view hit it.
+  const BaseMesh sphere = make_base_mesh(BaseDesc{.kind = "sphere", .segments = 24}, 1.0, 2.0);
+  const PatternBaseTruth truth(make_pattern_mesh("weave", {}, "test"), sphere, 0.06);
+  ASSERT_GT(truth.triangles(), 10000u);
+  const DisplacedHit h = truth.intersect({0, 0, 3}, {0, 0, -1}, 10.0);
+  ASSERT_TRUE(h.hit);
+  // The flat 24-segment base lies inside the unit sphere by at most 1 - cos(pi / 24) radii.
+  const double r = glm::length(h.position);
+  EXPECT_LE(r, 0.5 + 1e-6);
+  EXPECT_GE(r, 0.5 * std::cos(3.14159265 / 24) - 0.06 - 1e-6);
+  EXPECT_TRUE(h.has_surface);
+}
+
+TEST(Multilayer, TheWeaveOnTheTeapotWhoseUvsOverlap) {
+  // The teapot's cylindrical uvs cover some uvs twice (spout and handle over the body): the
+  // truth maps the pattern onto every triangle anyway, and the technique's error stays finite.
+  SceneDesc scene = weave_scene(128, TruthLevel::Mesh);
+  scene.base.kind = "teapot";
+  scene.tile = 2;
+  scene.depth = 0.06;
+  const test::Measured m =
+      test::measure(scene, "multilayer", {{"linear_steps", 32}, {"two_pass", 1}}, View{30, 30}, 96);
+  EXPECT_GT(m.metrics.truth_covered_px, 500);
+  EXPECT_EQ(m.metrics.nonfinite_px, 0);
+  EXPECT_LT(m.metrics.missed_pct, 10.0);
 }
 
 TEST(Multilayer, EveryTechniqueDrawsTheWeaveFinitely) {
