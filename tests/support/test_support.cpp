@@ -30,6 +30,19 @@ SceneDesc procedural_scene(const std::string& kind, int resolution, double depth
   return s;
 }
 
+SceneDesc weave_scene(int resolution, TruthLevel truth) {
+  SceneDesc s;
+  s.name = "weave";
+  s.relief.procedural = "weave";
+  s.relief.layers = 4;
+  s.relief.native = {resolution, resolution};
+  s.truth = truth;
+  s.empty_floor = true;
+  s.tile = 2;
+  s.depth = 0.15;
+  return s;
+}
+
 Measured measure(const SceneDesc& scene, const std::string& technique, const ParamValues& params,
                  const View& view, int size, double truth_tolerance) {
   GlContext::shared();

@@ -19,6 +19,10 @@ SceneDesc procedural_scene(const std::string& kind, int resolution, double depth
                            bool quantize = false,
                            const std::map<std::string, double>& options = {});
 
+// The weave of Figure 5 baked into 4 layers on a planar base (tile 2, depth 0.15), empty
+// floor, measured against `truth` (the woven mesh, or its own layers).
+SceneDesc weave_scene(int resolution, TruthLevel truth);
+
 struct Measured {
   GBuffer technique;
   GBuffer truth;
