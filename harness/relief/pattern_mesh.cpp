@@ -98,12 +98,21 @@ TriangleMesh make_pattern_mesh(const std::string& kind, std::map<std::string, do
     return int(v);
   };
   const int segments = positive_int("segments", 8, 4096), sides = positive_int("sides", 3, 256);
+  // The bake and the truth trace every triangle (9 tiles' worth on the plane): keep a tile
+  // within a few million.
+  auto check_budget = [&](int tubes) {
+    const double triangles = 2.0 * tubes * segments * sides;
+    if (triangles > 4e6)
+      throw ConfigError(where + ": " + kind + " options give " + std::to_string(long(triangles)) +
+                        " triangles per tile (at most 4,000,000); lower 'segments' or 'sides'");
+  };
   TriangleMesh mesh;
   mesh.name = kind;
   const glm::vec3 warp(0.80f, 0.36f, 0.22f), weft(0.25f, 0.45f, 0.78f);
   if (kind == "weave") {
     const int threads = positive_int("threads", 2, 64);
     if (threads % 2) throw ConfigError(where + ": weave option 'threads' must be even");
+    check_budget(2 * threads);
     const double w = option(o, "width") / 2, th = option(o, "thickness") / 2,
                  amp = option(o, "amplitude");
     const double spacing = 1.0 / threads;
@@ -135,6 +144,7 @@ TriangleMesh make_pattern_mesh(const std::string& kind, std::map<std::string, do
   } else {  // helix
     const int helices = positive_int("helices", 1, 64), strands = positive_int("strands", 1, 2);
     const int turns = positive_int("turns", 1, 64);
+    check_budget(helices * strands);
     const double r = option(o, "radius"), th = option(o, "thickness");
     const double spacing = 1.0 / helices;
     if (r <= 0 || th <= 0 || r + th >= 0.5 * spacing || (strands == 2 && th >= r) || r + th >= 0.5)

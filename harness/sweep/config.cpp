@@ -129,6 +129,16 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
     json& sc = parsed.canon;
     c.scenes.push_back(parsed.scene);
     SceneDesc& scene = c.scenes.back();
+    // Layers cost memory per texel and layer (7 floats baked, then 28 bytes uploaded).
+    for (int res : c.texture_res) {
+      const MapSize size = scene.relief.size_at(res);
+      if (scene.relief.layers > 0 &&
+          double(size.width) * size.height * scene.relief.layers > double(1 << 26))
+        fail(src.at(n), "scene '" + scene.name + "': " + std::to_string(size.width) + "x" +
+                            std::to_string(size.height) + " texels x " +
+                            std::to_string(scene.relief.layers) +
+                            " layers exceeds 67,108,864 (e.g. 2048^2 x 8 or 4096^2 x 4)");
+    }
     for (const View& v : c.views)
       if (v.elevation_deg < 0 && !scene.impostor())
         fail(src.at(n), "scene '" + scene.name + "' is seen from below (elevation " +
