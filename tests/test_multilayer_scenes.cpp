@@ -146,6 +146,26 @@ TEST(Multilayer, TheWeaveOnTheTeapotWhoseUvsOverlap) {
   EXPECT_LT(m.metrics.missed_pct, 10.0);
 }
 
+TEST(Multilayer, TheWeaveOverASolidFloor) {
+  // floor = "solid": the gaps show the floor at depth 1 (facing up, kLayeredFloorColor) in
+  // the technique and the truth alike; nothing is counted as an unresolved truth ray.
+  SceneDesc scene = test::weave_scene(128, TruthLevel::Mesh);
+  scene.empty_floor = false;
+  const test::Measured ml =
+      test::measure(scene, "multilayer", {{"linear_steps", 32}}, View{25, 30}, 128);
+  const test::Measured hf =
+      test::measure(scene, "relief", {{"linear_steps", 32}}, View{25, 30}, 128);
+  std::printf(
+      "weave over a solid floor, 25 deg: wrong multilayer %.2f%% (PSNR %.1f dB), relief "
+      "%.2f%% (%.1f dB)\n",
+      ml.metrics.wrong_pct, ml.metrics.psnr_db, hf.metrics.wrong_pct, hf.metrics.psnr_db);
+  EXPECT_EQ(ml.truth_stats.unresolved, 0);
+  EXPECT_EQ(ml.metrics.missed_pct + ml.metrics.false_pct, 0.0);  // the floor fills every pixel
+  EXPECT_LT(ml.metrics.wrong_pct, 5.0);
+  EXPECT_GT(ml.metrics.psnr_db, hf.metrics.psnr_db + 3.0);  // the floor's colour is shaded alike
+  EXPECT_LT(ml.metrics.wrong_pct, 0.3 * hf.metrics.wrong_pct);
+}
+
 TEST(Multilayer, EveryTechniqueDrawsTheWeaveFinitely) {
   // A non-height-field scene is one more hard case for every registered technique: the
   // heightfield ones see its top layer. Outputs finite, whatever their error.

@@ -13,7 +13,7 @@ namespace rl {
 namespace {
 
 constexpr int kMaxCrossings = 256;  // bounds the walk along one bake ray
-const glm::vec3 kNeutral(0.78f, 0.74f, 0.70f);
+const glm::vec3 kNeutral = kLayeredFloorColor;
 
 struct Crossing {
   double depth;

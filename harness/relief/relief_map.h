@@ -41,6 +41,10 @@ struct LayerStack {
   int used(size_t texel) const;
 };
 
+// The floor under a multilayer map (depth 1, facing up) where a scene asks for a solid one,
+// and the colour of the empty texels of its top-layer view.
+inline const glm::vec3 kLayeredFloorColor(0.78f, 0.74f, 0.70f);
+
 struct ReliefMap {
   std::string name;
   int width = 0;

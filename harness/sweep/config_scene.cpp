@@ -222,9 +222,9 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
     if (s.base.curved() && s.truth == TruthLevel::Layers)
       fail(src.at(node), no + "on a curved base has the pattern mesh as its truth, not "
                               "\"layers\"");
-    if (!s.empty_floor)
-      fail(src.at(node), no + "has an empty floor (its gaps show the background); "
-                              "floor = \"solid\" is not supported yet");
+    if (!s.empty_floor && (s.base.curved() || s.impostor()))
+      fail(src.at(node), no + "on a curved base or as an impostor has an empty floor (its gaps "
+                              "show what lies behind); floor = \"solid\" applies on the plane");
   }
   if (s.truth == TruthLevel::Mesh && !s.relief.mesh_path.empty() && !s.impostor() &&
       s.proxy != Proxy::Box)

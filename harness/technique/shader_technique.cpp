@@ -9,6 +9,13 @@
 
 namespace rl {
 
+Defines layered_floor_define(const ReliefMap& map) {
+  if (map.layers.empty()) return {};
+  const glm::vec3 c = kLayeredFloorColor;
+  return {{"RL_LAYERED_FLOOR", "vec3(" + std::to_string(c.r) + ", " + std::to_string(c.g) + ", " +
+                                   std::to_string(c.b) + ")"}};
+}
+
 SurfaceVariant ShaderTechnique::variant_of(const SceneDesc& scene) {
   return {scene.proxy, scene.empty_floor, scene.projection.active(), scene.impostor(),
           scene.base.curved() && scene.relief.layers > 0};

@@ -10,6 +10,10 @@
 
 namespace rl {
 
+// The #define a technique on a multilayer map adds so its misses shade like the truth's solid
+// floor (kLayeredFloorColor, facing up); empty for heightfield maps.
+Defines layered_floor_define(const ReliefMap& map);
+
 // How a scene's relief is drawn, as far as the surface shader is concerned.
 struct SurfaceVariant {
   Proxy proxy = Proxy::Base;

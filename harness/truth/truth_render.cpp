@@ -92,6 +92,12 @@ bool trace_primary(const TruthSurface& truth, const ReliefMap& map, const SceneD
   const double t_bottom = (bottom - start.z) / d.z;
   h = truth.intersect(start, d, 0.0, t_bottom);
   if (!h.hit && scene.empty_floor) return false;  // through a pattern's gaps: background
+  if (!h.hit && !map.layers.empty()) {
+    // Through a pattern's gaps onto its solid floor (depth 1).
+    h.t = (1.0 - start.z) / d.z;
+    h.point = start + d * h.t;
+    return true;
+  }
   if (!h.hit) {
     // Rounding let the ray through the floor; it is inside the relief there.
     ++unresolved;
@@ -191,8 +197,12 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
                                           m.y / glm::length(base.dpdv()), -m.z / base.depth));
             if (glm::dot(n, dir) > 0) n = -n;
           }
-          const glm::dvec3 albedo =
-              h.has_albedo ? h.albedo : glm::dvec3(map.sample_color(uv.x, uv.y));
+          glm::dvec3 albedo = h.has_albedo ? h.albedo : glm::dvec3(map.sample_color(uv.x, uv.y));
+          if (!map.layers.empty() && !h.hit) {
+            // The solid floor under a multilayer map: facing up, in the floor colour.
+            n = base.normal();
+            albedo = glm::dvec3(kLayeredFloorColor);
+          }
           const glm::dvec3 to_light = glm::normalize(scene.light_position - world);
           bool in_shadow = false;
           if (shadows) {

@@ -58,6 +58,7 @@ class DoubleDepth final : public Described<DoubleDepth, ShaderTechnique> {
     glTextureParameteri(texture_, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTextureParameteri(texture_, GL_TEXTURE_WRAP_T, GL_REPEAT);
     bytes_ = texels * (map.quantized ? 4 : 16);
+    floor_ = layered_floor_define(map);
   }
   size_t memory_bytes() const override { return bytes_; }
 
@@ -66,14 +67,17 @@ class DoubleDepth final : public Described<DoubleDepth, ShaderTechnique> {
     return "techniques/double_depth/double_depth.glsl";
   }
   Defines parameter_defines() const override {
-    return {{"RL_LINEAR_STEPS", std::to_string(int(param("linear_steps")))},
-            {"RL_BINARY_STEPS", std::to_string(int(param("binary_steps")))}};
+    Defines d = {{"RL_LINEAR_STEPS", std::to_string(int(param("linear_steps")))},
+                 {"RL_BINARY_STEPS", std::to_string(int(param("binary_steps")))}};
+    d.insert(floor_.begin(), floor_.end());
+    return d;
   }
   void bind_resources(GLuint) const override { glBindTextureUnit(4, texture_); }
 
  private:
   GLuint texture_ = 0;
   size_t bytes_ = 0;
+  Defines floor_;  // RL_LAYERED_FLOOR on a multilayer map
 };
 
 RL_REGISTER_TECHNIQUE(DoubleDepth);

@@ -42,14 +42,20 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   return rl_hit_on_ray(p, s, hi, true);
 }
 
-// The front surface's normal (x, y stored, z rebuilt) and the map's colour; a miss shades
-// with the map's own normal and colour where it ends.
+// The front surface's normal (x, y stored, z rebuilt) and the map's colour; a miss drawn on
+// the floor shades as multilayer's does.
 void rl_hit_attributes(RlHit h, out vec3 tn, out vec3 albedo) {
-  albedo = RL_FETCH(rl_color, h.uv).rgb;
   if (h.layer < 0) {
+#ifdef RL_LAYERED_FLOOR
+    tn = vec3(0.0, 0.0, 1.0);  // a layered map's solid floor
+    albedo = RL_LAYERED_FLOOR;
+#else
     tn = rl_decode_normal(RL_FETCH(rl_relief, h.uv));
+    albedo = RL_FETCH(rl_color, h.uv).rgb;
+#endif
     return;
   }
+  albedo = RL_FETCH(rl_color, h.uv).rgb;
   vec2 xy = RL_FETCH(rl_double_depth, h.uv).xy * 2.0 - 1.0;
   tn = vec3(xy, sqrt(max(0.0, 1.0 - dot(xy, xy))));
 }

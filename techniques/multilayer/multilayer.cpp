@@ -60,6 +60,7 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
     const size_t texels = size_t(map.width) * map.height;
     const int count = map.layers.empty() ? 1 : map.layers.count;
     groups_ = (count + 3) / 4;
+    floor_ = layered_floor_define(map);
     auto depth_at = [&](int l, size_t i) {
       if (map.layers.empty()) return l == 0 ? map.relief[i].a : 1.0f;
       return l < count ? map.layers.depth[l * texels + i] : 1.0f;
@@ -108,10 +109,12 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
  protected:
   std::string intersect_file() const override { return "techniques/multilayer/multilayer.glsl"; }
   Defines parameter_defines() const override {
-    return {{"RL_LINEAR_STEPS", std::to_string(int(param("linear_steps")))},
-            {"RL_BINARY_STEPS", std::to_string(int(param("binary_steps")))},
-            {"RL_INTERFACE_FIX", param("interface_fix") != 0 ? "1" : "0"},
-            {"RL_LAYER_GROUPS", std::to_string(groups_)}};
+    Defines d = {{"RL_LINEAR_STEPS", std::to_string(int(param("linear_steps")))},
+                 {"RL_BINARY_STEPS", std::to_string(int(param("binary_steps")))},
+                 {"RL_INTERFACE_FIX", param("interface_fix") != 0 ? "1" : "0"},
+                 {"RL_LAYER_GROUPS", std::to_string(groups_)}};
+    d.insert(floor_.begin(), floor_.end());
+    return d;
   }
   bool two_pass() const override { return param("two_pass") != 0; }
   void bind_resources(GLuint) const override {
@@ -128,6 +131,7 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
   }
   GLuint textures_[4] = {0, 0, 0, 0};
   int groups_ = 1;
+  Defines floor_;  // RL_LAYERED_FLOOR on a multilayer map
   size_t bytes_ = 0;
 };
 

@@ -130,12 +130,18 @@ RlHit rl_intersect_curved(vec3 p, vec3 s, vec2 quadric, vec3 metric) {
   return rl_layer_search(p, s, t_max, true, quadric, metric);
 }
 
-// The hit layer's normal (x and y stored, z rebuilt, negative on back layers) and colour; a
-// miss shades with the map's own normal and colour where it ends.
+// The hit layer's normal (x and y stored, z rebuilt, negative on back layers) and colour. A
+// miss that is drawn ends on the floor: a layered map's solid floor faces up in the floor
+// colour; a heightfield's floor texel has its own normal and colour.
 void rl_hit_attributes(RlHit h, out vec3 tn, out vec3 albedo) {
   if (h.layer < 0) {
+#ifdef RL_LAYERED_FLOOR
+    tn = vec3(0.0, 0.0, 1.0);
+    albedo = RL_LAYERED_FLOOR;
+#else
     tn = rl_decode_normal(RL_FETCH(rl_relief, h.uv));
     albedo = RL_FETCH(rl_color, h.uv).rgb;
+#endif
     return;
   }
   int g = h.layer / 4, k = h.layer % 4;
