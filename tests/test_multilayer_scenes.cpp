@@ -71,6 +71,22 @@ TEST(DoubleDepth, CapsTheExtrusionButFillsUnderTheCrossings) {
   }
 }
 
+TEST(Impostor, ShadowsFromALightBelowTheQuad) {
+  // An impostor is lit from either side: its light rays are searched from the light's side of
+  // the depth range, and the truth's run toward the light until they leave it.
+  SceneDesc scene = impostor_scene("bunny.obj", 8);
+  scene.effects.add(Effect::SelfShadow);
+  scene.light_position = {0.6, -0.4, -1.2};
+  for (const View& view : {View{60, 30}, View{-40, 210}}) {
+    SCOPED_TRACE(view.elevation_deg);
+    const test::Measured m = test::measure(scene, "multilayer", {{"linear_steps", 64}}, view, 128);
+    std::printf("bunny impostor lit from below, %+3.0f deg: shadows disagree on %.2f%%\n",
+                view.elevation_deg, m.metrics.shadow_disagree_pct);
+    EXPECT_GT(m.truth_stats.shadow_rays, 0u);
+    EXPECT_LT(m.metrics.shadow_disagree_pct, 6.0);
+  }
+}
+
 TEST(Multilayer, DepthCorrectionLetsAnObjectSitInTheWeave) {
   // A plain sphere pushed halfway into the weave: with depth_correct the threads in front of
   // it hide it and it hides the threads behind it, per pixel, as in the truth.

@@ -166,6 +166,17 @@ void main() {
   // Listing 5.3: enter the relief where the light ray crosses the top, search along it, and
   // call the pixel shadowed when that search stops clearly above our hit.
   vec3 tl = rl_texture_direction(-to_light, N);
+#ifdef RL_IMPOSTOR
+  // An impostor is lit from either side: the light ray enters the depth range at 0 (light
+  // above) or at 1 (below) and is searched toward the hit.
+  if (tl.z != 0.0) {
+    vec3 sl = tl / abs(tl.z);
+    float travel = tl.z > 0.0 ? h.depth : 1.0 - h.depth;
+    RlHit hl = rl_intersect(vec3(h.uv, h.depth) - sl * travel, sl);
+    in_shadow = hl.hit && (tl.z > 0.0 ? hl.depth < h.depth - rl_shadow_bias
+                                      : hl.depth > h.depth + rl_shadow_bias);
+  }
+#else
   if (tl.z <= 0.0) {
     in_shadow = true;  // light at or below the hit
   } else {
@@ -173,6 +184,7 @@ void main() {
     RlHit hl = rl_intersect(vec3(h.uv - sl.xy * h.depth, 0.0), sl);
     in_shadow = hl.hit && hl.depth < h.depth - rl_shadow_bias;
   }
+#endif
 #endif
 
   o_color = vec4(rl_shade(albedo, n, to_light, -V, in_shadow), 1.0);

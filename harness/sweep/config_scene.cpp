@@ -210,10 +210,6 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
     // Not built yet: layers in a box proxy, multilayer silhouettes on curved bases, a floor
     // under a pattern, shadows on impostors.
     const std::string no = "scene '" + s.name + "': a multilayer relief ";
-    if (s.impostor() && s.effects.has(Effect::SelfShadow))
-      fail(src.at(node), "scene '" + s.name +
-                             "': self_shadow on a relief impostor is not "
-                             "supported yet");
     if (s.proxy == Proxy::Box)
       fail(src.at(node), no + "is drawn on its base; proxy = \"box\" "
                               "is not supported yet");

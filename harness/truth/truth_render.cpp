@@ -207,7 +207,13 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
           bool in_shadow = false;
           if (shadows) {
             const glm::dvec3 l = base.texture_direction(scene.light_position - world);
-            if (l.z >= 0) {
+            if (scene.impostor()) {
+              // Lit from either side: toward the light until the ray leaves the depth range.
+              const double t_exit =
+                  l.z < 0 ? -h.point.z / l.z : (l.z > 0 ? (1.0 - h.point.z) / l.z : 1e9);
+              const double t_start = 1e-4 / std::max(1.0, glm::length(l));
+              in_shadow = t_exit > t_start && truth.occluded(h.point, l, t_start, t_exit);
+            } else if (l.z >= 0) {
               in_shadow = true;  // light at or below the hit (as the shaders decide)
             } else {
               // From the hit toward the light, up to where it leaves the relief at the top.
