@@ -172,6 +172,10 @@ TEST(ConfigErrors, EachNamesTheProblemAndWritesNothing) {
                "relief = { mesh = \"" RELIEFLAB_SOURCE_DIR
                "/assets/meshes/teapot.obj\", layers = 4, resolution = 8 }"),
        {"technique 'relief' cannot render scene 'flat', a relief impostor"}},
+      {"pom_min_above_max",
+       replace(kGood, "name = \"relief\"\nlinear_steps = [4]",
+               "name = \"pom\"\nmin_samples = 40\nmax_samples = 20"),
+       {"pom's min_samples must not exceed max_samples"}},
       {"gbuffers_not_a_bool",
        replace(kGood, "frames = 1", "frames = 1\ngbuffers = 1"),
        {"sweep.toml:7", "'gbuffers' must be true or false"}},

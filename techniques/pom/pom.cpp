@@ -1,0 +1,45 @@
+// Parallax occlusion mapping, Tatarchuk 2006.
+#include "core/error.h"
+#include "technique/shader_technique.h"
+
+namespace rl {
+
+class ParallaxOcclusion final : public Described<ParallaxOcclusion, ShaderTechnique> {
+ public:
+  using Described::Described;
+  static TechniqueInfo describe() {
+    return {.name = "pom",
+            .title = "Parallax occlusion mapping (view-dependent linear search, interpolated hit)",
+            .citation =
+                "Tatarchuk 2006, 'Dynamic Parallax Occlusion Mapping with Approximate "
+                "Soft Shadows', I3D 2006",
+            .effects = {Effect::DepthCorrect},
+            .params = {{.name = "min_samples",
+                        .kind = ParamKind::Int,
+                        .default_value = 8,
+                        .min_value = 2,
+                        .max_value = 1024,
+                        .doc = "linear search samples when the view is along the normal"},
+                       {.name = "max_samples",
+                        .kind = ParamKind::Int,
+                        .default_value = 32,
+                        .min_value = 2,
+                        .max_value = 1024,
+                        .doc = "linear search samples at grazing views"}}};
+  }
+  static void validate(const ParamValues& p, const std::string& where) {
+    if (p.at("min_samples") > p.at("max_samples"))
+      throw ConfigError(where + ": pom's min_samples must not exceed max_samples");
+  }
+
+ protected:
+  std::string intersect_file() const override { return "techniques/pom/pom.glsl"; }
+  Defines parameter_defines() const override {
+    return {{"RL_MIN_SAMPLES", std::to_string(int(param("min_samples")))},
+            {"RL_MAX_SAMPLES", std::to_string(int(param("max_samples")))}};
+  }
+};
+
+RL_REGISTER_TECHNIQUE(ParallaxOcclusion);
+
+}  // namespace rl
