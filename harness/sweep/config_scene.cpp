@@ -207,8 +207,8 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
     fail(src.at(node),
          "scene '" + s.name + "': self_shadow is not supported with reverse_perspective yet");
   if (s.relief.layers > 0) {
-    // Not built yet: layers in a box proxy, multilayer silhouettes on curved bases, a floor
-    // under a pattern, shadows on impostors.
+    // Not built: layers in a box proxy (its truth would be the mesh clipped to the box), and a
+    // floor under a pattern on a curved base or an impostor (what shows through is behind).
     const std::string no = "scene '" + s.name + "': a multilayer relief ";
     if (s.proxy == Proxy::Box)
       fail(src.at(node), no + "is drawn on its base; proxy = \"box\" "
