@@ -40,6 +40,19 @@ vec3 rl_decode_normal(vec4 texel) {
   return len > 0.0 ? n / len : vec3(0.0, 0.0, 1.0);
 }
 
+// Normal and colour where a search ends without a surface and the pass still draws it (on a
+// floor): a multilayer map's solid floor faces up in its floor colour (RL_LAYERED_FLOOR, set by
+// layered_floor_define()); a heightfield's floor texel has its own normal and colour.
+void rl_floor_attributes(vec2 uv, out vec3 tn, out vec3 albedo) {
+#ifdef RL_LAYERED_FLOOR
+  tn = vec3(0.0, 0.0, 1.0);
+  albedo = RL_LAYERED_FLOOR;
+#else
+  tn = rl_decode_normal(RL_FETCH(rl_relief, uv));
+  albedo = RL_FETCH(rl_color, uv).rgb;
+#endif
+}
+
 RlHit rl_hit_on_ray(vec3 p, vec3 s, float t, bool hit) {
   RlHit h;
   h.t = t;

@@ -21,6 +21,12 @@ SurfaceVariant ShaderTechnique::variant_of(const SceneDesc& scene) {
           scene.base.curved() && scene.relief.layers > 0};
 }
 
+bool ShaderTechnique::draws_back_faces(const SurfaceVariant& variant) const {
+  // Only a technique that searches upward too draws back faces; the others keep their
+  // one-sided search (and miss the far side through the gaps, as a heightfield would).
+  return variant.two_sided && info().impostor;
+}
+
 ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Kind target,
                                              SurfaceVariant variant) const {
   ProgramDesc d;
@@ -34,9 +40,7 @@ ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Ki
   if (variant.empty_floor) d.defines["RL_EMPTY_FLOOR"] = "1";
   if (variant.reverse_perspective) d.defines["RL_REVERSE_PERSPECTIVE"] = "1";
   if (variant.impostor) d.defines["RL_IMPOSTOR"] = "1";
-  // Only a technique that searches upward too draws back faces; the others keep their
-  // one-sided search (and miss the far side through the gaps, as a heightfield would).
-  if (variant.two_sided && info().impostor) d.defines["RL_TWO_SIDED"] = "1";
+  if (draws_back_faces(variant)) d.defines["RL_TWO_SIDED"] = "1";
   return d;
 }
 
@@ -73,7 +77,7 @@ void ShaderTechnique::render(const FrameInput& frame, RenderTarget::Kind target)
   } else {
     glDisable(GL_CULL_FACE);
   }
-  if (variant_of(s).two_sided && info().impostor && two_pass()) {
+  if (draws_back_faces(variant_of(s)) && two_pass()) {
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
     frame.base.draw();

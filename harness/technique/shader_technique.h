@@ -49,6 +49,9 @@ class ShaderTechnique : public Technique {
   // Section 5: back faces behind a found hit are then rejected by the depth test), instead of
   // all faces in the mesh's order.
   virtual bool two_pass() const { return false; }
+
+ private:
+  bool draws_back_faces(const SurfaceVariant& variant) const;
 };
 
 }  // namespace rl

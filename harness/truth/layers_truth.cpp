@@ -1,6 +1,7 @@
 #include "truth/layers_truth.h"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "core/grid_walk.h"
 
@@ -8,19 +9,11 @@ namespace rl {
 
 LayersTruth::LayersTruth(const ReliefMap& map, bool tiled)
     : width_(map.width), height_(map.height), tiled_(tiled) {
-  if (!map.layers.empty()) {
-    count_ = map.layers.count;
-    depth_ = map.layers.depth;
-    normal_ = map.layers.normal;
-    color_ = map.layers.color;
-    return;
-  }
-  count_ = 1;
-  for (size_t i = 0; i < map.relief.size(); ++i) {
-    depth_.push_back(map.relief[i].a);
-    normal_.push_back(glm::vec3(decode_normal(glm::dvec4(map.relief[i]))));
-    color_.push_back(glm::vec3(map.color[i]));
-  }
+  if (map.layers.empty()) throw std::logic_error("LayersTruth: the map has no layers");
+  count_ = map.layers.count;
+  depth_ = map.layers.depth;
+  normal_ = map.layers.normal;
+  color_ = map.layers.color;
 }
 
 bool LayersTruth::column_hit(long i, long j, const glm::dvec3& o, const glm::dvec3& d, double t0,

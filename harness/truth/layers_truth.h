@@ -15,9 +15,9 @@ namespace rl {
 
 class LayersTruth final : public TruthSurface {
  public:
-  // A map without layers is taken as one layer: its heightfield under nearest sampling.
-  // `tiled`: the map repeats (GL_REPEAT, a pattern); otherwise it is one object in its box
-  // (an impostor) and outside the box there is nothing.
+  // `map` must have layers (the config refuses truth = "layers" otherwise). `tiled`: the map
+  // repeats (GL_REPEAT, a pattern); otherwise it is one object in its box (an impostor) and outside
+  // the box there is nothing.
   explicit LayersTruth(const ReliefMap& map, bool tiled = true);
 
   TruthHit intersect(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,

@@ -7,7 +7,6 @@
 
 #include "core/elapsed.h"
 #include "core/embree_util.h"
-#include "relief/pattern_mesh.h"
 
 namespace rl {
 

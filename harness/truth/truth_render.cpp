@@ -182,13 +182,14 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
           }
           if (!relief) continue;
           const glm::dvec2 uv(h.point.x, h.point.y);
-          const glm::dvec3 tn = decode_normal(map.sample_relief(uv.x, uv.y));
-          glm::dvec3 n = glm::normalize(tn.x * glm::normalize(base.dpdu()) +
-                                        tn.y * glm::normalize(base.dpdv()) + tn.z * base.normal());
+          // A tangent-space normal in the base's unit frame, as the shaders shade.
+          auto in_base_frame = [&](const glm::dvec3& t) {
+            return glm::normalize(t.x * glm::normalize(base.dpdu()) +
+                                  t.y * glm::normalize(base.dpdv()) + t.z * base.normal());
+          };
+          glm::dvec3 n = in_base_frame(decode_normal(map.sample_relief(uv.x, uv.y)));
           if (h.tangent_normal) {
-            const glm::dvec3 m = glm::normalize(h.normal);
-            n = glm::normalize(m.x * glm::normalize(base.dpdu()) +
-                               m.y * glm::normalize(base.dpdv()) + m.z * base.normal());
+            n = in_base_frame(h.normal);
           } else if (h.has_normal) {
             // The surface's own normal (mesh truth), from texture space (u, v, depth) to world
             // by the inverse transpose of the base's scaling; facing the viewer.

@@ -46,13 +46,7 @@ RlHit rl_intersect(vec3 p, vec3 s) {
 // the floor shades as multilayer's does.
 void rl_hit_attributes(RlHit h, out vec3 tn, out vec3 albedo) {
   if (h.layer < 0) {
-#ifdef RL_LAYERED_FLOOR
-    tn = vec3(0.0, 0.0, 1.0);  // a layered map's solid floor
-    albedo = RL_LAYERED_FLOOR;
-#else
-    tn = rl_decode_normal(RL_FETCH(rl_relief, h.uv));
-    albedo = RL_FETCH(rl_color, h.uv).rgb;
-#endif
+    rl_floor_attributes(h.uv, tn, albedo);
     return;
   }
   albedo = RL_FETCH(rl_color, h.uv).rgb;

@@ -135,13 +135,7 @@ RlHit rl_intersect_curved(vec3 p, vec3 s, vec2 quadric, vec3 metric) {
 // colour; a heightfield's floor texel has its own normal and colour.
 void rl_hit_attributes(RlHit h, out vec3 tn, out vec3 albedo) {
   if (h.layer < 0) {
-#ifdef RL_LAYERED_FLOOR
-    tn = vec3(0.0, 0.0, 1.0);
-    albedo = RL_LAYERED_FLOOR;
-#else
-    tn = rl_decode_normal(RL_FETCH(rl_relief, h.uv));
-    albedo = RL_FETCH(rl_color, h.uv).rgb;
-#endif
+    rl_floor_attributes(h.uv, tn, albedo);
     return;
   }
   int g = h.layer / 4, k = h.layer % 4;
