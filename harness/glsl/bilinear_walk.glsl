@@ -32,29 +32,39 @@ float rl_smallest_root(float a, float b, float c, float lo, float hi) {
   return -1.0;
 }
 
+// Corner depths (d00, d10, d01, d11) of cell (i, j): one gather at the point between texel
+// centres i, i + 1 and j, j + 1.
+vec4 rl_cell_corners(ivec2 cell) {
+  vec4 g = RL_GATHER_DEPTH((vec2(cell) + 1.0) / vec2(textureSize(rl_relief, 0)));
+  return vec4(g.w, g.z, g.x, g.y);
+}
+
+// First tau in [0, tau_max] at which a ray meets a cell's patch, or -1. The ray is at `local`
+// (the cell's own coordinates, both in [0, 1]: no cancellation between large coordinates on
+// long, grazing rays) and depth z at tau = 0, and moves by dir (texel units) and by 1 in depth
+// per unit tau.
+float rl_patch_first_hit(vec4 corners, vec2 local, vec2 dir, float z, float tau_max) {
+  float d00 = corners.x, d10 = corners.y, d01 = corners.z, d11 = corners.w;
+  float A = d10 - d00, B = d01 - d00, C = d00 - d10 - d01 + d11;
+  float qa = -C * dir.x * dir.y;
+  float qb = 1.0 - A * dir.x - B * dir.y - C * (local.x * dir.y + local.y * dir.x);
+  float qc = z - d00 - A * local.x - B * local.y - C * local.x * local.y;
+  return qc >= 0.0 ? 0.0 : rl_smallest_root(qa, qb, qc, 0.0, tau_max);
+}
+
 // First t in [t0, t1] where the ray p + t s (s.z = 1) is at or below the bilinear surface;
 // false if there is none (or the walk reached RL_MAX_CELLS).
 bool rl_bilinear_walk(vec3 p, vec3 s, float t0, float t1, out float t_hit) {
   // Walk from the range's start point; t below counts from t0.
   vec3 q = vec3(p.xy + s.xy * t0, p.z + t0);
   RlWalk w = rl_walk_begin(q, s);
-  vec2 size = vec2(textureSize(rl_relief, 0));
   const float t_end = t1 - t0;
   float t_enter = 0.0;
   for (int n = 0; n < RL_MAX_CELLS; n++) {
     float t_exit = min(min(w.next.x, w.next.y), t_end);
-    // Corners of cell (i, j): gather at the point between texel centres i and i + 1.
-    vec4 g = RL_GATHER_DEPTH((vec2(w.cell) + 1.0) / size);
-    float d00 = g.w, d10 = g.z, d01 = g.x, d11 = g.y;
-    float A = d10 - d00, B = d01 - d00, C = d00 - d10 - d01 + d11;
-    // Solve in tau = t - t_enter with the entry point in the cell's own coordinates (both in
-    // [0, 1]): no cancellation between large coordinates on long, grazing rays.
     vec2 local = w.start + w.dir * t_enter - vec2(w.cell);
-    float z = q.z + t_enter;
-    float qa = -C * w.dir.x * w.dir.y;
-    float qb = s.z - A * w.dir.x - B * w.dir.y - C * (local.x * w.dir.y + local.y * w.dir.x);
-    float qc = z - d00 - A * local.x - B * local.y - C * local.x * local.y;
-    float tau = qc >= 0.0 ? 0.0 : rl_smallest_root(qa, qb, qc, 0.0, t_exit - t_enter);
+    float tau = rl_patch_first_hit(rl_cell_corners(w.cell), local, w.dir, q.z + t_enter,
+                                   t_exit - t_enter);
     if (tau >= 0.0) {
       t_hit = t0 + t_enter + tau;
       return true;
