@@ -2,8 +2,10 @@
 // Section 3.5 (blocked rays ignored, the default) and the conservative ones, at 256^2 and
 // 1024^2, on procedural maps and on the rock-wall height map (resampled bilinearly).
 // The paper reports about 10 s for 128^2 on its 2006 GPU (Baboud & Decoret, Section 3.5).
+// Cone maps (cone_relaxed), relaxed and conservative, at 256^2, 512^2 and 1024^2.
 #include <benchmark/benchmark.h>
 
+#include "../techniques/cone_relaxed/cone_map.h"
 #include "../techniques/relief_robust/safety_radius.h"
 #include "relief/image_io.h"
 #include "relief/procedural.h"
@@ -61,6 +63,37 @@ RL_RADIUS_BENCH(bricks, "bricks", true);
 RL_RADIUS_BENCH(pyramids, "pyramids", true);
 RL_RADIUS_BENCH(rock_conservative, "rock", false);
 RL_RADIUS_BENCH(bricks_conservative, "bricks", false);
+
+void BM_ConeMap(benchmark::State& state, std::string kind, bool relaxed) {
+  const int size = int(state.range(0));
+  ReliefMap map = kind == "rock" ? rock(size) : make_procedural(kind, size, {}, 10.0, "bench");
+  quantize_8bit(map);
+  ConeMapOptions o;
+  o.relaxed = relaxed;
+  ConeMap c;
+  for (auto _ : state) {
+    c = compute_cone_map(map, o);
+    benchmark::DoNotOptimize(c.ratio.data());
+  }
+  double mean = 0;
+  for (float v : c.ratio) mean += v;
+  state.counters["mean_ratio"] = mean / c.ratio.size();
+}
+
+#define RL_CONE_BENCH(name, kind, relaxed)           \
+  BENCHMARK_CAPTURE(BM_ConeMap, name, kind, relaxed) \
+      ->Arg(256)                                     \
+      ->Arg(512)                                     \
+      ->Arg(1024)                                    \
+      ->Unit(benchmark::kMillisecond)                \
+      ->UseRealTime()                                \
+      ->Iterations(1)
+RL_CONE_BENCH(cone_rock, "rock", true);
+RL_CONE_BENCH(cone_bricks, "bricks", true);
+RL_CONE_BENCH(cone_pyramids, "pyramids", true);
+RL_CONE_BENCH(cone_domes, "domes", true);
+RL_CONE_BENCH(cone_rock_conservative, "rock", false);
+RL_CONE_BENCH(cone_pyramids_conservative, "pyramids", false);
 
 }  // namespace
 }  // namespace rl

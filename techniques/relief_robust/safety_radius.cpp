@@ -3,18 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
+#include <cstdio>
 #include <limits>
-
-#include <unistd.h>
 
 #include <glm/gtc/constants.hpp>
 
-#include "core/hash.h"
 #include "core/parallel.h"
+#include "core/precompute_cache.h"
 
 namespace rl {
 
@@ -321,52 +316,23 @@ SafetyRadii compute_safety_radii(const ReliefMap& map, const SafetyRadiusOptions
   return out;
 }
 
-namespace {
-
-std::filesystem::path cache_dir() {
-  if (const char* d = std::getenv("RELIEFLAB_CACHE_DIR")) return d;
-  if (const char* d = std::getenv("XDG_CACHE_HOME")) return std::filesystem::path(d) / "relieflab";
-  if (const char* d = std::getenv("HOME")) return std::filesystem::path(d) / ".cache" / "relieflab";
-  return std::filesystem::temp_directory_path() / "relieflab-cache";
-}
-
-}  // namespace
-
 SafetyRadii cached_safety_radii(const ReliefMap& map, const SafetyRadiusOptions& o) {
   constexpr int kAlgorithmVersion = 3;  // bump when compute_safety_radii changes its answers
-  char key_text[256];
-  std::snprintf(key_text, sizeof key_text, "v%d|%d|%d|%.9g|%d|%.9g|%d|", kAlgorithmVersion,
+  char options[256];
+  std::snprintf(options, sizeof options, "v%d|%d|%d|%.9g|%d|%.9g|%d|", kAlgorithmVersion,
                 o.directions, o.starts, o.step, effective_max_radius(map, o), o.error_allowed,
                 int(o.ignore_blocked));
-  const std::string key = hex64(fnv1a64(key_text, std::strlen(key_text), map.content_hash()));
-  const std::filesystem::path path = cache_dir() / "safety_radius" / (key + ".bin");
-  const size_t n = size_t(map.width) * map.height;
-  {
-    std::ifstream in(path, std::ios::binary);
-    if (in) {
-      SafetyRadii r;
-      r.width = map.width;
-      r.height = map.height;
-      r.radius.resize(n);
-      in.read(reinterpret_cast<char*>(r.radius.data()), std::streamsize(n));
-      if (in.gcount() == std::streamsize(n) && in.peek() == EOF) {
-        r.from_cache = true;
-        return r;
-      }
-    }
+  const std::string key = precompute_cache_key(options, map.content_hash());
+  SafetyRadii r;
+  r.width = map.width;
+  r.height = map.height;
+  r.radius.resize(size_t(map.width) * map.height);
+  if (read_precompute_cache("safety_radius", key, r.radius.data(), r.radius.size())) {
+    r.from_cache = true;
+    return r;
   }
-  SafetyRadii r = compute_safety_radii(map, o);
-  std::error_code ec;
-  std::filesystem::create_directories(path.parent_path(), ec);
-  if (!ec) {
-    // Write then rename: a reader never sees half a file; a failed write only costs a recompute.
-    const std::filesystem::path tmp = path.string() + ".tmp" + std::to_string(::getpid());
-    {
-      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-      out.write(reinterpret_cast<const char*>(r.radius.data()), std::streamsize(n));
-    }
-    std::filesystem::rename(tmp, path, ec);
-  }
+  r = compute_safety_radii(map, o);
+  write_precompute_cache("safety_radius", key, r.radius.data(), r.radius.size());
   return r;
 }
 

@@ -1,0 +1,45 @@
+#pragma once
+// Cone maps for cone step mapping: per texel, the ratio (across per unit of depth) of an upward
+// cone with its apex on the surface point at the texel's centre. Across is measured in texels
+// (square in the world: the harness keeps texels square) and stored in units of the longer
+// side (texture units on a square map).
+//
+// Conservative (Dummer 2006): the widest cone holding no surface point, so a ray inside it
+// can step to its boundary without meeting the surface.
+//
+// Relaxed (Policarpo & Oliveira, GPU Gems 3 chapter 18): the widest cone such that a ray from
+// the top point above the apex (depth 0) towards any surface point, continued until it leaves
+// the surface, leaves it below the cone. A ray that steps to the cone's boundary may then
+// have entered the surface, but crossed it only once: the binary search that follows finds
+// the crossing. Along a ray z = m x from the top point (x across, z depth), the points where
+// it leaves the surface h are those where h(x) / x rises; the cone must keep them out.
+//
+// Computed on the CPU, multithreaded, by scanning `directions` azimuths outward from every
+// texel one texel at a time (the surface sampled bilinearly, as the GPU sees it) and stopping
+// once no farther point could narrow the cone (distance / apex depth >= the ratio found):
+// O(texels x directions x ratio x depth x side) rather than the naive O(texels^2).
+#include <string>
+#include <vector>
+
+#include "relief/relief_map.h"
+
+namespace rl {
+
+struct ConeMapOptions {
+  bool relaxed = true;
+  int directions = 32;     // azimuths sampled over 360 degrees
+  double max_ratio = 1.0;  // cap, texture units per unit of depth (GPU Gems 3 stores <= 1)
+};
+
+struct ConeMap {
+  int width = 0, height = 0;
+  std::vector<float> ratio;  // texels, row 0 at v = 0.5 / height
+  double compute_ms = 0;
+  bool from_cache = false;
+};
+
+ConeMap compute_cone_map(const ReliefMap& map, const ConeMapOptions& options);
+// compute_cone_map through the precompute cache (core/precompute_cache.h).
+ConeMap cached_cone_map(const ReliefMap& map, const ConeMapOptions& options);
+
+}  // namespace rl

@@ -1,0 +1,87 @@
+// Relaxed cone step mapping (Policarpo & Oliveira 2007), conservative cones (Dummer 2006) as an
+// option.
+#include "cone_map.h"
+#include "technique/shader_technique.h"
+
+namespace rl {
+
+class ConeRelaxed final : public Described<ConeRelaxed, ShaderTechnique> {
+ public:
+  using Described::Described;
+  ~ConeRelaxed() override {
+    if (texture_) glDeleteTextures(1, &texture_);
+  }
+  static TechniqueInfo describe() {
+    return {.name = "cone_relaxed",
+            .title = "Relaxed cone step mapping (cone steps, then binary search)",
+            .citation =
+                "Policarpo & Oliveira 2007, 'Relaxed Cone Stepping for Relief Mapping', GPU Gems "
+                "3, chapter 18; conservative cones: Dummer 2006, 'Cone Step Mapping'",
+            .effects = {Effect::SelfShadow, Effect::DepthCorrect},
+            .params = {{.name = "cone_steps",
+                        .kind = ParamKind::Int,
+                        .default_value = 32,
+                        .min_value = 1,
+                        .max_value = 1024,
+                        .doc = "cone steps along the ray (most rays stop after a few; the cap is "
+                               "for grazing rays "
+                               "crawling past features)"},
+                       {.name = "binary_steps",
+                        .kind = ParamKind::Int,
+                        .default_value = 6,
+                        .min_value = 0,
+                        .max_value = 32,
+                        .doc = "binary search steps over the last cone step"},
+                       {.name = "relaxed",
+                        .kind = ParamKind::Bool,
+                        .default_value = 1,
+                        .min_value = 0,
+                        .max_value = 1,
+                        .doc = "relaxed cones (GPU Gems 3); 0 = conservative cones (Dummer)"},
+                       {.name = "directions",
+                        .kind = ParamKind::Int,
+                        .default_value = 32,
+                        .min_value = 4,
+                        .max_value = 256,
+                        .doc = "azimuths the cone map precompute scans per texel"}},
+            .box_proxy = true};
+  }
+
+  void prepare(const ReliefMap& map) override {
+    ConeMapOptions o;
+    o.relaxed = param("relaxed") != 0;
+    o.directions = int(param("directions"));
+    cones_ = cached_cone_map(map, o);
+    std::vector<glm::vec2> texels(cones_.ratio.size());
+    for (size_t i = 0; i < texels.size(); ++i) texels[i] = {map.relief[i].a, cones_.ratio[i]};
+    if (texture_) glDeleteTextures(1, &texture_);
+    glCreateTextures(GL_TEXTURE_2D, 1, &texture_);
+    glTextureStorage2D(texture_, 1, GL_RG32F, map.width, map.height);
+    glTextureSubImage2D(texture_, 0, 0, 0, map.width, map.height, GL_RG, GL_FLOAT, texels.data());
+    glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(texture_, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(texture_, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  }
+  size_t memory_bytes() const override { return cones_.ratio.size() * 2 * sizeof(float); }
+  bool prepared_from_cache() const override { return cones_.from_cache; }
+  const ConeMap& cones() const { return cones_; }
+
+ protected:
+  std::string intersect_file() const override {
+    return "techniques/cone_relaxed/cone_relaxed.glsl";
+  }
+  Defines parameter_defines() const override {
+    return {{"RL_CONE_STEPS", std::to_string(int(param("cone_steps")))},
+            {"RL_BINARY_STEPS", std::to_string(int(param("binary_steps")))}};
+  }
+  void bind_resources(GLuint) const override { glBindTextureUnit(4, texture_); }
+
+ private:
+  ConeMap cones_;
+  GLuint texture_ = 0;
+};
+
+RL_REGISTER_TECHNIQUE(ConeRelaxed);
+
+}  // namespace rl
