@@ -51,6 +51,20 @@ TEST(Markdown, LaysOutRowsColumnsAndValues) {
             std::string::npos);
 }
 
+TEST(Markdown, AggregatesRowsThatShareACell) {
+  TableSpec spec;
+  spec.columns = {"technique"};
+  spec.values = {"artifact_pct", "linear_steps"};
+  spec.aggregate = "mean";
+  std::string md = format_markdown_table(sample_rows(), spec);
+  // relief: mean of 1.25 and 12.5; parallax has no linear_steps anywhere.
+  EXPECT_NE(md.find("| 6.875 | 8 | 6.875 | – |"), std::string::npos) << md;
+  EXPECT_NE(md.find("mean over the rows that share it (up to 2 per cell)"), std::string::npos);
+  spec.aggregate = "max";
+  md = format_markdown_table(sample_rows(), spec);
+  EXPECT_NE(md.find("| 12.5 | 8 | 12.5 | – |"), std::string::npos) << md;
+}
+
 TEST(Pareto, FrontKeepsOnlyUndominatedPoints) {
   std::vector<ParetoPoint> p = {{2, 0.8, "normal", "normal"}, {3, 0.9, "parallax", "parallax"},
                                 {10, 0.2, "r8", "relief"},    {20, 0.05, "r32", "relief"},

@@ -184,7 +184,7 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
     for (const toml::node& tn : *tables) {
       const toml::table* t = tn.as_table();
       if (!t) fail(src.at(tn), "[[table]] must be a table");
-      check_keys(*t, {"file", "title", "rows", "columns", "values"}, src, "[[table]]");
+      check_keys(*t, {"file", "title", "rows", "columns", "values", "aggregate"}, src, "[[table]]");
       TableSpec spec;
       spec.file =
           c.tables.empty() ? "table.md" : "table-" + std::to_string(c.tables.size() + 1) + ".md";
@@ -195,6 +195,11 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
       if (auto* v = t->get("rows")) spec.rows = string_list(*v, src, "rows");
       if (auto* v = t->get("columns")) spec.columns = string_list(*v, src, "columns");
       if (auto* v = t->get("values")) spec.values = string_list(*v, src, "values");
+      if (auto* v = t->get("aggregate")) {
+        spec.aggregate = string_of(*v, src, "aggregate");
+        if (spec.aggregate != "mean" && spec.aggregate != "max")
+          fail(src.at(*v), "[[table]] aggregate '" + spec.aggregate + "': use \"mean\" or \"max\"");
+      }
       if (spec.values.empty()) fail(src.at(tn), "[[table]] needs 'values' (metric names)");
       for (const std::string& v : spec.values)
         if (!is_measured(v))

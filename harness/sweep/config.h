@@ -29,6 +29,9 @@ struct TableSpec {
   std::string file = "table.md";
   std::string title;
   std::vector<std::string> rows, columns, values;
+  // How rows that share a table cell combine: "" (the first is shown and the table says how
+  // many were hidden), "mean" or "max" of each value over them (e.g. over scenes and azimuths).
+  std::string aggregate;
 };
 
 struct SweepConfig {

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 
 namespace rl {
@@ -71,14 +72,37 @@ std::string format_markdown_table(const std::vector<Row>& rows, const TableSpec&
     return k;
   };
   std::vector<std::vector<std::string>> row_keys, col_keys;
-  std::map<std::pair<std::vector<std::string>, std::vector<std::string>>, const Row*> cells;
-  int collisions = 0;
+  std::map<std::pair<std::vector<std::string>, std::vector<std::string>>, std::vector<const Row*>>
+      cells;
+  size_t collisions = 0, most_per_cell = 0;
   for (const Row& r : rows) {
     auto rk = key_of(r, spec.rows), ck = key_of(r, spec.columns);
     if (std::find(row_keys.begin(), row_keys.end(), rk) == row_keys.end()) row_keys.push_back(rk);
     if (std::find(col_keys.begin(), col_keys.end(), ck) == col_keys.end()) col_keys.push_back(ck);
-    if (!cells.emplace(std::make_pair(rk, ck), &r).second) ++collisions;
+    std::vector<const Row*>& cell = cells[{rk, ck}];
+    cell.push_back(&r);
+    if (cell.size() > 1) ++collisions;
+    most_per_cell = std::max(most_per_cell, cell.size());
   }
+  // A value of a cell: its one row's, or the mean or max over its rows' numbers.
+  auto cell_text = [&](const std::vector<const Row*>& cell, const std::string& v) {
+    if (spec.aggregate.empty() || cell.size() == 1) {
+      auto f = cell.front()->find(v);
+      return f == cell.front()->end() ? std::string("–") : format_value(*f);
+    }
+    double sum = 0, most = -std::numeric_limits<double>::infinity();
+    int n = 0;
+    for (const Row* r : cell) {
+      auto f = r->find(v);
+      if (f == r->end() || !f->is_number()) continue;
+      const double x = f->get<double>();
+      sum += x;
+      most = std::max(most, x);
+      ++n;
+    }
+    if (n == 0) return std::string("–");
+    return format_value(nlohmann::ordered_json(spec.aggregate == "mean" ? sum / n : most));
+  };
   std::string out;
   if (!spec.title.empty()) out += "### " + spec.title + "\n\n";
   // Header: row fields, then per column key each value.
@@ -98,21 +122,18 @@ std::string format_markdown_table(const std::vector<Row>& rows, const TableSpec&
     for (const auto& k : rk) out += " " + k + " |";
     for (const auto& ck : col_keys) {
       auto it = cells.find({rk, ck});
-      for (const auto& v : spec.values) {
-        std::string text = "";
-        if (it != cells.end()) {
-          auto f = it->second->find(v);
-          text = f == it->second->end() ? "–" : format_value(*f);
-        }
-        out += " " + text + " |";
-      }
+      for (const auto& v : spec.values)
+        out += " " + (it != cells.end() ? cell_text(it->second, v) : std::string()) + " |";
     }
     out += "\n";
   }
-  if (collisions)
+  if (collisions && spec.aggregate.empty())
     out += "\n> " + std::to_string(collisions) +
            " rows share a table cell with another row (the first is shown): add fields to "
            "'rows' or 'columns' to separate them.\n";
+  else if (collisions)
+    out += "\n> Each cell is the " + spec.aggregate + " over the rows that share it (up to " +
+           std::to_string(most_per_cell) + " per cell).\n";
   return out;
 }
 
