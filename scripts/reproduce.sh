@@ -17,6 +17,8 @@ name=$(sed -n 's/^name *= *"\([^"]*\)".*/\1/p' "$config" | head -1)
 [ -n "$name" ] || { echo "reproduce: $config has no [sweep] name" >&2; exit 2; }
 run="out/$name-reproduction"
 rm -rf "$run"
+# A fresh precompute cache, so the precompute_ms columns measure the precompute.
+export RELIEFLAB_CACHE_DIR="$run/precompute-cache"
 ./build/relieflab run "$config" --out "$run" -q
 dest="results/$name"
 mkdir -p "$dest"
