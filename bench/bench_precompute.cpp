@@ -33,10 +33,15 @@ ReliefMap rock(int size) {
   return m;
 }
 
-void BM_SafetyRadius(benchmark::State& state, std::string kind, bool ignore_blocked) {
-  const int size = int(state.range(0));
+// An 8-bit map of `kind` ("rock" or a procedural kind) at size^2.
+ReliefMap bench_map(const std::string& kind, int size) {
   ReliefMap map = kind == "rock" ? rock(size) : make_procedural(kind, size, {}, 10.0, "bench");
   quantize_8bit(map);
+  return map;
+}
+
+void BM_SafetyRadius(benchmark::State& state, std::string kind, bool ignore_blocked) {
+  const ReliefMap map = bench_map(kind, int(state.range(0)));
   SafetyRadiusOptions o;
   o.ignore_blocked = ignore_blocked;
   SafetyRadii r;
@@ -65,9 +70,7 @@ RL_RADIUS_BENCH(rock_conservative, "rock", false);
 RL_RADIUS_BENCH(bricks_conservative, "bricks", false);
 
 void BM_ConeMap(benchmark::State& state, std::string kind, bool relaxed) {
-  const int size = int(state.range(0));
-  ReliefMap map = kind == "rock" ? rock(size) : make_procedural(kind, size, {}, 10.0, "bench");
-  quantize_8bit(map);
+  const ReliefMap map = bench_map(kind, int(state.range(0)));
   ConeMapOptions o;
   o.relaxed = relaxed;
   ConeMap c;

@@ -225,18 +225,8 @@ ConeMap cached_cone_map(const ReliefMap& map, const ConeMapOptions& o) {
   char options[128];
   std::snprintf(options, sizeof options, "v%d|%d|%d|%.9g|", kAlgorithmVersion, int(o.relaxed),
                 o.directions, o.max_ratio);
-  const std::string key = precompute_cache_key(options, map.content_hash());
-  ConeMap c;
-  c.width = map.width;
-  c.height = map.height;
-  c.ratio.resize(size_t(map.width) * map.height);
-  if (read_precompute_cache("cone_map", key, c.ratio.data(), c.ratio.size() * sizeof(float))) {
-    c.from_cache = true;
-    return c;
-  }
-  c = compute_cone_map(map, o);
-  write_precompute_cache("cone_map", key, c.ratio.data(), c.ratio.size() * sizeof(float));
-  return c;
+  return cached_precompute("cone_map", options, map.width, map.height, map.content_hash(),
+                           &ConeMap::ratio, [&] { return compute_cone_map(map, o); });
 }
 
 }  // namespace rl

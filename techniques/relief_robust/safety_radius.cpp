@@ -322,18 +322,8 @@ SafetyRadii cached_safety_radii(const ReliefMap& map, const SafetyRadiusOptions&
   std::snprintf(options, sizeof options, "v%d|%d|%d|%.9g|%d|%.9g|%d|", kAlgorithmVersion,
                 o.directions, o.starts, o.step, effective_max_radius(map, o), o.error_allowed,
                 int(o.ignore_blocked));
-  const std::string key = precompute_cache_key(options, map.content_hash());
-  SafetyRadii r;
-  r.width = map.width;
-  r.height = map.height;
-  r.radius.resize(size_t(map.width) * map.height);
-  if (read_precompute_cache("safety_radius", key, r.radius.data(), r.radius.size())) {
-    r.from_cache = true;
-    return r;
-  }
-  r = compute_safety_radii(map, o);
-  write_precompute_cache("safety_radius", key, r.radius.data(), r.radius.size());
-  return r;
+  return cached_precompute("safety_radius", options, map.width, map.height, map.content_hash(),
+                           &SafetyRadii::radius, [&] { return compute_safety_radii(map, o); });
 }
 
 }  // namespace rl
