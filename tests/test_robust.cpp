@@ -1,6 +1,8 @@
 // Safety radii and the robust binary search (Baboud & Decoret 2006, Sections 3.4-3.5).
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -176,6 +178,57 @@ TEST(SafetyRadius, CachedOnDiskByContentAndOptions) {
   EXPECT_FALSE(cached_safety_radii(m, o).from_cache);
   m.relief[0].a = 0.5f;  // different content, different key
   EXPECT_FALSE(cached_safety_radii(m, SafetyRadiusOptions{}).from_cache);
+  unsetenv("RELIEFLAB_CACHE_DIR");
+}
+
+// A cache file that is not what was asked for is recomputed, never read: random bytes of the
+// payload's size (issue 15, item 10: they used to be taken as radii), one flipped payload bit,
+// a truncated file, and a file of other options moved into this entry's place.
+TEST(SafetyRadius, CorruptedCacheFilesAreRecomputed) {
+  const std::string dir = test::scratch_dir("cache-corrupt");
+  setenv("RELIEFLAB_CACHE_DIR", dir.c_str(), 1);
+  const ReliefMap m = make_procedural("pyramids", 32, {}, 10.0, "test");
+  const SafetyRadii fresh = cached_safety_radii(m, {});
+  ASSERT_FALSE(fresh.from_cache);
+  std::filesystem::path file;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) file = e.path();
+  ASSERT_FALSE(file.empty());
+  std::string good;
+  {
+    std::ifstream in(file, std::ios::binary);
+    good.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  auto write = [&](const std::string& bytes) {
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+  };
+  auto expect_recomputed = [&](const char* what) {
+    SCOPED_TRACE(what);
+    const SafetyRadii r = cached_safety_radii(m, {});
+    EXPECT_FALSE(r.from_cache);
+    EXPECT_EQ(r.radius, fresh.radius);
+  };
+  std::mt19937 rng(1);
+  std::string noise(fresh.radius.size(), '\0');
+  for (char& c : noise) c = char(rng());
+  write(noise);
+  expect_recomputed("random bytes of the payload's size");
+  std::string flipped = good;
+  flipped.back() = char(flipped.back() ^ 1);
+  write(flipped);
+  expect_recomputed("one payload bit flipped");
+  write(good.substr(0, good.size() / 2));
+  expect_recomputed("truncated");
+  SafetyRadiusOptions other;
+  other.directions = 8;
+  const SafetyRadii other_radii = cached_safety_radii(m, other);
+  std::filesystem::path other_file;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+    if (e.is_regular_file() && e.path() != file) other_file = e.path();
+  ASSERT_FALSE(other_file.empty());
+  std::filesystem::copy_file(other_file, file, std::filesystem::copy_options::overwrite_existing);
+  expect_recomputed("another option set's file");
+  EXPECT_TRUE(cached_safety_radii(m, {}).from_cache);  // the recompute was stored again
   unsetenv("RELIEFLAB_CACHE_DIR");
 }
 
