@@ -90,6 +90,17 @@ TEST(ConfigErrors, EachNamesTheProblemAndWritesNothing) {
       {"bad_table_value",
        std::string(kGood) + "[[table]]\nrows = [\"scene\"]\nvalues = [\"pos_err_rmes\"]\n",
        {"[[table]] value 'pos_err_rmes' is not a measured column"}},
+      // Names become file and folder names: nothing may lead out of the output folder
+      // (issue 15, item 2), and a huge name is not echoed whole.
+      {"scene_name_escapes",
+       replace(kGood, "name = \"flat\"", "name = \"../../../../x\""),
+       {"'name' must be a plain name", "\"../../../../x\""}},
+      {"sweep_name_escapes",
+       replace(kGood, "name = \"ok\"", "name = \"../../x\""),
+       {"'name' must be a plain name", "\"../../x\""}},
+      {"sweep_name_huge",
+       replace(kGood, "name = \"ok\"", "name = \"" + std::string(100000, 'a') + "\""),
+       {"'name' must be a plain name", "(100000 characters)"}},
       {"bad_table_aggregate",
        std::string(kGood) + "[[table]]\nvalues = [\"wrong_pct\"]\naggregate = \"median\"\n",
        {"[[table]] aggregate 'median': use \"mean\" or \"max\""}},

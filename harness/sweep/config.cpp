@@ -50,7 +50,7 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
                {"name", "elevations", "azimuths", "views", "viewports", "texture_res", "frames",
                 "warmup", "heat_map_scale", "truth_tolerance", "images", "gbuffers"},
                src, "[sweep]");
-    if (auto* v = t->get("name")) c.name = string_of(*v, src, "name");
+    if (auto* v = t->get("name")) c.name = plain_name(*v, src, "name");
     if (auto* v = t->get("elevations")) elevations = number_list(*v, src, "elevations");
     if (auto* v = t->get("azimuths")) azimuths = number_list(*v, src, "azimuths");
     // Negative elevations look from below: only relief impostors are seen from there.

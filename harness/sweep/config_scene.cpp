@@ -105,7 +105,7 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
   parsed.sites.scene = src.at(node);
   parsed.sites.relief = t.get("relief") ? src.at(*t.get("relief")) : parsed.sites.scene;
   if (!t.contains("name")) fail(src.at(node), "[[scene]] needs a 'name'");
-  s.name = string_of(*t.get("name"), src, "name");
+  s.name = plain_name(*t.get("name"), src, "name");
   if (!t.contains("relief")) fail(src.at(node), "scene '" + s.name + "' needs a 'relief'");
   s.relief = parse_relief(*t.get("relief"), src, base_dir, canon["relief"]);
   auto positive = [&](const char* key, double& out) {

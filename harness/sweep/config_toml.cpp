@@ -1,6 +1,7 @@
 #include "sweep/config_toml.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 
@@ -36,6 +37,24 @@ double number(const toml::node& n, const Src& src, const std::string& key) {
 std::string string_of(const toml::node& n, const Src& src, const std::string& key) {
   if (auto v = n.value<std::string>()) return *v;
   fail(src.at(n), "'" + key + "' must be a string");
+}
+
+std::string plain_name(const toml::node& n, const Src& src, const std::string& key) {
+  const std::string v = string_of(n, src, key);
+  const bool plain =
+      !v.empty() && v.size() <= 64 && v != "." && v != ".." &&
+      std::all_of(v.begin(), v.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+      });
+  if (!plain) {
+    const std::string shown =
+        v.size() > 40 ? v.substr(0, 40) + "... (" + std::to_string(v.size()) + " characters)" : v;
+    fail(src.at(n), "'" + key +
+                        "' must be a plain name of 1 to 64 letters, digits, '_', '-' or "
+                        "'.' (it names files and folders), got \"" +
+                        shown + "\"");
+  }
+  return v;
 }
 
 // A scalar or an array of scalars, as a list of numbers.

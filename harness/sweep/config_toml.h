@@ -24,6 +24,9 @@ void check_keys(const toml::table& t, const std::set<std::string>& allowed, cons
                 const std::string& section);
 double number(const toml::node& n, const Src& src, const std::string& key);  // bools as 0/1
 std::string string_of(const toml::node& n, const Src& src, const std::string& key);
+// A string that names files and folders: 1 to 64 of [A-Za-z0-9._-], not "." or "..", so it
+// can never lead outside the output folder.
+std::string plain_name(const toml::node& n, const Src& src, const std::string& key);
 // A scalar or an array of scalars, as a list.
 std::vector<double> number_list(const toml::node& n, const Src& src, const std::string& key);
 std::vector<std::string> string_list(const toml::node& n, const Src& src, const std::string& key);
