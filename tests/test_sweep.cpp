@@ -210,6 +210,32 @@ TEST(ResultStore, ShardsMergeByKey) {
   EXPECT_EQ((*a.row("k2"))["v"], 2);
 }
 
+// A repeated elevation or [[technique]] block renders each cell once (issue 15, item 6).
+TEST(Sweep, RepeatedViewsAndTechniquesExpandToOneCellEach) {
+  const std::string text = R"(
+[sweep]
+name = "dup"
+elevations = [45, 45, 20]
+viewports = [16]
+[[scene]]
+name = "flat"
+relief = { procedural = "flat", resolution = 8 }
+[[technique]]
+name = "relief"
+linear_steps = [4, 4]
+[[technique]]
+name = "relief"
+linear_steps = [4]
+)";
+  size_t duplicates = 0;
+  const std::vector<Cell> cells =
+      expand_cells(parse_sweep_config(text, "dup.toml", "."), &duplicates);
+  EXPECT_EQ(cells.size(), 2u);  // 45 and 20 degrees, linear_steps = 4
+  EXPECT_EQ(duplicates, 3u * 3u - 2u);
+  std::set<std::string> keys;
+  for (const Cell& c : cells) EXPECT_TRUE(keys.insert(c.key).second);
+}
+
 TEST(Sweep, DefaultConfigParsesAndExpands) {
   SweepConfig c = default_sweep_config();
   EXPECT_EQ(c.name, "default");

@@ -1,6 +1,7 @@
 #include "sweep/cells.h"
 
 #include <algorithm>
+#include <set>
 
 #include "core/hash.h"
 #include "metrics/metrics.h"
@@ -38,8 +39,10 @@ std::vector<std::string> parameter_columns(const SweepConfig& config) {
   return cols;
 }
 
-std::vector<Cell> expand_cells(const SweepConfig& config) {
+std::vector<Cell> expand_cells(const SweepConfig& config, size_t* duplicates) {
   std::vector<Cell> cells;
+  std::set<std::string> keys;
+  if (duplicates) *duplicates = 0;
   for (size_t si = 0; si < config.scenes.size(); ++si) {
     const SceneDesc& scene = config.scenes[si];
     for (const TechniqueSweep& ts : config.techniques) {
@@ -85,6 +88,10 @@ std::vector<Cell> expand_cells(const SweepConfig& config) {
               c.identity["texture_res"] = res;
               c.identity["viewport"] = std::to_string(w) + "x" + std::to_string(h);
               for (const ParamSpec& p : info.params) c.identity[p.name] = params.at(p.name);
+              if (!keys.insert(c.key).second) {
+                if (duplicates) ++*duplicates;
+                continue;
+              }
               cells.push_back(std::move(c));
             }
           }

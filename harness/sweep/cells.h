@@ -26,7 +26,10 @@ struct Cell {
   nlohmann::ordered_json identity;
 };
 
-std::vector<Cell> expand_cells(const SweepConfig& config);
+// Every cell of the sweep, once: a cell whose key an earlier one already has (a repeated
+// elevation or view, a [[technique]] block given twice) is dropped and counted in
+// `duplicates`.
+std::vector<Cell> expand_cells(const SweepConfig& config, size_t* duplicates = nullptr);
 // Every numeric column a row measures (image metrics, then cost), e.g. for table values.
 const std::vector<std::string>& measured_columns();
 // Every parameter column of the sweep, in order of first appearance.

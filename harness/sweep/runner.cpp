@@ -94,7 +94,8 @@ class Log {
 SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   const auto start = Clock::now();
   SweepSummary summary;
-  const std::vector<Cell> cells = expand_cells(config);
+  size_t duplicates = 0;
+  const std::vector<Cell> cells = expand_cells(config, &duplicates);
   summary.cells = cells.size();
   // Every image decoded and every mesh loaded before the output folder is touched.
   check_sweep_assets(config);
@@ -110,6 +111,10 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   log.line("relieflab: sweep '" + config.name + "' from " + config.source + ": " +
            std::to_string(cells.size()) + " cells, " + std::to_string(summary.already_done) +
            " already in " + options.out_dir + "/results.sqlite");
+  if (duplicates)
+    log.line("relieflab: " + std::to_string(duplicates) +
+             " repeated cell(s) dropped (the same view, setting and scene given twice: a repeated "
+             "elevation, view or [[technique]] block)");
   log.line("relieflab: OpenGL " + gl.version() + " on " + gl.renderer() + " (" + gl.platform() +
            "), frames timed by " +
            (gl.is_software() ? "wall clock + glFinish" : "GL_TIME_ELAPSED"));
