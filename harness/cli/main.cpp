@@ -45,7 +45,8 @@ void print_list() {
   for (const auto& k : rl::procedural_kinds()) {
     std::printf("  %-9s %s\n", k.name.c_str(), k.doc.c_str());
     for (const auto& o : k.options)
-      std::printf("            %s = %g: %s\n", o.name.c_str(), o.default_value, o.doc.c_str());
+      std::printf("            %s = %g: %s (%g to %g)\n", o.name.c_str(), o.default_value,
+                  o.doc.c_str(), o.min_value, o.max_value);
   }
   std::printf("non-height-field patterns (closed meshes baked into 'layers', default 4):\n");
   for (const std::string& kind : rl::pattern_mesh_kinds()) {

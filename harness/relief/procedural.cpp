@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 
 #include <glm/gtc/constants.hpp>
@@ -15,27 +16,27 @@ const std::vector<ProceduralKind>& procedural_kinds() {
       {"flat", "depth 0 everywhere: every hit lies on the base surface", {}},
       {"constant",
        "one depth everywhere: every hit lies on a plane below the base",
-       {{"value", 0.5, "the depth, 0 (top) to 1 (bottom)"}}},
+       {{"value", 0.5, "the depth, 0 (top) to 1 (bottom)", 0, 1}}},
       {"sines",
        "smooth bump field d = 0.5 - 0.5 sin(2 pi f u) sin(2 pi f v)",
-       {{"frequency", 4, "bumps per tile along u and v"}}},
+       {{"frequency", 4, "bumps per tile along u and v", 1, 1024}}},
       {"pyramids",
        "grid of square pyramids with sharp apexes at depth 0 and bases at depth 1",
-       {{"count", 8, "pyramids per tile along u and v"}}},
+       {{"count", 8, "pyramids per tile along u and v", 1, 1024}}},
       {"bricks",
        "running-bond bricks at depth 0 with vertical steps down to the mortar",
-       {{"rows", 8, "brick rows per tile"},
-        {"columns", 4, "bricks per row"},
-        {"mortar", 0.08, "mortar width as a fraction of the brick height"},
-        {"mortar_depth", 0.8, "depth of the mortar"}}},
+       {{"rows", 8, "brick rows per tile", 1, 1024},
+        {"columns", 4, "bricks per row", 1, 1024},
+        {"mortar", 0.08, "mortar width as a fraction of the brick height", 0, 0.5},
+        {"mortar_depth", 0.8, "depth of the mortar", 0, 1}}},
       {"domes",
        "spherical caps on a floor at depth 1 (an empty floor under the box proxy: objects "
        "standing on nothing, like a baked mesh)",
-       {{"count", 3, "domes per tile along u and v"},
-        {"radius", 0.4, "cap radius as a fraction of the dome spacing"}}},
+       {{"count", 3, "domes per tile along u and v", 1, 1024},
+        {"radius", 0.4, "cap radius as a fraction of the dome spacing", 0.01, 0.5}}},
       {"walls",
        "one-texel-thick walls at depth 0 on a grid, floor at depth 1",
-       {{"spacing", 16, "texels between walls"}}},
+       {{"spacing", 16, "texels between walls", 2, 8192}}},
   };
   return kinds;
 }
@@ -125,15 +126,18 @@ ReliefMap make_procedural(const std::string& kind, int resolution,
   std::map<std::string, double> o;
   for (const auto& opt : spec->options) o[opt.name] = opt.default_value;
   for (const auto& [name, value] : options) {
-    if (!o.count(name))
+    auto opt = std::find_if(spec->options.begin(), spec->options.end(),
+                            [&](const ProceduralOption& p) { return p.name == name; });
+    if (opt == spec->options.end())
       throw ConfigError(where + ": procedural relief '" + kind + "' has no option '" + name + "'");
-    if (!std::isfinite(value)) throw ConfigError(where + ": option '" + name + "' must be finite");
+    if (!(value >= opt->min_value && value <= opt->max_value)) {
+      char range[96];
+      std::snprintf(range, sizeof range, "[%g, %g], got %g", opt->min_value, opt->max_value, value);
+      throw ConfigError(where + ": option '" + name + "' of procedural relief '" + kind +
+                        "' must be in " + range);
+    }
     o[name] = value;
   }
-  if (kind == "constant" && (o["value"] < 0 || o["value"] > 1))
-    throw ConfigError(where + ": option 'value' must be in [0, 1]");
-  if (kind == "domes" && !(o["radius"] > 0 && o["radius"] <= 0.5 && o["count"] >= 1))
-    throw ConfigError(where + ": domes need radius in (0, 0.5] and count >= 1");
 
   DepthFn fn = depth_function(kind, o, resolution);
   ReliefMap map;

@@ -14,6 +14,7 @@ struct ProceduralOption {
   std::string name;
   double default_value;
   std::string doc;
+  double min_value, max_value;  // accepted range (inclusive)
 };
 
 struct ProceduralKind {

@@ -54,19 +54,27 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
     if (auto* v = t->get("elevations")) elevations = number_list(*v, src, "elevations");
     if (auto* v = t->get("azimuths")) azimuths = number_list(*v, src, "azimuths");
     // Negative elevations look from below: only relief impostors are seen from there.
+    // Below 0.1 degrees a view sees the relief edge-on: no pixel measures anything.
+    auto elevation_ok = [](double e) { return std::abs(e) >= 0.1 && std::abs(e) <= 90; };
     for (double e : elevations)
-      if (!(e >= -90 && e <= 90 && e != 0))
+      if (!elevation_ok(e))
         fail(src.at(*t->get("elevations")),
-             "elevations must be in (0, 90] degrees (or [-90, 0) for relief impostors), got " +
-                 std::to_string(e));
+             "elevations must be in [0.1, 90] degrees (or [-90, -0.1] for relief impostors), "
+             "got " +
+                 format_number(e));
+    for (double a : azimuths)
+      if (!(a >= -360 && a <= 360))
+        fail(src.at(*t->get("azimuths")),
+             "azimuths must be in [-360, 360] degrees, got " + format_number(a));
     if (auto* v = t->get("views")) {
       const toml::array* a = v->as_array();
       if (!a) fail(src.at(*v), "'views' must be an array of [elevation, azimuth] pairs");
       for (const toml::node& e : *a) {
         std::vector<double> pair = number_list(e, src, "views");
-        if (pair.size() != 2 || !(pair[0] >= -90 && pair[0] <= 90 && pair[0] != 0))
+        if (pair.size() != 2 || !elevation_ok(pair[0]) || !(pair[1] >= -360 && pair[1] <= 360))
           fail(src.at(e),
-               "each view must be [elevation in (0, 90] (or [-90, 0) for impostors), azimuth]");
+               "each view must be [elevation in [0.1, 90] (or [-90, -0.1] for impostors), "
+               "azimuth in [-360, 360]]");
         c.views.push_back({pair[0], pair[1]});
       }
     }
@@ -77,9 +85,9 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
       for (const toml::node& e : *a) {
         std::vector<double> wh = number_list(e, src, "viewports");
         if (wh.size() == 1) wh.push_back(wh[0]);
-        if (wh.size() != 2 || wh[0] < 1 || wh[1] < 1 || wh[0] > 8192 || wh[1] > 8192 ||
+        if (wh.size() != 2 || wh[0] < 8 || wh[1] < 8 || wh[0] > 8192 || wh[1] > 8192 ||
             wh[0] != std::floor(wh[0]) || wh[1] != std::floor(wh[1]))
-          fail(src.at(e), "each viewport must be a size or [width, height] in 1..8192");
+          fail(src.at(e), "each viewport must be a size or [width, height] in 8..8192");
         c.viewports.push_back({int(wh[0]), int(wh[1])});
       }
     }
@@ -94,8 +102,7 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
     if (auto* v = t->get("frames")) c.frames = positive_int(*v, src, "frames", 1, 1000);
     if (auto* v = t->get("warmup")) c.warmup = positive_int(*v, src, "warmup", 0, 100);
     if (auto* v = t->get("heat_map_scale")) {
-      c.heat_map_scale = number(*v, src, "heat_map_scale");
-      if (!(c.heat_map_scale > 0)) fail(src.at(*v), "'heat_map_scale' must be positive");
+      c.heat_map_scale = number_in(*v, src, "heat_map_scale", 1e-3, 1e3);
     }
     if (auto* v = t->get("truth_tolerance")) {
       c.truth_tolerance = number(*v, src, "truth_tolerance");

@@ -66,13 +66,9 @@ void parse_objects(const toml::table& t, const Src& src, const std::string& base
       if (obj.shape != "sphere" && obj.shape != "cube")
         obj.shape = resolve_path(obj.shape, base_dir, src, *v);
     }
-    if (auto* v = o->get("center")) obj.center = vec3_of(*v, src, "center");
-    if (auto* v = o->get("radius")) {
-      obj.radius = number(*v, src, "radius");
-      if (!(obj.radius > 0) || !std::isfinite(obj.radius))
-        fail(src.at(*v), "'radius' must be positive, got " + std::to_string(obj.radius));
-    }
-    if (auto* v = o->get("albedo")) obj.albedo = vec3_of(*v, src, "albedo");
+    if (auto* v = o->get("center")) obj.center = vec3_in(*v, src, "center", -1e3, 1e3);
+    if (auto* v = o->get("radius")) obj.radius = number_in(*v, src, "radius", 1e-4, 1e3);
+    if (auto* v = o->get("albedo")) obj.albedo = vec3_in(*v, src, "albedo", 0, 1);
     s.objects.push_back(obj);
     // A file shape's entry becomes "name:hash" in read_scene_files().
     canon["objects"].push_back({obj.shape, obj.center.x, obj.center.y, obj.center.z, obj.radius,
@@ -108,14 +104,12 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
   s.name = plain_name(*t.get("name"), src, "name");
   if (!t.contains("relief")) fail(src.at(node), "scene '" + s.name + "' needs a 'relief'");
   s.relief = parse_relief(*t.get("relief"), src, base_dir, canon["relief"]);
-  auto positive = [&](const char* key, double& out) {
-    if (auto* n = t.get(key)) {
-      out = number(*n, src, key);
-      if (!(out > 0) || !std::isfinite(out))
-        fail(src.at(*n), std::string("'") + key + "' must be positive, got " + std::to_string(out));
-    }
+  // Every number within a stated range (issue 15): a value outside it is a mistake, not a
+  // scene (size 1e-300, depth 1e30, fov 1e-30 all rendered nothing and were published).
+  auto in_range = [&](const char* key, double& out, double lo, double hi) {
+    if (auto* n = t.get(key)) out = number_in(*n, src, key, lo, hi);
   };
-  positive("size", s.size);
+  in_range("size", s.size, 1e-3, 1e3);
   if (!s.relief.mesh_path.empty()) {
     // A baked mesh keeps its proportions: the relief depth follows from the footprint.
     if (t.contains("depth"))
@@ -125,23 +119,18 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
       fail(src.at(*t.get("tile")), "scene '" + s.name + "': a baked mesh is not tiled");
     // read_scene_files() sets the depth from the mesh's proportions.
   }
-  positive("tile", s.tile);
-  positive("depth", s.depth);
-  positive("fov", s.fov_deg);
-  positive("shininess", s.material.shininess);
-  if (s.fov_deg >= 170) fail(src.at(*t.get("fov")), "'fov' must be below 170 degrees");
-  if (auto* n = t.get("distance")) {
-    s.distance = number(*n, src, "distance");
-    if (s.distance < 0) fail(src.at(*n), "'distance' must be >= 0 (0 = fit the quad)");
-  }
-  if (auto* n = t.get("shadow_bias")) s.shadow_bias = number(*n, src, "shadow_bias");
-  if (auto* n = t.get("shadow_intensity"))
-    s.material.shadow_intensity = number(*n, src, "shadow_intensity");
+  in_range("tile", s.tile, 1e-3, 1e3);
+  in_range("depth", s.depth, 1e-4, 10);
+  in_range("fov", s.fov_deg, 1, 160);
+  in_range("shininess", s.material.shininess, 1e-3, 1e4);
+  in_range("distance", s.distance, 0, 1e3);  // 0 = fit the quad
+  in_range("shadow_bias", s.shadow_bias, 0, 1);
+  in_range("shadow_intensity", s.material.shadow_intensity, 0, 1);
   if (auto* n = t.get("quantize")) {
     if (!n->is_boolean()) fail(src.at(*n), "'quantize' must be true (8-bit) or false (float)");
     s.quantize = n->value<bool>().value();
   }
-  if (auto* n = t.get("light")) s.light_position = vec3_of(*n, src, "light");
+  if (auto* n = t.get("light")) s.light_position = vec3_in(*n, src, "light", -1e3, 1e3);
   if (auto* n = t.get("truth")) {
     const std::string level = string_of(*n, src, "truth");
     if (level != "sampled" && level != "mesh" && level != "layers")
@@ -179,9 +168,9 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
                p + "\"");
     s.proxy = p == "box" ? Proxy::Box : Proxy::Base;
   }
-  if (auto* n = t.get("ambient")) s.material.ambient = vec3_of(*n, src, "ambient");
-  if (auto* n = t.get("diffuse")) s.material.diffuse = vec3_of(*n, src, "diffuse");
-  if (auto* n = t.get("specular")) s.material.specular = vec3_of(*n, src, "specular");
+  if (auto* n = t.get("ambient")) s.material.ambient = vec3_in(*n, src, "ambient", 0, 1);
+  if (auto* n = t.get("diffuse")) s.material.diffuse = vec3_in(*n, src, "diffuse", 0, 1);
+  if (auto* n = t.get("specular")) s.material.specular = vec3_in(*n, src, "specular", 0, 1);
   if (auto* n = t.get("effects")) {
     for (const std::string& e : string_list(*n, src, "effects")) {
       auto effect = parse_effect(e);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "core/error.h"
@@ -29,9 +30,39 @@ void check_keys(const toml::table& t, const std::set<std::string>& allowed, cons
 }
 
 double number(const toml::node& n, const Src& src, const std::string& key) {
-  if (auto v = n.value<double>(); v && (n.is_integer() || n.is_floating_point())) return *v;
+  if (auto v = n.value<double>(); v && (n.is_integer() || n.is_floating_point())) {
+    // NaN and infinity are never meaningful here, and would hash alike into a cell key.
+    if (!std::isfinite(*v))
+      fail(src.at(n), "'" + key + "' must be a finite number, got " + format_number(*v));
+    return *v;
+  }
   if (n.is_boolean()) return n.value<bool>().value() ? 1.0 : 0.0;
   fail(src.at(n), "'" + key + "' must be a number");
+}
+
+std::string format_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+double number_in(const toml::node& n, const Src& src, const std::string& key, double lo,
+                 double hi) {
+  const double v = number(n, src, key);
+  if (!(v >= lo && v <= hi))
+    fail(src.at(n), "'" + key + "' must be in [" + format_number(lo) + ", " + format_number(hi) +
+                        "], got " + format_number(v));
+  return v;
+}
+
+glm::dvec3 vec3_in(const toml::node& n, const Src& src, const std::string& key, double lo,
+                   double hi) {
+  const glm::dvec3 v = vec3_of(n, src, key);
+  for (int i = 0; i < 3; ++i)
+    if (!(v[i] >= lo && v[i] <= hi))
+      fail(src.at(n), "each of '" + key + "' must be in [" + format_number(lo) + ", " +
+                          format_number(hi) + "], got " + format_number(v[i]));
+  return v;
 }
 
 std::string string_of(const toml::node& n, const Src& src, const std::string& key) {

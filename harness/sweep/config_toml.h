@@ -22,7 +22,14 @@ struct Src {
 // Fails on a key of `t` not in `allowed`, listing the known ones.
 void check_keys(const toml::table& t, const std::set<std::string>& allowed, const Src& src,
                 const std::string& section);
-double number(const toml::node& n, const Src& src, const std::string& key);  // bools as 0/1
+// A finite number (nan and inf are refused); bools as 0/1.
+double number(const toml::node& n, const Src& src, const std::string& key);
+// A number, or each of 3, in the closed range [lo, hi], named in the message when it is not.
+double number_in(const toml::node& n, const Src& src, const std::string& key, double lo, double hi);
+glm::dvec3 vec3_in(const toml::node& n, const Src& src, const std::string& key, double lo,
+                   double hi);
+// %g, for messages.
+std::string format_number(double v);
 std::string string_of(const toml::node& n, const Src& src, const std::string& key);
 // A string that names files and folders: 1 to 64 of [A-Za-z0-9._-], not "." or "..", so it
 // can never lead outside the output folder.
