@@ -1,9 +1,12 @@
 // Bad input gets a clear error naming the file, key or value, and writes nothing: each case
 // runs the real CLI into a fresh output folder and checks the folder was never created, and
 // that a folder holding earlier results is left exactly as it was.
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include "relief/image_io.h"
@@ -293,6 +296,25 @@ std::string with_second_scene(const std::string& second) {
   return replace(kGood, "[[technique]]", second + "\n[[technique]]");
 }
 
+// A PNG whose IHDR claims width x height (8-bit grey) followed by an empty IDAT and IEND:
+// a reader sees the size, and there is nothing to decode.
+std::string png_header_only(uint32_t width, uint32_t height) {
+  auto be32 = [](uint32_t v) {
+    return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+  };
+  auto chunk = [&](const std::string& type_and_data) {
+    uint32_t crc = 0xffffffffu;  // CRC-32 of the chunk type and data, as PNG requires
+    for (unsigned char c : type_and_data) {
+      crc ^= c;
+      for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+    }
+    return be32(uint32_t(type_and_data.size() - 4)) + type_and_data + be32(~crc);
+  };
+  return std::string("\x89PNG\r\n\x1a\n", 8) +
+         chunk("IHDR" + be32(width) + be32(height) + std::string{8, 0, 0, 0, 0}) +
+         chunk("IDAT") + chunk("IEND");
+}
+
 TEST(ConfigErrors, BadAssetsInALaterSceneStopTheRunBeforeAnythingIsWritten) {
   const std::string files = test::scratch_dir("assets");
   fs::create_directories(files);
@@ -308,11 +330,28 @@ TEST(ConfigErrors, BadAssetsInALaterSceneStopTheRunBeforeAnythingIsWritten) {
   std::ofstream(files + "/inf.obj") << "v 0 0 0\nv 1 0 0\nv inf 1 0\nf 1 2 3\n";
   std::ofstream(files + "/flat.obj") << "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n";
   std::ofstream(files + "/huge.obj") << "v 0 0 0\nv 1e30 0 0\nv 0 1e30 0\nf 1 2 3\n";
+  // Issue 15's reports: the mesh that crashed Embree (a far vertex beside a unit triangle,
+  // with uvs), a float depth map with a NaN texel, a grey + alpha PNG given as a normal map,
+  // and a PNG whose header claims 100000 x 100000.
+  std::ofstream(files + "/far.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1e30 1e30 1e30\n"
+                                       "vt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\n"
+                                       "f 1/1 2/2 3/3\nf 2/2 4/4 3/3\n";
+  {
+    std::vector<float> depth(8 * 8, 0.5f);
+    depth[3 * 8 + 5] = std::nanf("");
+    OIIO::ImageSpec spec(8, 8, 1, OIIO::TypeDesc::FLOAT);
+    auto out = OIIO::ImageOutput::create(files + "/nan.exr");
+    ASSERT_TRUE(out && out->open(files + "/nan.exr", spec));
+    out->write_image(OIIO::TypeDesc::FLOAT, depth.data());
+    out->close();
+  }
+  write_png(files + "/grey_alpha.png", 8, 8, 2, std::vector<float>(8 * 8 * 2, 0.5f));
+  std::ofstream(files + "/claims_huge.png", std::ios::binary) << png_header_only(100000, 100000);
   const std::string scene = "[[scene]]\nname = \"later\"\n";
   const std::vector<BadCase> cases = {
       {"no_alpha",
        with_second_scene(scene + "relief = { normal = \"" + files + "/rgb.png\" }"),
-       {"scene 'later'", "rgb.png: no alpha channel"}},
+       {"scene 'later'", "rgb.png: a normal map holds RGB normals and depth in alpha"}},
       {"truncated_png",
        with_second_scene(scene + "relief = { normal = \"" + files + "/truncated.png\" }"),
        {"scene 'later'", "truncated.png"}},
@@ -325,6 +364,20 @@ TEST(ConfigErrors, BadAssetsInALaterSceneStopTheRunBeforeAnythingIsWritten) {
       {"degenerate_mesh",
        with_second_scene(scene + "relief = { mesh = \"" + files + "/flat.obj\" }\nproxy = \"box\""),
        {"flat.obj is degenerate"}},
+      {"far_vertex_mesh",
+       with_second_scene(scene + "relief = { mesh = \"" + files +
+                         "/far.obj\" }\nproxy = \"box\"\n" + "truth = \"mesh\""),
+       {"sweep.toml:12: scene 'later'", "far.obj", "beyond 1e15"}},
+      {"nan_texel",
+       with_second_scene(scene + "relief = { depth = \"" + files + "/nan.exr\" }"),
+       {"sweep.toml:", "scene 'later', relief", "nan.exr: texel (5, 3) channel 0 is not a finite"}},
+      {"grey_alpha_normal",
+       with_second_scene(scene + "relief = { normal = \"" + files + "/grey_alpha.png\" }"),
+       {"grey_alpha.png: a normal map holds RGB normals and depth in alpha",
+        "has 2 (grey + alpha)"}},
+      {"header_claims_huge",
+       with_second_scene(scene + "relief = { depth = \"" + files + "/claims_huge.png\" }"),
+       {"claims_huge.png: image is 100000x100000", "at most 16384x16384"}},
       {"huge_object",
        with_second_scene(scene + "relief = { procedural = \"flat\", resolution = 8 }\n" +
                          "objects = [{ shape = \"" + files + "/huge.obj\" }]"),

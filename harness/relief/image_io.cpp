@@ -33,6 +33,13 @@ Image read_image(const std::string& path) {
   auto in = OIIO::ImageInput::open(path, &config);
   if (!in) throw ConfigError("cannot read image " + path + ": " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
+  // Checked before anything is allocated: a header may claim any size.
+  constexpr int kLargestSide = 16384;
+  if (spec.width > kLargestSide || spec.height > kLargestSide || spec.nchannels > 16)
+    throw ConfigError(path + ": image is " + std::to_string(spec.width) + "x" +
+                      std::to_string(spec.height) + " with " + std::to_string(spec.nchannels) +
+                      " channels; relief images are at most " + std::to_string(kLargestSide) + "x" +
+                      std::to_string(kLargestSide) + " with 16 channels");
   Image img;
   img.width = spec.width;
   img.height = spec.height;
@@ -42,6 +49,16 @@ Image read_image(const std::string& path) {
   if (!in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
     throw ConfigError("cannot decode image " + path + ": " + in->geterror());
   if (img.width < 2 || img.height < 2) throw ConfigError("image too small: " + path);
+  // A NaN or infinite texel (float formats such as EXR) would leave every truth ray through it
+  // unresolved and the row published; refuse it, naming where it is.
+  for (size_t i = 0; i < img.pixels.size(); ++i)
+    if (!std::isfinite(img.pixels[i])) {
+      const size_t texel = i / size_t(img.channels);
+      throw ConfigError(path + ": texel (" + std::to_string(texel % size_t(img.width)) + ", " +
+                        std::to_string(texel / size_t(img.width)) + ") channel " +
+                        std::to_string(i % size_t(img.channels)) +
+                        " is not a finite number (NaN or infinity)");
+    }
   return img;
 }
 
@@ -72,8 +89,11 @@ ReliefMap load_relief_images(const ReliefImageSource& src, double depth_per_texe
     depth = read_image(src.depth_path);
   } else {
     if (normal.channels < 4)
-      throw ConfigError(src.normal_path + ": no alpha channel to read depth from (has " +
-                        std::to_string(normal.channels) + " channels); give a depth image");
+      throw ConfigError(src.normal_path +
+                        ": a normal map holds RGB normals and depth in alpha (4 " +
+                        "channels); this image has " + std::to_string(normal.channels) +
+                        (normal.channels == 2 ? " (grey + alpha)" : "") +
+                        "; give its depth as a separate depth image");
     depth = normal;
   }
   const int w = depth.width, h = depth.height;

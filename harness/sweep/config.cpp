@@ -165,6 +165,7 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
       fail(src.at(n), "duplicate scene name '" + c.scenes.back().name + "'");
     canon["scenes"][c.scenes.back().name] = sc;
     c.scene_canonical[c.scenes.back().name] = sc.dump();
+    c.scene_sites[c.scenes.back().name] = {parsed.sites.scene, parsed.sites.relief};
   }
 
   // [[technique]]

@@ -51,6 +51,9 @@ struct SweepConfig {
   std::vector<TableSpec> tables;
   std::vector<PlotSpec> plots;                         // Pareto plots of error against cost
   std::map<std::string, std::string> scene_canonical;  // per scene: text of what defines it
+  // Per scene: "file:line" of its [[scene]] table and of its relief = { ... }, so that an asset
+  // that fails to load later is reported where the config asked for it.
+  std::map<std::string, std::pair<std::string, std::string>> scene_sites;
   std::string canonical;  // canonical text of everything that affects results
 };
 
