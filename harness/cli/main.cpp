@@ -12,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/atomic_write.h"
 #include "core/error.h"
 #include "relief/pattern_mesh.h"
 #include "relief/procedural.h"
@@ -77,9 +78,7 @@ int update_docs(const std::string& root) {
     ss << in.rdbuf();
     const std::string text = ss.str(), updated = rl::update_generated_blocks(text, blocks);
     if (updated == text) continue;
-    const fs::path tmp = f.string() + ".tmp";
-    std::ofstream(tmp) << updated;
-    fs::rename(tmp, f);
+    rl::write_text_atomic(f.string(), updated);
     std::printf("updated %s\n", f.string().c_str());
     ++changed;
   }

@@ -10,6 +10,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
+#include "core/atomic_write.h"
 #include "core/error.h"
 
 namespace rl {
@@ -152,15 +153,37 @@ void write_png(const std::string& path, int width, int height, int channels,
       dst[i] = static_cast<unsigned char>(v * 255.0f + 0.5f);
     }
   }
-  std::filesystem::path final_path(path);
-  std::filesystem::create_directories(final_path.parent_path());
-  std::string tmp = path + ".tmp.png";
-  auto out = OIIO::ImageOutput::create(tmp);
-  OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
-  if (!out || !out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::UINT8, bytes.data()) ||
-      !out->close())
-    throw std::runtime_error("cannot write image " + path);
-  std::filesystem::rename(tmp, final_path);
+  write_image_file(path, OIIO::ImageSpec(width, height, channels, OIIO::TypeDesc::UINT8),
+                   OIIO::TypeDesc::UINT8, bytes.data());
+}
+
+void write_image_file(const std::string& path, const OIIO::ImageSpec& spec, OIIO::TypeDesc type,
+                      const void* pixels) {
+  const std::filesystem::path final_path(path);
+  if (final_path.has_parent_path()) std::filesystem::create_directories(final_path.parent_path());
+  const std::string tmp = unique_temp_path(path);
+  std::string failure;
+  {
+    auto out = OIIO::ImageOutput::create(tmp);
+    if (!out || !out->open(tmp, spec) || !out->write_image(type, pixels) || !out->close())
+      failure = out ? out->geterror() : OIIO::geterror();
+  }
+  if (failure.empty()) {
+    // Read it back: a full disk can leave an empty or cut file that the writer called good.
+    auto in = OIIO::ImageInput::open(tmp);
+    std::vector<unsigned char> back(spec.image_bytes());
+    if (!in || in->spec().width != spec.width || in->spec().height != spec.height ||
+        in->spec().nchannels != spec.nchannels ||
+        !in->read_image(0, 0, 0, spec.nchannels, spec.format, back.data()))
+      failure = "it does not read back whole (disk full?)" +
+                (in ? ": " + in->geterror() : ": " + OIIO::geterror());
+  }
+  if (!failure.empty()) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw std::runtime_error("cannot write image " + path + ": " + failure);
+  }
+  commit_temp(tmp, path);
 }
 
 }  // namespace rl

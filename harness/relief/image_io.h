@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include <OpenImageIO/imageio.h>
 #include <glm/glm.hpp>
 
 #include "relief/relief_map.h"
@@ -30,5 +31,12 @@ ReliefMap load_relief_images(const ReliefImageSource& src, double depth_per_texe
 // renames it, so an interrupted run never leaves a truncated image.
 void write_png(const std::string& path, int width, int height, int channels,
                const std::vector<float>& pixels);
+
+// Writes `pixels` (of `type`, laid out as `spec` says) to `path` in the format its extension
+// names: to a unique temporary file, read back whole (a write the disk lost, even one the
+// library did not report, fails here), then renamed into place. Throws std::runtime_error
+// naming `path` on any failure and leaves nothing under that name.
+void write_image_file(const std::string& path, const OIIO::ImageSpec& spec, OIIO::TypeDesc type,
+                      const void* pixels);
 
 }  // namespace rl

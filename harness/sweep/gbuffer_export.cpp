@@ -7,6 +7,8 @@
 #include <OpenImageIO/imageio.h>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "relief/image_io.h"
+
 namespace rl {
 
 namespace {
@@ -71,14 +73,7 @@ void write_gbuffer_exr(const std::string& path, const GBuffer& g, const SceneDes
   if (!labels.params.empty()) spec.attribute("relieflab:params", labels.params);
   spec.attribute("relieflab:key", labels.key);
 
-  const std::filesystem::path final_path(path);
-  std::filesystem::create_directories(final_path.parent_path());
-  const std::string tmp = path + ".tmp.exr";
-  auto out = OIIO::ImageOutput::create(tmp);
-  if (!out || !out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, px.data()) ||
-      !out->close())
-    throw std::runtime_error("cannot write G-buffer " + path + ": " + OIIO::geterror());
-  std::filesystem::rename(tmp, final_path);
+  write_image_file(path, spec, OIIO::TypeDesc::FLOAT, px.data());
 }
 
 }  // namespace rl

@@ -137,17 +137,4 @@ std::string format_markdown_table(const std::vector<Row>& rows, const TableSpec&
   return out;
 }
 
-void write_text_atomic(const std::string& path, const std::string& text) {
-  const std::filesystem::path p(path);
-  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) throw std::runtime_error("cannot write " + tmp);
-  }
-  std::filesystem::rename(tmp, p);
-}
-
 }  // namespace rl

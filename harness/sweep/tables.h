@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/atomic_write.h"
 #include "sweep/config.h"
 #include "sweep/row.h"
 
@@ -17,7 +18,5 @@ std::string format_csv(const std::vector<Row>& rows, const std::vector<std::stri
 std::string format_markdown_table(const std::vector<Row>& rows, const TableSpec& spec);
 // A value as a table shows it: numbers to 4 significant digits, missing as "–".
 std::string format_value(const nlohmann::ordered_json& v);
-
-void write_text_atomic(const std::string& path, const std::string& text);
 
 }  // namespace rl

@@ -1,0 +1,125 @@
+// Faults while writing results (issue 15, items 7 and 8): a write the disk refuses stops with
+// a clear error and leaves nothing under the final name; runs writing into one output folder
+// at once do not trip over each other's temporary files.
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "core/atomic_write.h"
+#include "relief/image_io.h"
+#include "support/test_support.h"
+
+namespace rl {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Runs `write` in a child process whose files may not grow beyond `limit` bytes (a full disk,
+// as the process sees it). Returns the child's exit code: 0 = the write threw a
+// std::runtime_error, 1 = it did not throw, 2 = another exception.
+int under_file_size_limit(rlim_t limit, const std::function<void()>& write) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    std::signal(SIGXFSZ, SIG_IGN);  // a write past the limit then fails with EFBIG
+    rlimit r{limit, limit};
+    setrlimit(RLIMIT_FSIZE, &r);
+    try {
+      write();
+    } catch (const std::runtime_error&) {
+      _exit(0);
+    } catch (...) {
+      _exit(2);
+    }
+    _exit(1);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 3;
+}
+
+// Nothing but `keep` in `dir`: no temporary file left behind.
+std::vector<std::string> files_in(const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  return names;
+}
+
+TEST(Faults, AFullDiskStopsTheWriteAndLeavesNoFile) {
+  const std::string dir = test::scratch_dir("full-disk");
+  fs::create_directories(dir);
+  // Noise does not compress: a 256 x 256 RGB PNG is about 200 KB, far past the 16 KB limit.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0, 1);
+  std::vector<float> noise(256 * 256 * 3);
+  for (float& v : noise) v = u(rng);
+  EXPECT_EQ(
+      under_file_size_limit(16384, [&] { write_png(dir + "/image.png", 256, 256, 3, noise); }), 0);
+  EXPECT_EQ(under_file_size_limit(
+                16384, [&] { write_text_atomic(dir + "/rows.csv", std::string(100000, 'x')); }),
+            0);
+  EXPECT_TRUE(files_in(dir).empty()) << "left behind: " << files_in(dir).front();
+  // The same writes with room succeed and read back.
+  write_png(dir + "/image.png", 256, 256, 3, noise);
+  write_text_atomic(dir + "/rows.csv", "a,b\n");
+  EXPECT_EQ(files_in(dir).size(), 2u);
+}
+
+// Three runs of one sweep into one folder at once: each exits 0, and the folder holds one row
+// per cell and every image whole.
+TEST(Faults, ConcurrentRunsIntoOneFolderAllSucceed) {
+  const std::string dir = test::scratch_dir("concurrent");
+  fs::create_directories(dir);
+  const std::string config = dir + "/sweep.toml";
+  std::ofstream(config) << R"(
+[sweep]
+name = "concurrent"
+elevations = [45, 20]
+viewports = [32]
+frames = 1
+warmup = 0
+[[scene]]
+name = "bricks"
+relief = { procedural = "bricks", resolution = 32 }
+[[technique]]
+name = "relief"
+linear_steps = [8, 16]
+)";
+  const std::string out = dir + "/out";
+  int codes[3] = {-1, -1, -1};
+  std::string outputs[3];
+  std::vector<std::thread> runs;
+  for (int i = 0; i < 3; ++i)
+    runs.emplace_back([&, i] {
+      codes[i] = test::run_cli("run " + config + " --out " + out + " -q", outputs[i]);
+    });
+  for (auto& t : runs) t.join();
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(codes[i], 0) << outputs[i];
+  std::ifstream csv(out + "/rows.csv");
+  int lines = 0;
+  for (std::string line; std::getline(csv, line);) ++lines;
+  EXPECT_EQ(lines, 1 + 4);  // header + 2 views x 2 settings
+  int images = 0;
+  for (const auto& e : fs::recursive_directory_iterator(out)) {
+    const std::string name = e.path().filename().string();
+    EXPECT_EQ(name.find(".tmp"), std::string::npos) << "left behind: " << e.path();
+    if (e.path().extension() == ".png") {
+      ++images;
+      auto in = OIIO::ImageInput::open(e.path().string());
+      ASSERT_TRUE(in) << e.path();
+      std::vector<unsigned char> px(in->spec().image_bytes());
+      EXPECT_TRUE(in->read_image(0, 0, 0, in->spec().nchannels, OIIO::TypeDesc::UINT8, px.data()))
+          << e.path();
+    }
+  }
+  EXPECT_GT(images, 0);
+}
+
+}  // namespace
+}  // namespace rl
