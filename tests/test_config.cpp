@@ -311,8 +311,8 @@ std::string png_header_only(uint32_t width, uint32_t height) {
     return be32(uint32_t(type_and_data.size() - 4)) + type_and_data + be32(~crc);
   };
   return std::string("\x89PNG\r\n\x1a\n", 8) +
-         chunk("IHDR" + be32(width) + be32(height) + std::string{8, 0, 0, 0, 0}) +
-         chunk("IDAT") + chunk("IEND");
+         chunk("IHDR" + be32(width) + be32(height) + std::string{8, 0, 0, 0, 0}) + chunk("IDAT") +
+         chunk("IEND");
 }
 
 TEST(ConfigErrors, BadAssetsInALaterSceneStopTheRunBeforeAnythingIsWritten) {
@@ -400,6 +400,12 @@ TEST(ConfigErrors, MissingConfigFile) {
   std::string output;
   EXPECT_EQ(test::run_cli("run /no/such/sweep.toml", output), 2);
   EXPECT_NE(output.find("/no/such/sweep.toml: config file not found"), std::string::npos) << output;
+  // A folder given as the config (it used to say "no [[scene]] given").
+  const std::string folder = test::scratch_dir("config-folder");
+  fs::create_directories(folder);
+  EXPECT_EQ(test::run_cli("run " + folder, output), 2);
+  EXPECT_NE(output.find(folder + ": is a folder; give a sweep config file"), std::string::npos)
+      << output;
 }
 
 TEST(Cli, ListAndHelp) {

@@ -269,6 +269,13 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
 
 SweepConfig load_sweep_config(const std::string& path) {
   if (!fs::exists(path)) throw ConfigError(path + ": config file not found");
+  if (fs::is_directory(path))
+    throw ConfigError(path + ": is a folder; give a sweep config file (.toml), e.g. " +
+                      (fs::path(path) / "sweep.toml").string());
+  // A config is a page of text: a huge file is not one (and would be echoed in messages).
+  if (fs::file_size(path) > (1u << 20))
+    throw ConfigError(path + ": is " + std::to_string(fs::file_size(path)) +
+                      " bytes; a sweep config is at most 1 MiB");
   std::ifstream in(path);
   if (!in) throw ConfigError(path + ": cannot read config file");
   std::stringstream ss;

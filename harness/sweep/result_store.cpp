@@ -80,6 +80,12 @@ void ResultStore::insert(const std::string& key, const nlohmann::ordered_json& r
   check(sqlite3_step(st.s), db_, "insert row");
 }
 
+void ResultStore::erase(const std::string& key) {
+  Statement st(db_, "DELETE FROM rows WHERE key = ?");
+  sqlite3_bind_text(st.s, 1, key.c_str(), -1, SQLITE_TRANSIENT);
+  check(sqlite3_step(st.s), db_, "delete row");
+}
+
 size_t ResultStore::merge_from(const std::string& other_path) {
   Statement attach(db_, "ATTACH DATABASE ? AS other");
   sqlite3_bind_text(attach.s, 1, other_path.c_str(), -1, SQLITE_TRANSIENT);

@@ -26,6 +26,8 @@ class ResultStore {
   std::optional<nlohmann::ordered_json> row(const std::string& key) const;
   // Inserts the row; an existing key is left untouched (first result wins).
   void insert(const std::string& key, const nlohmann::ordered_json& row);
+  // Removes a row (one found corrupt, so that its cell is measured again).
+  void erase(const std::string& key);
   // Copies every row of another store whose key this one lacks; returns how many.
   size_t merge_from(const std::string& other_path);
 

@@ -91,6 +91,30 @@ class Log {
 
 }  // namespace
 
+// Why the stored row of `cell` cannot stand for it ("" when it can). The store is a file in the
+// user's folder: an edit or a crash may have cut a row or changed its types, and a row that
+// names another cell or holds text where a measure belongs must not be published.
+std::string stored_row_problem(const ResultStore& store, const Cell& cell) {
+  std::optional<nlohmann::ordered_json> row;
+  try {
+    row = store.row(cell.key);
+  } catch (const nlohmann::json::exception& e) {
+    return "is not valid JSON (" + std::string(e.what()).substr(0, 120) + ")";
+  }
+  if (!row) return "is missing";
+  if (!row->is_object()) return "is not a JSON object";
+  for (const auto& [field, value] : cell.identity.items()) {
+    auto it = row->find(field);
+    if (it == row->end() || *it != value) return "does not name the cell's '" + field + "'";
+  }
+  for (const std::string& m : measured_columns()) {
+    auto it = row->find(m);
+    if (it != row->end() && !it->is_number() && !it->is_null())
+      return "holds a non-number in '" + m + "'";
+  }
+  return "";
+}
+
 SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   const auto start = Clock::now();
   SweepSummary summary;
@@ -103,7 +127,20 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   fs::create_directories(options.out_dir);
   Log log(options.out_dir + "/run.log");
   ResultStore store(options.out_dir + "/results.sqlite");
-  const std::set<std::string> done = store.keys();
+  std::set<std::string> done = store.keys();
+  // Stored rows are checked before they are trusted: a corrupt one is dropped (and said so)
+  // and its cell measured again.
+  std::vector<std::string> dropped;
+  for (const Cell& c : cells) {
+    if (!done.count(c.key)) continue;
+    const std::string problem = stored_row_problem(store, c);
+    if (problem.empty()) continue;
+    dropped.push_back("relieflab: warning: the stored row of " + c.technique + " / " +
+                      c.identity.value("scene", std::string()) + " (key " + c.key + ") " + problem +
+                      "; measuring the cell again");
+    store.erase(c.key);
+    done.erase(c.key);
+  }
   for (const Cell& c : cells) summary.already_done += done.count(c.key);
 
   GlContext& gl = GlContext::shared();
@@ -115,6 +152,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     log.line("relieflab: " + std::to_string(duplicates) +
              " repeated cell(s) dropped (the same view, setting and scene given twice: a repeated "
              "elevation, view or [[technique]] block)");
+  for (const std::string& line : dropped) log.line(line);
   log.line("relieflab: OpenGL " + gl.version() + " on " + gl.renderer() + " (" + gl.platform() +
            "), frames timed by " +
            (gl.is_software() ? "wall clock + glFinish" : "GL_TIME_ELAPSED"));
