@@ -16,7 +16,8 @@ TriangleMesh load_mesh(const std::string& path) {
   const aiScene* scene =
       importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                                   aiProcess_PreTransformVertices);
-  if (!scene) throw ConfigError("cannot read mesh " + path + ": " + importer.GetErrorString());
+  if (!scene)
+    throw ConfigError("cannot read mesh " + path + ": " + one_line(importer.GetErrorString()));
   TriangleMesh m;
   m.name = path;
   bool all_uvs = true;

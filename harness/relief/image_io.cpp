@@ -32,7 +32,7 @@ Image read_image(const std::string& path) {
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
   auto in = OIIO::ImageInput::open(path, &config);
-  if (!in) throw ConfigError("cannot read image " + path + ": " + OIIO::geterror());
+  if (!in) throw ConfigError("cannot read image " + path + ": " + one_line(OIIO::geterror()));
   const OIIO::ImageSpec& spec = in->spec();
   // Checked before anything is allocated: a header may claim any size.
   constexpr int kLargestSide = 16384;
@@ -48,7 +48,7 @@ Image read_image(const std::string& path) {
   img.eight_bit = spec.format == OIIO::TypeDesc::UINT8;
   img.pixels.resize(static_cast<size_t>(img.width) * img.height * img.channels);
   if (!in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
-    throw ConfigError("cannot decode image " + path + ": " + in->geterror());
+    throw ConfigError("cannot decode image " + path + ": " + one_line(in->geterror()));
   if (img.width < 2 || img.height < 2) throw ConfigError("image too small: " + path);
   // A NaN or infinite texel (float formats such as EXR) would leave every truth ray through it
   // unresolved and the row published; refuse it, naming where it is.

@@ -1,0 +1,60 @@
+// The bad-input corpus (tests/bad_inputs/, issue 15): every hostile config is refused before
+// any work with one clear line naming the config file and what is wrong.
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "sweep/asset_check.h"
+#include "sweep/config.h"
+
+namespace rl {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kCorpus = RELIEFLAB_SOURCE_DIR "/tests/bad_inputs";
+
+std::vector<fs::path> corpus_configs() {
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(kCorpus))
+    if (e.path().extension() == ".toml") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+std::vector<std::string> expectations(const fs::path& file) {
+  std::vector<std::string> expect;
+  std::ifstream in(file);
+  for (std::string line; std::getline(in, line) && line.rfind("# expect: ", 0) == 0;)
+    expect.push_back(line.substr(10));
+  return expect;
+}
+
+TEST(BadInputs, EveryCorpusInputIsRefusedWithAClearMessage) {
+  const std::vector<fs::path> files = corpus_configs();
+  ASSERT_GE(files.size(), 25u);
+  for (const fs::path& file : files) {
+    SCOPED_TRACE(file.filename().string());
+    const std::vector<std::string> expect = expectations(file);
+    ASSERT_FALSE(expect.empty()) << "no '# expect:' line";
+    std::string message;
+    try {
+      const SweepConfig config = load_sweep_config(file.string());
+      check_sweep_assets(config);
+    } catch (const ConfigError& e) {
+      message = e.what();
+    }
+    ASSERT_FALSE(message.empty()) << "accepted";
+    EXPECT_EQ(message.rfind(file.string(), 0), 0u) << "does not start with the file: " << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_LT(message.size(), 600u) << message.substr(0, 600);
+    for (const std::string& e : expect)
+      EXPECT_NE(message.find(e), std::string::npos) << "expected '" << e << "' in: " << message;
+  }
+}
+
+}  // namespace
+}  // namespace rl

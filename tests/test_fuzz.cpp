@@ -1,0 +1,231 @@
+// Seeded mutation fuzzing (issue 15, item 11) of what reads user input: the config parser
+// (with its asset checks) and the image and mesh loaders. Each mutated input must either load
+// or be refused with a ConfigError; any other exception is a failure, and the input that
+// caused it is saved for the bad-input corpus. A crash ends the test binary.
+//
+// In the suite each target runs for a few seconds' worth of inputs; for a long run:
+//   RELIEFLAB_FUZZ_SECONDS=600 ./build/tests/test_fuzz
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "core/error.h"
+#include "core/triangle_mesh.h"
+#include "relief/image_io.h"
+#include "support/test_support.h"
+#include "sweep/asset_check.h"
+#include "sweep/config.h"
+
+namespace rl {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kCorpus = RELIEFLAB_SOURCE_DIR "/tests/bad_inputs";
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// Tokens that have found bugs in configs before: non-finite and extreme numbers, paths out of
+// the folder, structure.
+const char* const kDictionary[] = {"nan",
+                                   "inf",
+                                   "-inf",
+                                   "-1",
+                                   "0",
+                                   "1e308",
+                                   "1e-308",
+                                   "1e30",
+                                   "\"../../x\"",
+                                   "[",
+                                   "]",
+                                   "{",
+                                   "}",
+                                   "=",
+                                   "\"",
+                                   ",",
+                                   "\n",
+                                   "[[scene]]\n",
+                                   "[[technique]]\n",
+                                   "[[table]]\n",
+                                   "[[plot]]\n",
+                                   "resolution = 8192",
+                                   "count = 0",
+                                   "layers = 8",
+                                   "proxy = \"box\"",
+                                   "truth = \"mesh\"",
+                                   "base = \"sphere\"",
+                                   "mesh = \"assets/far.obj\"",
+                                   "depth = \"assets/claims_huge.png\"",
+                                   "elevations = [-45]"};
+
+std::string mutate(std::string s, const std::vector<std::string>& seeds, std::mt19937& rng) {
+  auto pick = [&](size_t n) { return n == 0 ? size_t(0) : size_t(rng() % n); };
+  const int edits = rng() % 2 ? 1 : 2 + int(rng() % 3);
+  for (int e = 0; e < edits; ++e) {
+    const size_t at = pick(s.size() + 1);
+    switch (rng() % 6) {
+      case 0:  // flip a byte
+        if (!s.empty()) s[pick(s.size())] ^= char(1 << (rng() % 8));
+        break;
+      case 1:  // delete a range
+        if (!s.empty()) s.erase(at, 1 + pick(16));
+        break;
+      case 2:  // repeat a range
+        if (!s.empty()) s.insert(at, s.substr(pick(s.size()), 1 + pick(32)));
+        break;
+      case 3:  // a dictionary token
+        s.insert(at, kDictionary[pick(std::size(kDictionary))]);
+        break;
+      case 4: {  // splice in a piece of another seed
+        const std::string& other = seeds[pick(seeds.size())];
+        if (!other.empty()) s.insert(at, other.substr(pick(other.size()), 1 + pick(64)));
+        break;
+      }
+      default:  // replace a number-looking character run with a dictionary token
+        if (!s.empty()) {
+          size_t b = pick(s.size()), end = b;
+          while (end < s.size() &&
+                 (std::isdigit(static_cast<unsigned char>(s[end])) || s[end] == '.'))
+            ++end;
+          s.replace(b, end - b, kDictionary[pick(6)]);
+        }
+    }
+  }
+  return s;
+}
+
+struct FuzzResult {
+  long inputs = 0, accepted = 0, refused = 0;
+  std::vector<std::string> failures;  // what went wrong, with the saved input's path
+};
+
+// Feeds mutations of `seeds` to `load` until `budget` has passed or `max_inputs` were tried.
+FuzzResult fuzz(const std::string& name, const std::vector<std::string>& seeds,
+                const std::function<void(const std::string&)>& load, unsigned seed,
+                long max_inputs) {
+  double seconds = 0;
+  if (const char* s = std::getenv("RELIEFLAB_FUZZ_SECONDS")) seconds = std::atof(s);
+  const auto start = std::chrono::steady_clock::now();
+  const std::string saved = test::scratch_dir("fuzz-" + name + "-" + std::to_string(::getpid()));
+  fs::create_directories(saved);
+  std::mt19937 rng(seed);
+  FuzzResult r;
+  for (;; ++r.inputs) {
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (seconds > 0 ? elapsed > seconds : r.inputs >= max_inputs) break;
+    const std::string input = mutate(seeds[rng() % seeds.size()], seeds, rng);
+    try {
+      load(input);
+      ++r.accepted;
+    } catch (const ConfigError&) {
+      ++r.refused;
+    } catch (const std::exception& e) {
+      const std::string path = saved + "/failure-" + std::to_string(r.failures.size());
+      std::ofstream(path, std::ios::binary) << input;
+      r.failures.push_back(std::string(e.what()).substr(0, 200) + " (input saved as " + path + ")");
+    }
+  }
+  std::printf("fuzz %s: %ld inputs, %ld accepted, %ld refused with a ConfigError, %zu failures\n",
+              name.c_str(), r.inputs, r.accepted, r.refused, r.failures.size());
+  return r;
+}
+
+TEST(Fuzz, ConfigParserAcceptsOrRefusesCleanly) {
+  std::vector<std::string> seeds;
+  for (const auto& e : fs::directory_iterator(kCorpus))
+    if (e.path().extension() == ".toml" && fs::file_size(e.path()) < 4096)
+      seeds.push_back(read_file(e.path()));
+  // Valid configs too, so that mutations also reach what follows a successful parse.
+  seeds.push_back(R"([sweep]
+name = "good"
+elevations = [45, 20]
+azimuths = [30, 75]
+viewports = [16, [24, 16]]
+texture_res = [0, 16]
+[[scene]]
+name = "bricks"
+relief = { procedural = "bricks", resolution = 32, options = { rows = 4, mortar = 0.1 } }
+depth = 0.1
+effects = ["self_shadow"]
+light = [0.5, 0.5, 2]
+objects = [{ shape = "sphere", center = [0.2, 0, 0.1], radius = 0.1 }]
+[[scene]]
+name = "sphere"
+base = "sphere"
+relief = { procedural = "sines", resolution = 16 }
+[[technique]]
+name = "relief"
+linear_steps = [8, 16]
+[[technique]]
+name = "pom"
+scenes = ["sphere"]
+sets = [{ min_samples = 8, max_samples = 16 }]
+[[table]]
+rows = ["scene", "technique"]
+columns = ["elevation_deg"]
+values = ["wrong_pct", "fetches_mean"]
+aggregate = "mean"
+[[plot]]
+x = "frame_ms"
+group = ["scene"]
+)");
+  seeds.push_back(read_file(RELIEFLAB_SOURCE_DIR "/configs/papers/baboud2006-fig12.toml"));
+  // Half of the inputs start from a valid config (the corpus is mostly refusals).
+  const std::vector<std::string> good(seeds.end() - 2, seeds.end());
+  for (size_t n = seeds.size(); n > 0; n -= std::min(n, good.size()))
+    seeds.insert(seeds.end(), good.begin(), good.end());
+  const FuzzResult r = fuzz(
+      "config", seeds,
+      [](const std::string& text) {
+        // Relative paths resolve in the corpus folder, where its assets are.
+        check_sweep_assets(parse_sweep_config(text, "fuzz.toml", kCorpus));
+      },
+      1, 3000);
+  EXPECT_GT(r.refused, 0);
+  for (const std::string& f : r.failures) ADD_FAILURE() << f;
+}
+
+TEST(Fuzz, ImageAndMeshLoadersAcceptOrRefuseCleanly) {
+  const std::string dir = test::scratch_dir("fuzz-files-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::vector<float> px(16 * 16 * 4);
+  for (size_t i = 0; i < px.size(); ++i) px[i] = float(i % 7) / 6.0f;
+  write_png(dir + "/seed.png", 16, 16, 4, px);
+  const std::vector<std::string> images = {read_file(dir + "/seed.png"),
+                                           read_file(kCorpus + "/assets/claims_huge.png")};
+  const FuzzResult ri = fuzz(
+      "image", images,
+      [&](const std::string& bytes) {
+        std::ofstream(dir + "/input.png", std::ios::binary | std::ios::trunc) << bytes;
+        ReliefImageSource src;
+        src.normal_path = dir + "/input.png";
+        load_relief_images(src, 1.0);
+      },
+      2, 400);
+  const std::vector<std::string> meshes = {
+      read_file(kCorpus + "/assets/far.obj"), read_file(kCorpus + "/assets/nan.obj"),
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0.5\nvt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\n"
+      "f 1/1 2/2 3/3\nf 2/2 4/4 3/3\n"};
+  const FuzzResult rm = fuzz(
+      "mesh", meshes,
+      [&](const std::string& text) {
+        std::ofstream(dir + "/input.obj", std::ios::trunc) << text;
+        load_mesh(dir + "/input.obj");
+      },
+      3, 400);
+  for (const std::string& f : ri.failures) ADD_FAILURE() << f;
+  for (const std::string& f : rm.failures) ADD_FAILURE() << f;
+}
+
+}  // namespace
+}  // namespace rl
