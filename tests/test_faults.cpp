@@ -74,26 +74,25 @@ TEST(Faults, AFullDiskStopsTheWriteAndLeavesNoFile) {
   EXPECT_EQ(files_in(dir).size(), 2u);
 }
 
+// A sweep of 4 cells (relief at 8 and 16 steps, 45 and 20 degrees, 32^2 bricks) written to
+// dir/sweep.toml; `sweep_extra` adds [sweep] keys.
+std::string write_small_sweep(const std::string& dir, const std::string& sweep_extra) {
+  fs::create_directories(dir);
+  const std::string config = dir + "/sweep.toml";
+  std::ofstream(config) << "[sweep]\nname = \"small\"\nelevations = [45, 20]\nviewports = [32]\n"
+                           "frames = 1\nwarmup = 0\n"
+                        << sweep_extra
+                        << "[[scene]]\nname = \"bricks\"\n"
+                           "relief = { procedural = \"bricks\", resolution = 32 }\n"
+                           "[[technique]]\nname = \"relief\"\nlinear_steps = [8, 16]\n";
+  return config;
+}
+
 // Three runs of one sweep into one folder at once: each exits 0, and the folder holds one row
 // per cell and every image whole.
 TEST(Faults, ConcurrentRunsIntoOneFolderAllSucceed) {
   const std::string dir = test::scratch_dir("concurrent");
-  fs::create_directories(dir);
-  const std::string config = dir + "/sweep.toml";
-  std::ofstream(config) << R"(
-[sweep]
-name = "concurrent"
-elevations = [45, 20]
-viewports = [32]
-frames = 1
-warmup = 0
-[[scene]]
-name = "bricks"
-relief = { procedural = "bricks", resolution = 32 }
-[[technique]]
-name = "relief"
-linear_steps = [8, 16]
-)";
+  const std::string config = write_small_sweep(dir, "");
   const std::string out = dir + "/out";
   int codes[3] = {-1, -1, -1};
   std::string outputs[3];
@@ -136,23 +135,7 @@ void store_exec(const std::string& db_path, const std::string& sql) {
 
 TEST(Faults, CorruptStoredRowsAreMeasuredAgainWithAWarning) {
   const std::string dir = test::scratch_dir("corrupt-store");
-  fs::create_directories(dir);
-  const std::string config = dir + "/sweep.toml";
-  std::ofstream(config) << R"(
-[sweep]
-name = "store"
-elevations = [45, 20]
-viewports = [32]
-frames = 1
-warmup = 0
-images = false
-[[scene]]
-name = "bricks"
-relief = { procedural = "bricks", resolution = 32 }
-[[technique]]
-name = "relief"
-linear_steps = [8, 16]
-)";
+  const std::string config = write_small_sweep(dir, "images = false\n");
   const std::string out = dir + "/out", db = out + "/results.sqlite";
   std::string output;
   ASSERT_EQ(test::run_cli("run " + config + " --out " + out + " -q", output), 0) << output;
