@@ -119,13 +119,22 @@ glm::dvec3 vec3_of(const toml::node& n, const Src& src, const std::string& key) 
 std::string resolve_path(const std::string& p, const std::string& base_dir, const Src& src,
                          const toml::node& n) {
   fs::path path(p);
+  // A folder is never an asset (an empty path resolves to the config's own folder).
+  auto not_a_folder = [&](const fs::path& found) {
+    if (p.empty() || fs::is_directory(found))
+      fail(src.at(n), "'" + p + "' is a folder, not a file (" + found.string() + ")");
+  };
   if (path.is_absolute()) {
     if (!fs::exists(path)) fail(src.at(n), "file not found: " + p);
+    not_a_folder(path);
     return path.string();
   }
   for (const fs::path& dir : {fs::path(base_dir), fs::path(RELIEFLAB_SOURCE_DIR)}) {
     fs::path candidate = dir / path;
-    if (fs::exists(candidate)) return fs::weakly_canonical(candidate).string();
+    if (fs::exists(candidate)) {
+      not_a_folder(candidate);
+      return fs::weakly_canonical(candidate).string();
+    }
   }
   fail(src.at(n),
        "file not found: " + p + " (looked in " + base_dir + " and " + RELIEFLAB_SOURCE_DIR + ")");
