@@ -5,8 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include <unistd.h>
-
+#include "core/atomic_write.h"
 #include "core/hash.h"
 
 namespace rl {
@@ -68,7 +67,7 @@ void write_precompute_cache(const std::string& folder, const std::string& option
   std::error_code ec;
   std::filesystem::create_directories(path.parent_path(), ec);
   if (ec) return;
-  const std::filesystem::path tmp = path.string() + ".tmp" + std::to_string(::getpid());
+  const std::filesystem::path tmp = unique_temp_path(path.string());
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     out.write(kMagic, sizeof kMagic);

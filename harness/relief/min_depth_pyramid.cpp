@@ -4,12 +4,6 @@
 
 namespace rl {
 
-size_t MinDepthPyramid::bytes() const {
-  size_t n = 0;
-  for (const auto& l : level) n += l.size() * sizeof(float);
-  return n;
-}
-
 int quadtree_levels(int width, int height) {
   int levels = 1;
   while (width % 2 == 0 && height % 2 == 0 && width > 1 && height > 1) {

@@ -18,7 +18,6 @@ struct MinDepthPyramid {
   int width = 0, height = 0;              // cells at level 0 (the map's texels)
   std::vector<std::vector<float>> level;  // level[k] has (width >> k) x (height >> k) nodes
   int levels() const { return int(level.size()); }
-  size_t bytes() const;  // as uploaded: R32F, every level
 };
 
 // Levels a W x H map supports: while both sides halve exactly (nodes must tile the wrapped

@@ -89,8 +89,6 @@ class Log {
   std::ofstream file_;
 };
 
-}  // namespace
-
 // Why the stored row of `cell` cannot stand for it ("" when it can). The store is a file in the
 // user's folder: an edit or a crash may have cut a row or changed its types, and a row that
 // names another cell or holds text where a measure belongs must not be published.
@@ -114,6 +112,8 @@ std::string stored_row_problem(const ResultStore& store, const Cell& cell) {
   }
   return "";
 }
+
+}  // namespace
 
 SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   const auto start = Clock::now();
