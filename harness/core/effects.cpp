@@ -7,7 +7,7 @@ namespace rl {
 
 const std::vector<Effect>& all_effects() {
   static const std::vector<Effect> effects = {Effect::SelfShadow, Effect::Silhouette,
-                                              Effect::DepthCorrect};
+                                              Effect::DepthCorrect, Effect::AmbientOcclusion};
   return effects;
 }
 
@@ -26,6 +26,8 @@ std::string effect_name(Effect e) {
       return "silhouette";
     case Effect::DepthCorrect:
       return "depth_correct";
+    case Effect::AmbientOcclusion:
+      return "ambient_occlusion";
   }
   return "unknown";
 }

@@ -12,8 +12,11 @@ enum class Effect : uint32_t {
   SelfShadow = 1u << 0,    // shadow ray through the relief (chapter 5, Listing 5.3)
   Silhouette = 1u << 1,    // discard rays leaving the relief volume (curved bases)
   DepthCorrect = 1u << 2,  // write the depth of the found hit
+  // Texture-space ambient occlusion (Limberger et al., Section IV): ambient light scaled by
+  // the AO map at the hit; the truth samples the hemisphere with Embree.
+  AmbientOcclusion = 1u << 3,
   // Only effects something implements are declared, so `relieflab list` never advertises one
-  // nothing does (texture-space AO and two-sided impostors arrive with their issues).
+  // nothing does.
 };
 
 class EffectSet {

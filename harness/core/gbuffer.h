@@ -13,6 +13,10 @@ struct GBuffer {
   std::vector<glm::vec4> position;  // world-space hit; w = coverage
   std::vector<glm::vec4> normal;    // world-space shading normal; w = 1 if in shadow
   std::vector<glm::vec4> hit;       // hit u, v, layer, texture fetches of this pixel
+  // x: ambient visibility the pixel was shaded with (1 without ambient_occlusion); y: its
+  // standard error (the truth's hemisphere sampling; 0 for a technique); z: the unoccluded
+  // ambient term's mean over rgb (ambient * albedo), so AO's share of colour error is known.
+  std::vector<glm::vec4> aux;
 
   void resize(int w, int h) {
     width = w;
@@ -22,6 +26,7 @@ struct GBuffer {
     position.assign(n, glm::vec4(0));
     normal.assign(n, glm::vec4(0));
     hit.assign(n, glm::vec4(0));
+    aux.assign(n, glm::vec4(0));
   }
   size_t size() const { return color.size(); }
   bool covered(size_t i) const { return color[i].a > 0.5f; }

@@ -10,7 +10,7 @@ namespace rl {
 RenderTarget::RenderTarget(int width, int height, Kind kind)
     : width_(width), height_(height), kind_(kind) {
   GlContext::shared();
-  attachments_ = kind == Kind::GBuffer ? 4 : 1;
+  attachments_ = kind == Kind::GBuffer ? 5 : 1;
   glCreateFramebuffers(1, &fbo_);
   glCreateTextures(GL_TEXTURE_2D, attachments_, color_);
   for (int i = 0; i < attachments_; ++i) {
@@ -20,8 +20,8 @@ RenderTarget::RenderTarget(int width, int height, Kind kind)
   glCreateRenderbuffers(1, &depth_);
   glNamedRenderbufferStorage(depth_, GL_DEPTH_COMPONENT32F, width, height);
   glNamedFramebufferRenderbuffer(fbo_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
-  const GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                             GL_COLOR_ATTACHMENT3};
+  const GLenum buffers[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                             GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
   glNamedFramebufferDrawBuffers(fbo_, attachments_, buffers);
   GLenum status = glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE)
@@ -47,9 +47,9 @@ void RenderTarget::bind_and_clear() {
 void RenderTarget::read_back(GBuffer& out) const {
   if (kind_ != Kind::GBuffer) throw GlError("read_back needs a G-buffer render target");
   out.resize(width_, height_);
-  std::vector<glm::vec4>* dst[4] = {&out.color, &out.position, &out.normal, &out.hit};
+  std::vector<glm::vec4>* dst[5] = {&out.color, &out.position, &out.normal, &out.hit, &out.aux};
   const GLsizei bytes = static_cast<GLsizei>(out.size() * sizeof(glm::vec4));
-  for (int i = 0; i < 4; ++i)
+  for (int i = 0; i < 5; ++i)
     glGetTextureImage(color_[i], 0, GL_RGBA, GL_FLOAT, bytes, dst[i]->data());
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Offscreen render targets: the G-buffer (four RGBA32F attachments + depth, matching
+// Offscreen render targets: the G-buffer (five RGBA32F attachments + depth, matching
 // core/gbuffer.h) for measuring, or a single RGBA8 colour target for timing.
 #include <epoxy/gl.h>
 
@@ -25,7 +25,7 @@ class RenderTarget {
   int width_, height_;
   Kind kind_;
   GLuint fbo_ = 0, depth_ = 0;
-  GLuint color_[4] = {0, 0, 0, 0};
+  GLuint color_[5] = {0, 0, 0, 0, 0};
   int attachments_ = 0;
 };
 

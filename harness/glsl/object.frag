@@ -14,6 +14,7 @@ layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_position;
 layout(location = 2) out vec4 o_normal;
 layout(location = 3) out vec4 o_hit;
+layout(location = 4) out vec4 o_aux;
 #endif
 
 void main() {
@@ -24,5 +25,6 @@ void main() {
   o_position = vec4(v_world, 1.0);
   o_normal = vec4(n, 0.0);
   o_hit = vec4(0.0, 0.0, -1.0, 0.0);
+  o_aux = vec4(1.0, 0.0, dot(rl_ambient * v_albedo, vec3(1.0 / 3.0)), 0.0);
 #endif
 }

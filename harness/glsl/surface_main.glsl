@@ -4,6 +4,9 @@
 // harness/core/gbuffer.h; without, colour only (the timing variant).
 #include "harness/glsl/relief_common.glsl"
 #include "harness/glsl/shading.glsl"
+#ifdef RL_AMBIENT_OCCLUSION
+#include "harness/glsl/ambient_occlusion.glsl"
+#endif
 
 in vec3 v_world;
 in vec2 v_uv;
@@ -46,6 +49,7 @@ layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_position;
 layout(location = 2) out vec4 o_normal;
 layout(location = 3) out vec4 o_hit;
+layout(location = 4) out vec4 o_aux;
 #endif
 
 // A world direction in texture units per world unit: (du, dv, d depth). The floor keeps a
@@ -187,10 +191,14 @@ void main() {
 #endif
 #endif
 
+#ifdef RL_AMBIENT_OCCLUSION
+  rl_ambient_visibility = rl_ambient_occlusion(h.uv);
+#endif
   o_color = vec4(rl_shade(albedo, n, to_light, -V, in_shadow), 1.0);
 #ifdef RL_GBUFFER
   o_position = vec4(hit_world, 1.0);
   o_normal = vec4(n, in_shadow ? 1.0 : 0.0);
   o_hit = vec4(h.uv, float(h.layer), float(rl_fetches));
+  o_aux = vec4(rl_ambient_visibility, 0.0, dot(rl_ambient * albedo, vec3(1.0 / 3.0)), 0.0);
 #endif
 }

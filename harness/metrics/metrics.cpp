@@ -98,8 +98,11 @@ bool is_object(const GBuffer& g, size_t i) {
 }
 
 ImageMetrics compare_gbuffers(const GBuffer& t, const GBuffer& r, double depth_world,
-                              double texel_world) {
+                              double texel_world, bool ambient_occlusion) {
   ImageMetrics m;
+  m.has_ao = ambient_occlusion;
+  std::vector<double> ao_err;
+  double ao_signed = 0, ao_stderr = 0, ao_color = 0, color_err = 0;
   long both = 0, missed = 0, false_hits = 0, artifacts = 0, shadow_diff = 0, object_diff = 0;
   std::vector<double> pos, pos_texels, normal_deg, fetches;
   for (size_t i = 0; i < t.size(); ++i) {
@@ -125,6 +128,22 @@ ImageMetrics compare_gbuffers(const GBuffer& t, const GBuffer& r, double depth_w
                                           : 180.0);
     if (t.shadowed(i) != r.shadowed(i)) ++shadow_diff;
     if (is_object(t, i) != is_object(r, i)) ++object_diff;
+    if (ambient_occlusion && !is_object(t, i) && !is_object(r, i)) {
+      const double diff = double(t.aux[i].x) - double(r.aux[i].x);
+      ao_err.push_back(std::abs(diff));
+      ao_signed += diff;
+      ao_stderr += r.aux[i].y;
+      ao_color += double(t.aux[i].z) * std::abs(diff);
+      for (int c = 0; c < 3; ++c) color_err += std::abs(double(t.color[i][c]) - r.color[i][c]) / 3;
+    }
+  }
+  if (!ao_err.empty()) {
+    const ErrorStats a = error_stats(ao_err);
+    m.ao_err_mean = a.mean;
+    m.ao_err_p99 = a.p99;
+    m.ao_bias = ao_signed / double(ao_err.size());
+    m.ao_ref_stderr = ao_stderr / double(ao_err.size());
+    m.ao_color_share_pct = color_err > 0 ? std::min(100.0, 100.0 * ao_color / color_err) : 0;
   }
   const double covered = std::max<long>(1, m.truth_covered_px);
   m.missed_pct = 100.0 * missed / covered;
@@ -171,6 +190,12 @@ std::vector<std::pair<std::string, double>> ImageMetrics::named() const {
                                                    {"fetches_p99", fetches.p99},
                                                    {"fetches_max", fetches.max},
                                                    {"nonfinite_px", double(nonfinite_px)}};
+  if (has_ao)
+    v.insert(v.end(), {{"ao_err_mean", ao_err_mean},
+                       {"ao_err_p99", ao_err_p99},
+                       {"ao_bias", ao_bias},
+                       {"ao_ref_stderr", ao_ref_stderr},
+                       {"ao_color_share_pct", ao_color_share_pct}});
   if (empty())
     for (auto& [name, value] : v)
       if (name != "covered_px" && name != "union_px" && name != "nonfinite_px")

@@ -19,7 +19,12 @@
 // - object_disagree_pct: % of jointly covered pixels where one shows a plain scene object
 //   (hit layer -1) and the other the relief: visibility resolved differently (depth_correct);
 // - fetches_*: technique texture fetches per covered relief pixel;
-// - nonfinite_px: technique pixels with a NaN or infinite output (hard cases report them).
+// - nonfinite_px: technique pixels with a NaN or infinite output (hard cases report them);
+// - with ambient_occlusion only: ao_err_mean / ao_err_p99 = |visibility - the truth's| and
+//   ao_bias = mean signed difference over jointly covered relief pixels; ao_ref_stderr = the
+//   truth's mean standard error there (its noise floor); ao_color_share_pct = the ambient
+//   term's AO difference (ambient * albedo * |ao - ao_truth|, rgb mean) in % of the colour
+//   error (rgb mean of |colour - truth's|) summed over the same pixels.
 #include <string>
 #include <utility>
 #include <vector>
@@ -49,6 +54,8 @@ struct ImageMetrics {
   double object_disagree_pct = 0;
   ErrorStats fetches;
   long nonfinite_px = 0;
+  bool has_ao = false;  // the AO columns below are measured (and named)
+  double ao_err_mean = 0, ao_err_p99 = 0, ao_bias = 0, ao_ref_stderr = 0, ao_color_share_pct = 0;
 
   // Nothing to measure: neither side covers a pixel. Error columns are then reported empty
   // (NaN in named()), never as a perfect score.
@@ -58,8 +65,9 @@ struct ImageMetrics {
   std::vector<std::pair<std::string, double>> named() const;
 };
 
+// `ambient_occlusion`: the scene asked for it, so the AO columns are measured.
 ImageMetrics compare_gbuffers(const GBuffer& technique, const GBuffer& truth, double depth_world,
-                              double texel_world);
+                              double texel_world, bool ambient_occlusion = false);
 
 double psnr_db(const GBuffer& a, const GBuffer& b);
 double ssim(const GBuffer& a, const GBuffer& b);

@@ -86,7 +86,8 @@ int LayerStack::used(size_t texel) const {
 
 size_t ReliefMap::gpu_bytes() const {
   size_t texel = quantized ? 4 : 16;
-  return static_cast<size_t>(width) * height * texel * 2;
+  const size_t ambient = ambient_visibility.empty() ? 0 : (quantized ? 1 : 4);
+  return static_cast<size_t>(width) * height * (texel * 2 + ambient);
 }
 
 glm::vec3 layer_normal_from_xy(float x, float y, int layer) {

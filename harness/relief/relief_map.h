@@ -53,6 +53,9 @@ struct ReliefMap {
   std::vector<glm::vec4> color;   // rgb colour (linear), a = 1
   bool quantized = false;         // every channel holds an exact multiple of 1/255
   LayerStack layers;              // non-height-field maps: their layers; `relief` is the top one
+  // The texture-space AO map (relief/ao_map.h), only where a scene asks for ambient_occlusion:
+  // visibility in [0, 1] per texel, uploaded 8-bit when the map is quantised.
+  std::vector<float> ambient_visibility;
 
   size_t index(int x, int y) const;  // wraps like GL_REPEAT
   float depth_texel(int x, int y) const { return relief[index(x, y)].a; }
@@ -64,7 +67,7 @@ struct ReliefMap {
   float max_depth() const;
   // Hash of the size and contents: keys precompute caches and result rows.
   uint64_t content_hash() const;
-  size_t gpu_bytes() const;  // relief + colour textures as uploaded
+  size_t gpu_bytes() const;  // relief + colour (+ AO) textures as uploaded
 };
 
 // Decodes an encoded normal like the shaders do: normalize(rgb * 2 - 1).

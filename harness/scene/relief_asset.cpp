@@ -55,4 +55,15 @@ ReliefMap build_relief_asset(const SceneDesc& scene, int resolution) {
   return map;
 }
 
+AoMap attach_ao_map(ReliefMap& map, const SceneDesc& scene, double texel_world) {
+  if (!scene.effects.has(Effect::AmbientOcclusion)) return {};
+  AoMapOptions o;
+  o.directions = scene.ao.directions;
+  o.filter = scene.ao.filter;
+  o.height_texels = (scene.ao.map_depth > 0 ? scene.ao.map_depth : scene.depth) / texel_world;
+  AoMap ao = cached_ao_map(map, o);
+  map.ambient_visibility = ao.visibility;
+  return ao;
+}
+
 }  // namespace rl

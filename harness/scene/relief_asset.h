@@ -2,6 +2,7 @@
 // Builds a scene's relief map at a texture resolution (its longer side; ReliefSourceDesc::
 // size_at): procedural maps are generated at that resolution, image maps are loaded and
 // resampled keeping their aspect; then quantised to 8 bits if the scene asks.
+#include "relief/ao_map.h"
 #include "relief/image_io.h"
 #include "relief/mesh_bake.h"
 #include "relief/relief_map.h"
@@ -10,6 +11,12 @@
 namespace rl {
 
 ReliefMap build_relief_asset(const SceneDesc& scene, int resolution);
+
+// Where the scene asks for ambient_occlusion, computes (or reads from the cache) the AO map of
+// the relief as tall as scene.ao.map_depth (the scene's depth unless it is a rescale), with
+// texels `texel_world` wide on the base, and stores it in map.ambient_visibility. Returns the
+// map's timing; does nothing (and returns an empty AoMap) otherwise.
+AoMap attach_ao_map(ReliefMap& map, const SceneDesc& scene, double texel_world);
 
 // The bake box of a mesh relief: the mesh's footprint, padded in depth too when it is baked
 // into layers (an impostor). Used alike by the bake, the truth and the scene's depth.

@@ -95,6 +95,22 @@ struct SceneObject {
 // the row as elev_min_deg / elev_max_deg).
 enum class Framing { Fit, Fill };
 
+// Options of the ambient_occlusion effect (Limberger et al., Section IV).
+struct AmbientOcclusionDesc {
+  int directions = 50;  // horizon directions of the texture-space AO map (7.2 degrees apart)
+  bool filter = true;   // the paper's low-pass filter over occluded texels
+  // World depth the AO map was computed for; 0 = the scene's depth. Where it differs, the
+  // scene's depth is a rescale s = depth / map_depth of the relief the map was made for.
+  double map_depth = 0;
+  // How a rescaled relief's AO is obtained from that map: Eq. 6 in the shader, or not at all
+  // (the stale map, the baseline Eq. 6 improves on).
+  enum class Update { Eq6, None } update = Update::Eq6;
+  // Truth: cosine-weighted hemisphere rays per pixel (stratified), so its standard error per
+  // pixel is at most 0.5 / sqrt(samples) and is reported.
+  int samples = 256;
+  double rescale(double depth) const { return map_depth > 0 ? depth / map_depth : 1.0; }
+};
+
 struct SceneDesc {
   std::string name;
   Framing framing = Framing::Fit;
@@ -114,6 +130,7 @@ struct SceneDesc {
   double depth = 0.08;   // world depth of the relief (depth 1 in the map)
   bool quantize = true;  // 8-bit textures like the papers; false keeps float
   EffectSet effects;
+  AmbientOcclusionDesc ao;  // used when effects has AmbientOcclusion
   glm::dvec3 light_position{0.9, -0.6, 1.4};
   Material material;
   double fov_deg = 40;

@@ -20,11 +20,14 @@ constexpr int kMeasurementVersion = 1;
 const std::vector<std::string>& measured_columns() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> n;
-    for (const auto& [name, value] : ImageMetrics().named()) n.push_back(name);
-    for (const char* c : {"elev_min_deg", "elev_max_deg", "frame_ms", "frame_ms_min",
-                          "frame_ms_iqr", "frames_timed", "precompute_ms", "memory_bytes",
-                          "truth_bound", "truth_subdivision", "truth_ms", "truth_unresolved_px",
-                          "layers", "layer_overflow_pct", "layer_odd_pct", "depth_complexity"})
+    ImageMetrics every;  // with the columns only some scenes measure (ambient occlusion)
+    every.has_ao = true;
+    for (const auto& [name, value] : every.named()) n.push_back(name);
+    for (const char* c :
+         {"elev_min_deg", "elev_max_deg", "frame_ms", "frame_ms_min", "frame_ms_iqr",
+          "frames_timed", "precompute_ms", "memory_bytes", "truth_bound", "truth_subdivision",
+          "truth_ms", "truth_unresolved_px", "layers", "layer_overflow_pct", "layer_odd_pct",
+          "depth_complexity", "ao_precompute_ms", "ao_rescale", "truth_ao_rays"})
       n.push_back(c);
     return n;
   }();

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "sweep/config_effects.h"
 #include "sweep/config_relief.h"
 
 namespace rl {
@@ -95,7 +96,7 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
                  "shadow_bias", "ambient",
                  "diffuse",     "specular",
                  "shininess",   "shadow_intensity",
-                 "framing"},
+                 "framing",     "ambient_occlusion"},
              src, "[[scene]]");
   SceneDesc& s = parsed.scene;
   parsed.sites.scene = src.at(node);
@@ -184,6 +185,7 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
   }
   parse_base(t, src, base_dir, s, canon, parsed.sites);
   parse_objects(t, src, base_dir, s, canon);
+  parse_effect_options(t, src, node, s, canon);
   canon["name"] = s.name;
   canon["proxy"] = s.proxy == Proxy::Box ? "box" : "base";
   canon["truth"] = truth_level_name(s.truth);

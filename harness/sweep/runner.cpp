@@ -72,6 +72,8 @@ struct Asset {
   std::unique_ptr<SceneTruth> truth;
   double build_ms = 0;
   double texel_world = 0;  // world size of a texel on the base
+  double ao_ms = 0;        // the texture-space AO map's precompute (ambient_occlusion)
+  bool ao_from_cache = false;
   // Prepared technique instances by (technique, parameters): prepare() runs once per asset.
   std::map<std::string, std::pair<std::unique_ptr<Technique>, double>> prepared;
 };
@@ -189,7 +191,6 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       const auto t0 = Clock::now();
       asset = std::make_unique<Asset>();
       asset->map = build_relief_asset(scene, cell.texture_res);
-      asset->relief = std::make_unique<GpuRelief>(asset->map);
       asset->objects = std::make_unique<ObjectPass>(scene.objects);
       if (scene.base.curved()) {
         // One base mesh for the GPU, the truth and the texel size.
@@ -203,6 +204,10 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
         asset->truth = std::make_unique<SceneTruth>(scene, asset->map, config.truth_tolerance);
         asset->texel_world = texel_world(scene, cell.texture_res);
       }
+      const AoMap ao = attach_ao_map(asset->map, scene, asset->texel_world);
+      asset->ao_ms = ao.compute_ms;
+      asset->ao_from_cache = ao.from_cache;
+      asset->relief = std::make_unique<GpuRelief>(asset->map);
       asset->build_ms = ms_since(t0);
       asset_key = cell.asset_key;
       truth_key.clear();
@@ -228,11 +233,12 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       char buf[256];
       std::snprintf(buf, sizeof buf,
                     "relieflab: truth #%zu traced: %s el=%g az=%g %dx%d: %llu primary + %llu "
-                    "shadow rays in %.0f ms",
+                    "shadow + %llu AO rays in %.0f ms",
                     summary.truth_traces, scene.name.c_str(), cell.view.elevation_deg,
                     cell.view.azimuth_deg, cell.width, cell.height,
                     (unsigned long long)truth_stats.primary_rays,
-                    (unsigned long long)truth_stats.shadow_rays, truth_stats.trace_ms);
+                    (unsigned long long)truth_stats.shadow_rays,
+                    (unsigned long long)truth_stats.ao_rays, truth_stats.trace_ms);
       log.line(buf);
       if (truth_stats.unresolved)
         log.line("relieflab: warning: " + std::to_string(truth_stats.unresolved) +
@@ -266,7 +272,9 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       render_frame(technique, frame, RenderTarget::Kind::GBuffer);
       target.read_back(g);
     }
-    const ImageMetrics m = compare_gbuffers(g, truth, scene.depth, asset->texel_world);
+    const bool ambient_occlusion = scene.effects.has(Effect::AmbientOcclusion);
+    const ImageMetrics m =
+        compare_gbuffers(g, truth, scene.depth, asset->texel_world, ambient_occlusion);
     RenderTarget timing_target(cell.width, cell.height, RenderTarget::Kind::ColorOnly);
     const FrameTiming timing = time_frames(
         [&] {
@@ -315,6 +323,12 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     row["truth_bound"] = asset->truth->tessellation_bound();
     row["truth_ms"] = truth_stats.trace_ms;
     row["truth_unresolved_px"] = double(truth_stats.unresolved);
+    if (ambient_occlusion) {
+      row["ao_precompute_ms"] = asset->ao_ms;
+      row["ao_precompute_cached"] = asset->ao_from_cache;
+      row["ao_rescale"] = scene.ao.rescale(scene.depth);
+      row["truth_ao_rays"] = double(truth_stats.ao_rays);
+    }
     row["effects"] = join_effects(scene.effects);
     row["texture_size"] =
         std::to_string(asset->map.width) + "x" + std::to_string(asset->map.height);

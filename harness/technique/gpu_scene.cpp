@@ -27,17 +27,29 @@ GpuRelief::GpuRelief(const ReliefMap& map) {
   GlContext::shared();
   relief_ = make_texture(map.width, map.height, map.quantized, map.relief);
   color_ = make_texture(map.width, map.height, map.quantized, map.color);
+  if (!map.ambient_visibility.empty()) {
+    glCreateTextures(GL_TEXTURE_2D, 1, &ambient_);
+    glTextureStorage2D(ambient_, 1, map.quantized ? GL_R8 : GL_R32F, map.width, map.height);
+    glTextureSubImage2D(ambient_, 0, 0, 0, map.width, map.height, GL_RED, GL_FLOAT,
+                        map.ambient_visibility.data());
+    glTextureParameteri(ambient_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(ambient_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(ambient_, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(ambient_, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  }
   bytes_ = map.gpu_bytes();
 }
 
 GpuRelief::~GpuRelief() {
   glDeleteTextures(1, &relief_);
   glDeleteTextures(1, &color_);
+  if (ambient_) glDeleteTextures(1, &ambient_);
 }
 
 void GpuRelief::bind(GLuint relief_unit, GLuint color_unit) const {
   glBindTextureUnit(relief_unit, relief_);
   glBindTextureUnit(color_unit, color_);
+  if (ambient_) glBindTextureUnit(8, ambient_);
 }
 
 GpuBase::GpuBase(const BaseGeometry& g) {

@@ -14,11 +14,12 @@ class GpuRelief {
   ~GpuRelief();
   GpuRelief(const GpuRelief&) = delete;
   GpuRelief& operator=(const GpuRelief&) = delete;
+  // Also binds the AO map, where the map has one, to unit 8 (harness/glsl/ambient_occlusion.glsl).
   void bind(GLuint relief_unit = 0, GLuint color_unit = 1) const;
   size_t bytes() const { return bytes_; }
 
  private:
-  GLuint relief_ = 0, color_ = 0;
+  GLuint relief_ = 0, color_ = 0, ambient_ = 0;
   size_t bytes_ = 0;
 };
 

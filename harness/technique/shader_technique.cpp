@@ -17,8 +17,14 @@ Defines layered_floor_define(const ReliefMap& map) {
 }
 
 SurfaceVariant ShaderTechnique::variant_of(const SceneDesc& scene) {
-  return {scene.proxy, scene.empty_floor, scene.projection.active(), scene.impostor(),
-          scene.base.curved() && scene.relief.layers > 0};
+  return {scene.proxy,
+          scene.empty_floor,
+          scene.projection.active(),
+          scene.impostor(),
+          scene.base.curved() && scene.relief.layers > 0,
+          scene.effects.has(Effect::AmbientOcclusion) &&
+              scene.ao.update == AmbientOcclusionDesc::Update::Eq6 &&
+              scene.ao.rescale(scene.depth) != 1.0};
 }
 
 bool ShaderTechnique::draws_back_faces(const SurfaceVariant& variant) const {
@@ -41,6 +47,7 @@ ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Ki
   if (variant.reverse_perspective) d.defines["RL_REVERSE_PERSPECTIVE"] = "1";
   if (variant.impostor) d.defines["RL_IMPOSTOR"] = "1";
   if (draws_back_faces(variant)) d.defines["RL_TWO_SIDED"] = "1";
+  if (variant.ao_eq6 && effects.has(Effect::AmbientOcclusion)) d.defines["RL_AO_EQ6"] = "1";
   return d;
 }
 
@@ -66,6 +73,7 @@ void ShaderTechnique::render(const FrameInput& frame, RenderTarget::Kind target)
   set_uniform(p, "rl_cop", s.projection.cop);
   set_uniform(p, "rl_depth_scale", s.depth);
   set_uniform(p, "rl_shadow_bias", s.shadow_bias);
+  set_uniform(p, "rl_ao_rescale", s.ao.rescale(s.depth));
   frame.relief.bind();
   bind_resources(p);
   glEnable(GL_DEPTH_TEST);

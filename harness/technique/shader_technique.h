@@ -21,6 +21,7 @@ struct SurfaceVariant {
   bool reverse_perspective = false;
   bool impostor = false;
   bool two_sided = false;  // a pattern on a closed curved base: back faces show through gaps
+  bool ao_eq6 = false;     // ambient_occlusion on a rescaled relief, updated by Eq. 6
 };
 
 class ShaderTechnique : public Technique {

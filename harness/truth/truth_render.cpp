@@ -6,10 +6,12 @@
 #include <limits>
 
 #include "core/elapsed.h"
+#include "core/hash.h"
 #include "core/parallel.h"
 #include "truth/displaced_truth.h"
 #include "truth/objects_truth.h"
 #include "truth/pattern_base_truth.h"
+#include "truth/reference_ao.h"
 
 namespace rl {
 namespace {
@@ -110,25 +112,35 @@ bool trace_primary(const TruthSurface& truth, const ReliefMap& map, const SceneD
 }  // namespace
 
 glm::dvec3 shade(const Material& m, const glm::dvec3& albedo, const glm::dvec3& n,
-                 const glm::dvec3& to_light, const glm::dvec3& to_eye, bool in_shadow) {
+                 const glm::dvec3& to_light, const glm::dvec3& to_eye, bool in_shadow,
+                 double ambient_visibility) {
   const double diff = std::max(glm::dot(n, to_light), 0.0);
   const double spec =
       std::pow(std::max(glm::dot(n, glm::normalize(to_light + to_eye)), 0.0), m.shininess);
   const glm::dvec3 lit = in_shadow ? albedo * m.diffuse * diff * m.shadow_intensity
                                    : albedo * m.diffuse * diff + m.specular * spec;
-  return m.ambient * albedo + lit;
+  return ambient_visibility * m.ambient * albedo + lit;
 }
 
 namespace {
 
 void write_relief_pixel(GBuffer& g, size_t i, const SceneDesc& scene, const glm::dvec3& albedo,
                         const glm::dvec3& n, const glm::dvec3& world, const glm::dvec3& to_light,
-                        const glm::dvec3& dir, const glm::dvec2& uv, bool in_shadow) {
-  const glm::dvec3 c = shade(scene.material, albedo, n, to_light, -dir, in_shadow);
+                        const glm::dvec3& dir, const glm::dvec2& uv, bool in_shadow,
+                        const AoEstimate& ao) {
+  const glm::dvec3 c = shade(scene.material, albedo, n, to_light, -dir, in_shadow, ao.visibility);
   g.color[i] = glm::vec4(glm::vec3(c), 1.0f);
   g.position[i] = glm::vec4(glm::vec3(world), 1.0f);
   g.normal[i] = glm::vec4(glm::vec3(n), in_shadow ? 1.0f : 0.0f);
   g.hit[i] = glm::vec4(float(uv.x), float(uv.y), 0.0f, 0.0f);
+  const glm::dvec3 ambient = scene.material.ambient * albedo;
+  g.aux[i] = glm::vec4(float(ao.visibility), float(ao.std_error),
+                       float((ambient.x + ambient.y + ambient.z) / 3.0), 0.0f);
+}
+
+// Per-pixel seed of the reference AO's directions: the same on every run and thread count.
+uint64_t ao_seed(size_t pixel) {
+  return fnv1a64(&pixel, sizeof pixel, 0x5eed0a0ull);
 }
 
 }  // namespace
@@ -140,6 +152,9 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
   const uint64_t primary0 = truth.primary_rays(), shadow0 = truth.shadow_rays();
   const PlanarBase base = planar_base(scene);
   const bool shadows = effects.has(Effect::SelfShadow);
+  const bool ambient_occlusion = effects.has(Effect::AmbientOcclusion);
+  // Hemisphere directions sampled, and those traced (the truth counts them as occlusion rays).
+  std::atomic<uint64_t> ao_rays{0}, ao_traced{0};
   // Rays end just below the deepest point of the map (not clamped at 1: a map reaching depth 1
   // would put its deepest hits exactly on the end of the ray, where rounding can lose them).
   const double bottom = double(truth.max_depth()) + 1e-4;
@@ -223,7 +238,22 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
               in_shadow = truth.occluded(h.point, l, t_start, t_exit);
             }
           }
-          write_relief_pixel(g, i, scene, albedo, n, world, to_light, dir, uv, in_shadow);
+          AoEstimate ao;
+          if (ambient_occlusion) {
+            // Hemisphere rays from the hit up to where they leave the relief at the top plane
+            // (nothing above it blocks), through the tiling as the AO map wraps.
+            ao = reference_ao(scene.ao.samples, ao_seed(i), base.normal(),
+                              glm::normalize(base.dpdu()), [&](const glm::dvec3& w) {
+                                const glm::dvec3 l = base.texture_direction(w);
+                                const double t_exit = -h.point.z / l.z;
+                                const double t0 = 1e-4 / std::max(1.0, glm::length(l));
+                                if (!(t_exit > t0)) return false;  // at the top: open
+                                ++ao_traced;
+                                return truth.occluded(h.point, l, t0, t_exit);
+                              });
+            ao_rays += uint64_t(ao.rays);
+          }
+          write_relief_pixel(g, i, scene, albedo, n, world, to_light, dir, uv, in_shadow, ao);
         }
       },
       256);
@@ -231,7 +261,8 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
   if (stats) {
     stats->trace_ms = ms_since(start);
     stats->primary_rays = truth.primary_rays() - primary0;
-    stats->shadow_rays = truth.shadow_rays() - shadow0;
+    stats->shadow_rays = truth.shadow_rays() - shadow0 - ao_traced.load();
+    stats->ao_rays = ao_rays.load();
     stats->unresolved = unresolved.load();
   }
   return g;
@@ -247,6 +278,9 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
   const auto start = std::chrono::steady_clock::now();
   const uint64_t primary0 = truth.primary_rays(), shadow0 = truth.shadow_rays();
   const bool shadows = effects.has(Effect::SelfShadow);
+  const bool ambient_occlusion = effects.has(Effect::AmbientOcclusion);
+  // Hemisphere directions sampled, and those traced (the truth counts them as occlusion rays).
+  std::atomic<uint64_t> ao_rays{0}, ao_traced{0};
   const double far = camera.far_plane;
   GBuffer g;
   g.resize(camera.width, camera.height);
@@ -283,14 +317,30 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
               in_shadow = truth.occluded(h.position, to_light, 1e-4 * scene.depth, reach);
             }
           }
-          write_relief_pixel(g, i, scene, albedo, n, h.position, to_light, dir, h.uv, in_shadow);
+          AoEstimate ao;
+          if (ambient_occlusion) {
+            // Hemisphere rays about the base's normal, as far as they stay within the relief's
+            // shell over a locally flat base: the relief occludes itself, while the base's own
+            // shape (a handle over the body) is what no texture-space AO can know.
+            const double below_top = scene.depth * map.sample_depth(h.uv.x, h.uv.y) + 1e-6;
+            ao = reference_ao(
+                scene.ao.samples, ao_seed(i), h.normal, h.tangent, [&](const glm::dvec3& w) {
+                  const double rise = std::max(glm::dot(w, h.normal), 1e-6);
+                  ++ao_traced;
+                  return truth.occluded(h.position, w, 1e-4 * scene.depth, below_top / rise);
+                });
+            ao_rays += uint64_t(ao.rays);
+          }
+          write_relief_pixel(g, i, scene, albedo, n, h.position, to_light, dir, h.uv, in_shadow,
+                             ao);
         }
       },
       256);
   if (stats) {
     stats->trace_ms = ms_since(start);
     stats->primary_rays = truth.primary_rays() - primary0;
-    stats->shadow_rays = truth.shadow_rays() - shadow0;
+    stats->shadow_rays = truth.shadow_rays() - shadow0 - ao_traced.load();
+    stats->ao_rays = ao_rays.load();
     stats->unresolved = 0;
   }
   return g;

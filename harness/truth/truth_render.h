@@ -1,7 +1,8 @@
 #pragma once
 // Fills a G-buffer from the Embree truth with the same camera, base frame, tiling, depth
 // scale, light and shading formula as the techniques. Shadow rays are traced only when the
-// effects ask for self_shadow.
+// effects ask for self_shadow, hemisphere rays (truth/reference_ao.h) only when they ask for
+// ambient_occlusion.
 #include <cstdint>
 
 #include "core/effects.h"
@@ -16,12 +17,15 @@ struct TruthStats {
   double trace_ms = 0;
   uint64_t primary_rays = 0;
   uint64_t shadow_rays = 0;
-  long unresolved = 0;  // covered pixels whose ray found no surface (should be 0)
+  uint64_t ao_rays = 0;  // hemisphere rays of the reference ambient occlusion
+  long unresolved = 0;   // covered pixels whose ray found no surface (should be 0)
 };
 
-// harness/glsl/shading.glsl, in double precision.
+// harness/glsl/shading.glsl, in double precision; `ambient_visibility` scales the ambient term
+// (ambient occlusion).
 glm::dvec3 shade(const Material& m, const glm::dvec3& albedo, const glm::dvec3& n,
-                 const glm::dvec3& to_light, const glm::dvec3& to_eye, bool in_shadow);
+                 const glm::dvec3& to_light, const glm::dvec3& to_eye, bool in_shadow,
+                 double ambient_visibility = 1.0);
 
 class ObjectsTruth;
 class DisplacedTruth;

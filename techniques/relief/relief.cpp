@@ -13,7 +13,7 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
         .citation =
             "Book chapter 5, 'Relief Texture mapping', Listings 5.3 and 5.4 "
             "(Policarpo, Oliveira & Comba 2005)",
-        .effects = {Effect::SelfShadow, Effect::DepthCorrect},
+        .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
         .params =
             {{.name = "linear_steps",
               .kind = ParamKind::Int,

@@ -12,7 +12,7 @@ class ReliefExact final : public Described<ReliefExact, ShaderTechnique> {
             .citation =
                 "Baboud & Decoret 2006, Section 3.3 'Rasterization-based intersection' "
                 "(2D Amanatides & Woo 1987)",
-            .effects = {Effect::SelfShadow, Effect::DepthCorrect},
+            .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
             .params = {},
             .box_proxy = true};
   }

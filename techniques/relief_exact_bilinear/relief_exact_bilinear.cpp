@@ -12,7 +12,7 @@ class ReliefExactBilinear final : public Described<ReliefExactBilinear, ShaderTe
             .citation =
                 "Beyond Baboud & Decoret 2006, Section 3.3: solves the saddle case of their "
                 "Figure 3 exactly",
-            .effects = {Effect::SelfShadow, Effect::DepthCorrect},
+            .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
             .params = {},
             .box_proxy = true};
   }

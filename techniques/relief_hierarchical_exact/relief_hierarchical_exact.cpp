@@ -13,7 +13,7 @@ class ReliefHierarchicalExact final : public Described<ReliefHierarchicalExact, 
         .citation =
             "Beyond the published work: Tevs, Ihrke & Seidel 2008's maximum-mipmap traversal "
             "over the bilinear cells, with relief_exact_bilinear's exact solve at level 0",
-        .effects = {Effect::SelfShadow, Effect::DepthCorrect},
+        .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
         .params = {},
         .box_proxy = true};
   }

@@ -17,7 +17,7 @@ class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
         .citation =
             "Baboud & Decoret 2006, Sections 3.4-3.5 (safety radius, robust binary search, "
             "Figures 5-8, 12)",
-        .effects = {Effect::SelfShadow, Effect::DepthCorrect},
+        .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
         .params =
             {{.name = "binary_steps",
               .kind = ParamKind::Int,

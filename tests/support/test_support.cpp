@@ -48,6 +48,7 @@ Measured measure(const SceneDesc& scene, const std::string& technique, const Par
   GlContext::shared();
   const int res = scene.relief.native.longer();
   ReliefMap map = build_relief_asset(scene, res);
+  attach_ao_map(map, scene, texel_world(scene, res));
   GpuRelief relief(map);
   GpuBase base(make_base_geometry(scene));
   ObjectPass objects(scene.objects);
@@ -62,7 +63,8 @@ Measured measure(const SceneDesc& scene, const std::string& technique, const Par
   target.bind_and_clear();
   render_frame(*t, frame, RenderTarget::Kind::GBuffer);
   target.read_back(m.technique);
-  m.metrics = compare_gbuffers(m.technique, m.truth, scene.depth, texel_world(scene, res));
+  m.metrics = compare_gbuffers(m.technique, m.truth, scene.depth, texel_world(scene, res),
+                               scene.effects.has(Effect::AmbientOcclusion));
   return m;
 }
 
