@@ -3,10 +3,14 @@
 // 1024^2, on procedural maps and on the rock-wall height map (resampled bilinearly).
 // The paper reports about 10 s for 128^2 on its 2006 GPU (Baboud & Decoret, Section 3.5).
 // Cone maps (cone_relaxed), relaxed and conservative, at 256^2, 512^2 and 1024^2.
+// Texture-space AO maps (ambient_occlusion; Limberger et al. Section IV-A, 50 directions) at
+// 256^2, 512^2 and 1024^2 for a relief 0.08 deep on a unit quad (height in texels = 0.08 x
+// size), the CPU horizon search on all cores.
 #include <benchmark/benchmark.h>
 
 #include "../techniques/cone_relaxed/cone_map.h"
 #include "../techniques/relief_robust/safety_radius.h"
+#include "relief/ao_map.h"
 #include "relief/image_io.h"
 #include "relief/procedural.h"
 #include "relief/relief_map.h"
@@ -97,6 +101,33 @@ RL_CONE_BENCH(cone_pyramids, "pyramids", true);
 RL_CONE_BENCH(cone_domes, "domes", true);
 RL_CONE_BENCH(cone_rock_conservative, "rock", false);
 RL_CONE_BENCH(cone_pyramids_conservative, "pyramids", false);
+
+void BM_AoMap(benchmark::State& state, std::string kind) {
+  const int size = int(state.range(0));
+  const ReliefMap map = bench_map(kind, size);
+  AoMapOptions o;
+  o.height_texels = 0.08 * size;
+  AoMap a;
+  for (auto _ : state) {
+    a = compute_ao_map(map, o);
+    benchmark::DoNotOptimize(a.visibility.data());
+  }
+  double mean = 0;
+  for (float v : a.visibility) mean += v;
+  state.counters["mean_visibility"] = mean / a.visibility.size();
+}
+
+#define RL_AO_BENCH(name, kind)           \
+  BENCHMARK_CAPTURE(BM_AoMap, name, kind) \
+      ->Arg(256)                          \
+      ->Arg(512)                          \
+      ->Arg(1024)                         \
+      ->Unit(benchmark::kMillisecond)     \
+      ->UseRealTime()                     \
+      ->Iterations(1)
+RL_AO_BENCH(ao_rock, "rock");
+RL_AO_BENCH(ao_bricks, "bricks");
+RL_AO_BENCH(ao_sines, "sines");
 
 }  // namespace
 }  // namespace rl

@@ -131,6 +131,28 @@ TEST(AoEq6, ExactForACircularConeAndFiniteAtTheExtremes) {
   EXPECT_EQ(ao_rescaled(1.0, 1e300), 1.0);  // open sky stays open
 }
 
+TEST(AoEq6, TooDarkWhenDeepenedAndTooBrightWhenFlattenedUnlessTheHorizonIsUniform) {
+  // Where Eq. 6 fails: it rescales one circular horizon with the texel's mean cos^2, while
+  // each direction's horizon rescales on its own (tan theta' = s tan theta). The per-direction
+  // answer is the mean of f(x) = x / (s^2 - (s^2 - 1) x) over x = cos^2 theta_j, Eq. 6 is f of
+  // the mean; f is convex for s > 1 and concave for s < 1, so by Jensen's inequality Eq. 6 is
+  // too dark for a deepened relief and too bright for a flattened one, by more the more the
+  // horizon varies around the texel. A valley open along its axis: half the directions open.
+  const int n = 50;
+  std::vector<double> tan_theta(n);
+  for (int j = 0; j < n; ++j) tan_theta[j] = std::abs(std::sin(2 * M_PI * j / n)) * 2.0;
+  auto per_direction = [&](double s) {
+    double area = 0;
+    std::vector<double> r(n);
+    for (int j = 0; j < n; ++j) r[j] = 1.0 / std::sqrt(1.0 + s * s * tan_theta[j] * tan_theta[j]);
+    for (int j = 0; j < n; ++j) area += r[j] * r[(j + 1) % n];
+    return area / n;
+  };
+  const double ao = per_direction(1.0);
+  for (double s : {2.0, 4.0}) EXPECT_LT(ao_rescaled(ao, s), per_direction(s) - 0.02) << s;
+  for (double s : {0.25, 0.5}) EXPECT_GT(ao_rescaled(ao, s), per_direction(s)) << s;
+}
+
 TEST(ReferenceAo, OpenSkyIsOneAndAHalfSpaceIsHalf) {
   const glm::dvec3 n(0, 0, 1), t(1, 0, 0);
   const AoEstimate open = reference_ao(256, 7, n, t, [](const glm::dvec3&) { return false; });
@@ -252,6 +274,35 @@ TEST(AmbientOcclusionEffect, TextureSpaceAoIsTooOpenOnSteepWallsAndTheFilterAdds
   EXPECT_GT(filtered.metrics.ao_err_mean, raw.metrics.ao_err_mean);
   EXPECT_LT(raw.metrics.ao_err_mean, 0.08);
   EXPECT_LT(filtered.metrics.ao_err_mean, 0.11);
+}
+
+}  // namespace
+}  // namespace rl
+
+namespace rl {
+namespace {
+
+TEST(AmbientOcclusionEffect, EveryTechniqueStaysFiniteAtExtremeRescales) {
+  // Every technique that supports the effect, on a map with a one-texel spike and a border
+  // feature, with the stored map made for a relief 800 times shallower or 125 times deeper
+  // than the one drawn (map_depth at the ends of its range): visibility stays finite, in [0, 1].
+  SceneDesc scene = test::procedural_scene("walls", 64, 0.08, true, {{"spacing", 13}});
+  scene.effects.add(Effect::AmbientOcclusion);
+  scene.ao.samples = 4;
+  for (const std::string& name : TechniqueRegistry::instance().names()) {
+    if (!TechniqueRegistry::instance().find(name)->info.effects.has(Effect::AmbientOcclusion))
+      continue;
+    for (double map_depth : {1e-4, 10.0}) {
+      scene.ao.map_depth = map_depth;
+      const test::Measured m = test::measure(scene, name, {}, View{35, 20}, 32);
+      EXPECT_EQ(m.metrics.nonfinite_px, 0) << name << " " << map_depth;
+      for (size_t i = 0; i < m.technique.size(); ++i) {
+        if (!m.technique.covered(i)) continue;
+        const float v = m.technique.aux[i].x;
+        ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= 1.0f) << name << " " << v;
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -27,6 +27,10 @@ void write_gbuffer_exr(const std::string& path, const GBuffer& g, const SceneDes
                                     "P.Z", "N.X",   "N.Y",     "N.Z",   "uv.U", "uv.V",
                                     "Z",   "layer", "fetches", "shadow"};
   if (planar) names.push_back("relief_depth");
+  // The ambient visibility shaded with, and its standard error (the truth's sampling).
+  const bool ambient_occlusion = scene.effects.has(Effect::AmbientOcclusion);
+  const int ao_channel = int(names.size());
+  if (ambient_occlusion) names.insert(names.end(), {"ao", "ao_stderr"});
   const int channels = int(names.size());
   const glm::dmat4 view = camera.view_matrix(), projection = camera.projection_matrix();
   const PlanarBase base = planar_base(scene);
@@ -48,7 +52,11 @@ void write_gbuffer_exr(const std::string& path, const GBuffer& g, const SceneDes
       if (planar) {
         // Texture depth through the base (and a baked mesh's reverse projection, if any).
         const glm::dvec3 t = scene.projection.texture_from_affine(base.texture_from_world(world));
-        p[channels - 1] = float(t.z);
+        p[ao_channel - 1] = float(t.z);
+      }
+      if (ambient_occlusion) {
+        p[ao_channel] = g.aux[i].x;
+        p[ao_channel + 1] = g.aux[i].y;
       }
     }
 

@@ -13,6 +13,8 @@
 //   layer          layer of a multilayer map (0 for heightfields)
 //   fetches        texture fetches this pixel's search made (0 in a truth)
 //   shadow         1 where the hit is in shadow (scenes with self_shadow)
+//   ao, ao_stderr  ambient visibility shaded with and its standard error (the truth's hemisphere
+//                  sampling; 0 for a technique); scenes with ambient_occlusion only, last
 //
 // Header: the camera as OpenEXR's standard worldToCamera (view) and worldToScreen
 // (projection x view) matrices and as relieflab:view, relieflab:projection; the GL viewport as
