@@ -44,7 +44,7 @@ class ShaderTechnique : public Technique {
   // #defines for the parameters, e.g. {"RL_LINEAR_STEPS", "32"}.
   virtual Defines parameter_defines() const { return {}; }
   // Binds the technique's own textures (precomputed maps) for a draw with `program`; units
-  // 0-3 are the harness's (relief, colour, probe rays).
+  // 0-3 and 8 are the harness's (relief, colour, probe rays; the AO map).
   virtual void bind_resources(GLuint program) const { (void)program; }
   // Two-sided variants only: draw front faces, then back faces (Policarpo & Oliveira 2006,
   // Section 5: back faces behind a found hit are then rejected by the depth test), instead of
