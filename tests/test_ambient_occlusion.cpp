@@ -307,3 +307,19 @@ TEST(AmbientOcclusionEffect, EveryTechniqueStaysFiniteAtExtremeRescales) {
 
 }  // namespace
 }  // namespace rl
+
+namespace rl {
+namespace {
+
+TEST(ReferenceAo, SkewTangentGivesTheSameCosineWeighting) {
+  // A tangent not orthogonal to the normal (a curved base's mapping axis) must not tilt the
+  // hemisphere: the 45-degree cone is still half the projected solid angle.
+  const glm::dvec3 n = glm::normalize(glm::dvec3(0.2, -0.3, 1.0));
+  const AoEstimate cone =
+      reference_ao(4096, 11, n, glm::normalize(glm::dvec3(1, 0.4, 0.7)),
+                   [&](const glm::dvec3& d) { return glm::dot(d, n) < std::sqrt(0.5); });
+  EXPECT_NEAR(cone.visibility, 0.5, 3 * cone.std_error + 0.01);
+}
+
+}  // namespace
+}  // namespace rl

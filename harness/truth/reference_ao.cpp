@@ -23,7 +23,12 @@ AoEstimate reference_ao(int samples, uint64_t seed, const glm::dvec3& normal,
                         const glm::dvec3& tangent,
                         const std::function<bool(const glm::dvec3&)>& occluded) {
   const int m = std::max(1, int(std::lround(std::sqrt(double(samples)))));
-  const glm::dvec3 bitangent = glm::cross(normal, tangent);
+  // An orthonormal frame about the normal (a base's tangent need not be orthogonal to it).
+  glm::dvec3 t = tangent - normal * glm::dot(tangent, normal);
+  if (!(glm::length(t) > 1e-9))
+    t = glm::cross(normal, std::abs(normal.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0));
+  t = glm::normalize(t);
+  const glm::dvec3 bitangent = glm::cross(normal, t);
   SplitMix64 rng{seed};
   int open = 0;
   for (int i = 0; i < m; ++i)
@@ -31,8 +36,8 @@ AoEstimate reference_ao(int samples, uint64_t seed, const glm::dvec3& normal,
       const double u1 = (i + rng.uniform()) / m, u2 = (j + rng.uniform()) / m;
       const double r = std::sqrt(u1), phi = 2.0 * M_PI * u2;
       const double z = std::sqrt(std::max(0.0, 1.0 - u1));
-      const glm::dvec3 d = tangent * (r * std::cos(phi)) + bitangent * (r * std::sin(phi)) +
-                           normal * std::max(z, 1e-9);
+      const glm::dvec3 d =
+          t * (r * std::cos(phi)) + bitangent * (r * std::sin(phi)) + normal * std::max(z, 1e-9);
       if (!occluded(glm::normalize(d))) ++open;
     }
   AoEstimate e;

@@ -22,8 +22,8 @@ struct AoEstimate {
 };
 
 // `occluded(direction)`: is the unit world direction blocked? `normal` is the base's unit
-// normal at the hit, `tangent` any unit vector orthogonal to it. `samples` is rounded to a
-// square m * m (at least 1).
+// normal at the hit, `tangent` a direction not parallel to it (made orthogonal here). `samples` is
+// rounded to a square m * m (at least 1).
 AoEstimate reference_ao(int samples, uint64_t seed, const glm::dvec3& normal,
                         const glm::dvec3& tangent,
                         const std::function<bool(const glm::dvec3&)>& occluded);
