@@ -12,17 +12,12 @@
 namespace rl {
 namespace {
 
-int wrap(int i, int n) {
-  const int r = i % n;
-  return r < 0 ? r + n : r;
-}
-
-// Heights in texel units (top = height_texels), row-major, and bilinear samples of them at
-// texel coordinates (texel centre i at i), wrapping like GL_REPEAT.
+// Heights in texel units (top = height_texels), laid out like the map's texels, and bilinear
+// samples of them at texel coordinates (texel centre i at i), wrapping like GL_REPEAT.
 struct HeightGrid {
-  int width = 0, height = 0;
+  const ReliefMap& map;  // its layout and wrapping (ReliefMap::index)
   std::vector<float> h;
-  float at(int x, int y) const { return h[size_t(wrap(y, height)) * width + wrap(x, width)]; }
+  float at(int x, int y) const { return h[map.index(x, y)]; }
   double sample(double x, double y) const {
     const double fx = std::floor(x), fy = std::floor(y);
     const int x0 = int(fx), y0 = int(fy);
@@ -52,7 +47,7 @@ double horizon_cos2(const HeightGrid& g, int x, int y, double dx, double dy, dou
 
 AoMap compute_ao_map(const ReliefMap& map, const AoMapOptions& o) {
   const auto start = std::chrono::steady_clock::now();
-  HeightGrid g{map.width, map.height, {}};
+  HeightGrid g{map, {}};
   g.h.resize(map.relief.size());
   for (size_t i = 0; i < g.h.size(); ++i)
     g.h[i] = float((1.0 - double(map.relief[i].a)) * o.height_texels);
@@ -93,8 +88,7 @@ AoMap compute_ao_map(const ReliefMap& map, const AoMapOptions& o) {
         if (raw[i] >= 1.0f) continue;
         double sum = 0;
         for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx)
-            sum += raw[size_t(wrap(y + dy, map.height)) * map.width + wrap(x + dx, map.width)];
+          for (int dx = -1; dx <= 1; ++dx) sum += raw[map.index(x + dx, y + dy)];
         out.visibility[i] = float(sum / 9.0);
       }
   }

@@ -60,7 +60,7 @@ AoMap attach_ao_map(ReliefMap& map, const SceneDesc& scene, double texel_world) 
   AoMapOptions o;
   o.directions = scene.ao.directions;
   o.filter = scene.ao.filter;
-  o.height_texels = (scene.ao.map_depth > 0 ? scene.ao.map_depth : scene.depth) / texel_world;
+  o.height_texels = scene.ao.depth_of_map(scene.depth) / texel_world;
   AoMap ao = cached_ao_map(map, o);
   map.ambient_visibility = ao.visibility;
   return ao;

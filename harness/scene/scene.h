@@ -108,7 +108,9 @@ struct AmbientOcclusionDesc {
   // Truth: cosine-weighted hemisphere rays per pixel (stratified), so its standard error per
   // pixel is at most 0.5 / sqrt(samples) and is reported.
   int samples = 256;
-  double rescale(double depth) const { return map_depth > 0 ? depth / map_depth : 1.0; }
+  // The depth the AO map is computed for, and the scene's depth over it.
+  double depth_of_map(double depth) const { return map_depth > 0 ? map_depth : depth; }
+  double rescale(double depth) const { return depth / depth_of_map(depth); }
 };
 
 struct SceneDesc {

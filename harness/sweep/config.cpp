@@ -109,14 +109,8 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
       if (!(c.truth_tolerance > 0 && c.truth_tolerance < 1))
         fail(src.at(*v), "'truth_tolerance' must be in (0, 1)");
     }
-    if (auto* v = t->get("images")) {
-      if (!v->is_boolean()) fail(src.at(*v), "'images' must be true or false");
-      c.write_images = v->value<bool>().value();
-    }
-    if (auto* v = t->get("gbuffers")) {
-      if (!v->is_boolean()) fail(src.at(*v), "'gbuffers' must be true or false");
-      c.write_gbuffers = v->value<bool>().value();
-    }
+    if (auto* v = t->get("images")) c.write_images = boolean_of(*v, src, "images");
+    if (auto* v = t->get("gbuffers")) c.write_gbuffers = boolean_of(*v, src, "gbuffers");
   }
   if (c.views.empty())
     for (double e : elevations)

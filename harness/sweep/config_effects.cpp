@@ -26,10 +26,7 @@ void parse_effect_options(const toml::table& t, const Src& src, const toml::node
                "ambient_occlusion");
     if (auto* n = o->get("directions"))
       s.ao.directions = positive_int(*n, src, "directions", 8, 720);
-    if (auto* n = o->get("filter")) {
-      if (!n->is_boolean()) fail(src.at(*n), "'filter' must be true or false");
-      s.ao.filter = n->value<bool>().value();
-    }
+    if (auto* n = o->get("filter")) s.ao.filter = boolean_of(*n, src, "filter");
     if (auto* n = o->get("map_depth")) s.ao.map_depth = number_in(*n, src, "map_depth", 1e-4, 10);
     if (auto* n = o->get("update")) {
       const std::string u = string_of(*n, src, "update");

@@ -151,6 +151,11 @@ std::string measured_list() {
   return out;
 }
 
+bool boolean_of(const toml::node& n, const Src& src, const std::string& key) {
+  if (!n.is_boolean()) fail(src.at(n), "'" + key + "' must be true or false");
+  return n.value<bool>().value();
+}
+
 int positive_int(const toml::node& n, const Src& src, const std::string& key, int lo, int hi) {
   double v = number(n, src, key);
   if (v != std::floor(v) || v < lo || v > hi)

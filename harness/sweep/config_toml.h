@@ -31,6 +31,8 @@ glm::dvec3 vec3_in(const toml::node& n, const Src& src, const std::string& key, 
 // %g, for messages.
 std::string format_number(double v);
 std::string string_of(const toml::node& n, const Src& src, const std::string& key);
+// true or false; anything else fails with "'key' must be true or false".
+bool boolean_of(const toml::node& n, const Src& src, const std::string& key);
 // A string that names files and folders: 1 to 64 of [A-Za-z0-9._-], not "." or "..", so it
 // can never lead outside the output folder.
 std::string plain_name(const toml::node& n, const Src& src, const std::string& key);

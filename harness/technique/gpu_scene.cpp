@@ -8,11 +8,12 @@
 namespace rl {
 namespace {
 
-GLuint make_texture(int w, int h, bool eight_bit, const std::vector<glm::vec4>& texels) {
+// `format`: GL_RGBA (the relief and colour maps) or GL_RED (the AO map), from floats.
+GLuint make_texture(int w, int h, GLenum internal_format, GLenum format, const float* texels) {
   GLuint tex = 0;
   glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-  glTextureStorage2D(tex, 1, eight_bit ? GL_RGBA8 : GL_RGBA32F, w, h);
-  glTextureSubImage2D(tex, 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, texels.data());
+  glTextureStorage2D(tex, 1, internal_format, w, h);
+  glTextureSubImage2D(tex, 0, 0, 0, w, h, format, GL_FLOAT, texels);
   // Bilinear, repeating, no mipmaps: the exact surface the truth reconstructs.
   glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -25,18 +26,14 @@ GLuint make_texture(int w, int h, bool eight_bit, const std::vector<glm::vec4>& 
 
 GpuRelief::GpuRelief(const ReliefMap& map) {
   GlContext::shared();
-  relief_ = make_texture(map.width, map.height, map.quantized, map.relief);
-  color_ = make_texture(map.width, map.height, map.quantized, map.color);
-  if (!map.ambient_visibility.empty()) {
-    glCreateTextures(GL_TEXTURE_2D, 1, &ambient_);
-    glTextureStorage2D(ambient_, 1, map.quantized ? GL_R8 : GL_R32F, map.width, map.height);
-    glTextureSubImage2D(ambient_, 0, 0, 0, map.width, map.height, GL_RED, GL_FLOAT,
-                        map.ambient_visibility.data());
-    glTextureParameteri(ambient_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(ambient_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(ambient_, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTextureParameteri(ambient_, GL_TEXTURE_WRAP_T, GL_REPEAT);
-  }
+  const GLenum rgba = map.quantized ? GL_RGBA8 : GL_RGBA32F;
+  relief_ = make_texture(map.width, map.height, rgba, GL_RGBA,
+                         reinterpret_cast<const float*>(map.relief.data()));
+  color_ = make_texture(map.width, map.height, rgba, GL_RGBA,
+                        reinterpret_cast<const float*>(map.color.data()));
+  if (!map.ambient_visibility.empty())
+    ambient_ = make_texture(map.width, map.height, map.quantized ? GL_R8 : GL_R32F, GL_RED,
+                            map.ambient_visibility.data());
   bytes_ = map.gpu_bytes();
 }
 

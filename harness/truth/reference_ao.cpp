@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "scene/base_mesh.h"
+
 namespace rl {
 namespace {
 
@@ -24,11 +26,8 @@ AoEstimate reference_ao(int samples, uint64_t seed, const glm::dvec3& normal,
                         const std::function<bool(const glm::dvec3&)>& occluded) {
   const int m = std::max(1, int(std::lround(std::sqrt(double(samples)))));
   // An orthonormal frame about the normal (a base's tangent need not be orthogonal to it).
-  glm::dvec3 t = tangent - normal * glm::dot(tangent, normal);
-  if (!(glm::length(t) > 1e-9))
-    t = glm::cross(normal, std::abs(normal.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0));
-  t = glm::normalize(t);
-  const glm::dvec3 bitangent = glm::cross(normal, t);
+  glm::dvec3 t, bitangent;
+  uv_frame(normal, tangent, glm::cross(normal, tangent), t, bitangent);
   SplitMix64 rng{seed};
   int open = 0;
   for (int i = 0; i < m; ++i)
