@@ -23,6 +23,48 @@ vec2 rl_probe_quadric = vec2(0.0);
 #endif
 #define RL_FETCH(tex, uv) (rl_fetches++, textureLod(tex, uv, 0.0))
 
+// normalize(rgb * 2 - 1); a texel that encodes the zero vector (quantised mid-grey) gives the
+// base normal instead of NaN. relief_map.cpp's decode_normal() is the same on the CPU.
+vec3 rl_decode_normal(vec4 texel) {
+  vec3 n = texel.xyz * 2.0 - 1.0;
+  float len = length(n);
+  return len > 0.0 ? n / len : vec3(0.0, 0.0, 1.0);
+}
+
+#ifdef RL_META_LAYERS
+// A meta-relief combined per fetch (Limberger, Schetinger & Oliveira, Eqs. 1-2; the CPU's
+// relief/meta_relief.cpp evaluates the same): layer i is sampled at its own tiling and
+// resolution, normals and depths weighted by w / sum w. Every layer's read is a counted fetch.
+layout(binding = 10) uniform sampler2D rl_meta_layer[RL_META_LAYERS];
+uniform float rl_meta_tiling[RL_META_LAYERS];
+uniform float rl_meta_normal_share[RL_META_LAYERS];  // w_n / sum w_n
+uniform float rl_meta_depth_share[RL_META_LAYERS];   // w_d / sum w_d
+
+vec4 rl_relief_texel(vec2 uv) {
+  vec3 n = vec3(0.0);
+  float d = 0.0;
+  for (int i = 0; i < RL_META_LAYERS; ++i) {
+    vec4 texel = RL_FETCH(rl_meta_layer[i], uv * rl_meta_tiling[i]);
+    n += rl_meta_normal_share[i] * rl_decode_normal(texel);
+    d += rl_meta_depth_share[i] * texel.a;
+  }
+  float len = length(n);
+  return vec4((len > 0.0 ? n / len : vec3(0.0, 0.0, 1.0)) * 0.5 + 0.5, d);
+}
+
+float rl_relief_depth(vec2 uv) {
+  float d = 0.0;
+  for (int i = 0; i < RL_META_LAYERS; ++i)
+    d += rl_meta_depth_share[i] * RL_FETCH(rl_meta_layer[i], uv * rl_meta_tiling[i]).a;
+  return d;
+}
+#else
+// The relief texel (normal rgb, depth a) and depth at uv: one fetch of the map.
+vec4 rl_relief_texel(vec2 uv) { return RL_FETCH(rl_relief, uv); }
+float rl_relief_depth(vec2 uv) { return RL_FETCH(rl_relief, uv).a; }
+#endif
+
+
 // A found hit. The ray is (u, v, depth)(t) = p + t * s with s.z = 1, so depth = p.z + t.
 struct RlHit {
   vec2 uv;      // texture coordinate of the hit
@@ -32,14 +74,6 @@ struct RlHit {
   bool hit;     // false: the routine found no surface
 };
 
-// normalize(rgb * 2 - 1); a texel that encodes the zero vector (quantised mid-grey) gives the
-// base normal instead of NaN. relief_map.cpp's decode_normal() is the same on the CPU.
-vec3 rl_decode_normal(vec4 texel) {
-  vec3 n = texel.xyz * 2.0 - 1.0;
-  float len = length(n);
-  return len > 0.0 ? n / len : vec3(0.0, 0.0, 1.0);
-}
-
 // Normal and colour where a search ends without a surface and the pass still draws it (on a
 // floor): a multilayer map's solid floor faces up in its floor colour (RL_LAYERED_FLOOR, set by
 // layered_floor_define()); a heightfield's floor texel has its own normal and colour.
@@ -48,7 +82,7 @@ void rl_floor_attributes(vec2 uv, out vec3 tn, out vec3 albedo) {
   tn = vec3(0.0, 0.0, 1.0);
   albedo = RL_LAYERED_FLOOR;
 #else
-  tn = rl_decode_normal(RL_FETCH(rl_relief, uv));
+  tn = rl_decode_normal(rl_relief_texel(uv));
   albedo = RL_FETCH(rl_color, uv).rgb;
 #endif
 }

@@ -7,9 +7,7 @@
 #include "core/grid_walk.h"
 
 namespace rl {
-namespace {
 
-// Smallest root of a t^2 + b t + c = 0 in [lo, hi], or NaN.
 double smallest_root_in(double a, double b, double c, double lo, double hi) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   double roots[2];
@@ -37,8 +35,6 @@ double smallest_root_in(double a, double b, double c, double lo, double hi) {
     if (roots[i] >= lo && roots[i] <= hi && !(roots[i] >= best)) best = roots[i];
   return best;
 }
-
-}  // namespace
 
 ReferenceHit intersect_heightfield(const ReliefMap& map, const glm::dvec3& origin,
                                    const glm::dvec3& direction, double t_max) {

@@ -21,6 +21,10 @@ struct ReferenceHit {
 // Ray: (uv, depth)(t) = origin + t * direction, t in [0, t_max]. Depth grows downward; the
 // map surface is depth d(u, v) in [0, 1]. Returns the first t where the ray is at or below
 // the surface. Rays with direction.z <= 0 that never go below the surface miss.
+// Smallest root of a t^2 + b t + c = 0 in [lo, hi] (numerically stable pair; a tangency lost
+// to rounding counts as a double root), or NaN.
+double smallest_root_in(double a, double b, double c, double lo, double hi);
+
 ReferenceHit intersect_heightfield(const ReliefMap& map, const glm::dvec3& origin,
                                    const glm::dvec3& direction, double t_max);
 

@@ -7,6 +7,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 
 #include "core/hash.h"
+#include "relief/meta_relief.h"
 
 namespace rl {
 namespace {
@@ -49,6 +50,22 @@ glm::dvec4 ReliefMap::sample_relief(double u, double v) const {
   return bilinear(*this, u, v, [&](int x, int y) { return glm::dvec4(relief[index(x, y)]); });
 }
 
+double ReliefMap::surface_depth(double u, double v) const {
+  return meta ? meta->depth(u, v) : sample_depth(u, v);
+}
+
+glm::dvec4 ReliefMap::surface_relief(double u, double v) const {
+  return meta ? meta->relief(u, v) : sample_relief(u, v);
+}
+
+double ReliefMap::surface_min_depth() const {
+  return meta ? meta->min_depth() : min_depth();
+}
+
+double ReliefMap::surface_max_depth() const {
+  return meta ? meta->max_depth() : max_depth();
+}
+
 glm::dvec4 ReliefMap::sample_color(double u, double v) const {
   return bilinear(*this, u, v, [&](int x, int y) { return glm::dvec4(color[index(x, y)]); });
 }
@@ -84,10 +101,15 @@ int LayerStack::used(size_t texel) const {
   return n;
 }
 
-size_t ReliefMap::gpu_bytes() const {
+size_t ReliefMap::gpu_bytes(bool meta_layers) const {
   size_t texel = quantized ? 4 : 16;
   const size_t ambient = ambient_visibility.empty() ? 0 : (quantized ? 1 : 4);
-  return static_cast<size_t>(width) * height * (texel * 2 + ambient);
+  size_t bytes = static_cast<size_t>(width) * height * (texel * 2 + ambient);
+  if (meta_layers && meta) {
+    bytes -= static_cast<size_t>(width) * height * texel;  // the bake is not sampled
+    for (const MetaLayer& l : meta->layers()) bytes += size_t(l.map.width) * l.map.height * texel;
+  }
+  return bytes;
 }
 
 glm::vec3 layer_normal_from_xy(float x, float y, int layer) {

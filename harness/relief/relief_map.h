@@ -4,12 +4,15 @@
 // colour map of the same size. The CPU samplers below reproduce GL_LINEAR + GL_REPEAT, so
 // the truth reconstructs the very surface the shaders sample.
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 namespace rl {
+
+class MetaRelief;  // relief/meta_relief.h
 
 // Several depth layers per texel (Policarpo & Oliveira 2006, Section 3): every crossing of
 // a vertical bake ray with a closed surface, sorted top to bottom, so a point at depth d is
@@ -56,6 +59,9 @@ struct ReliefMap {
   // The texture-space AO map (relief/ao_map.h), only where a scene asks for ambient_occlusion:
   // visibility in [0, 1] per texel, uploaded 8-bit when the map is quantised.
   std::vector<float> ambient_visibility;
+  // A meta-relief (relief/meta_relief.h): the surface is the combination of its layers and
+  // `relief` holds its bake; null for a plain map.
+  std::shared_ptr<const MetaRelief> meta;
 
   size_t index(int x, int y) const;  // wraps like GL_REPEAT
   float depth_texel(int x, int y) const { return relief[index(x, y)].a; }
@@ -63,11 +69,20 @@ struct ReliefMap {
   double sample_depth(double u, double v) const;
   glm::dvec4 sample_relief(double u, double v) const;
   glm::dvec4 sample_color(double u, double v) const;
+  // The surface the map stands for: its own samples, or a meta-relief's combination (Eqs. 1-2)
+  // of which `relief` is only the bake. What the truth traces and shades with.
+  double surface_depth(double u, double v) const;
+  glm::dvec4 surface_relief(double u, double v) const;
+  // Bounds of surface_depth (a meta-relief's may lie outside its bake's texels).
+  double surface_min_depth() const;
+  double surface_max_depth() const;
   float min_depth() const;
   float max_depth() const;
   // Hash of the size and contents: keys precompute caches and result rows.
   uint64_t content_hash() const;
-  size_t gpu_bytes() const;  // relief + colour (+ AO) textures as uploaded
+  // Relief + colour (+ AO) textures as uploaded; with `meta_layers`, a meta-relief's layer
+  // textures (combined per fetch) in place of its bake.
+  size_t gpu_bytes(bool meta_layers = false) const;
 };
 
 // Decodes an encoded normal like the shaders do: normalize(rgb * 2 - 1).

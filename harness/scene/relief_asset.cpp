@@ -1,8 +1,14 @@
 #include "scene/relief_asset.h"
 
+#include <algorithm>
+#include <chrono>
+#include <memory>
+
+#include "core/elapsed.h"
 #include "relief/image_io.h"
 #include "relief/layer_bake.h"
 #include "relief/mesh_bake.h"
+#include "relief/meta_relief.h"
 #include "relief/pattern_mesh.h"
 #include "relief/procedural.h"
 
@@ -23,36 +29,69 @@ BakeFrame relief_bake_frame(const ReliefSourceDesc& relief, const TriangleMesh& 
   return bake_frame(mesh, relief.mesh_up, 0.04, relief.layers > 0 ? 0.02 : 0.0);
 }
 
-ReliefMap build_relief_asset(const SceneDesc& scene, int resolution) {
+namespace {
+
+// One heightfield or layered map from `relief` at `resolution`, before quantisation. `tiling`:
+// how often it repeats per base tile (a meta-relief layer), which shrinks its texels on the
+// base and so steepens the normals derived from its depth.
+ReliefMap build_map(const SceneDesc& scene, const ReliefSourceDesc& relief, int resolution,
+                    double tiling) {
   const PlanarBase base = planar_base(scene);
-  const MapSize size = scene.relief.size_at(resolution);
+  const MapSize size = relief.size_at(resolution);
   ReliefMap map;
-  if (!scene.relief.mesh_path.empty()) {
-    const TriangleMesh mesh = load_mesh(scene.relief.mesh_path);
-    const BakeFrame frame = relief_bake_frame(scene.relief, mesh);
-    if (scene.relief.layers > 0)
-      map = bake_layers(mesh, frame, resolution, resolution, scene.relief.layers,
+  if (!relief.mesh_path.empty()) {
+    const TriangleMesh mesh = load_mesh(relief.mesh_path);
+    const BakeFrame frame = relief_bake_frame(relief, mesh);
+    if (relief.layers > 0)
+      map = bake_layers(mesh, frame, resolution, resolution, relief.layers,
                         {glm::length(base.dpdu()), glm::length(base.dpdv()), scene.depth}, true);
     else
       map = bake_mesh(mesh, frame, resolution, scene.projection);
-  } else if (scene.relief.pattern_mesh()) {
+  } else if (relief.pattern_mesh()) {
     // Baked at the map's resolution; normals as seen on this scene's base.
-    const TriangleMesh mesh = make_pattern_mesh(scene.relief.procedural, scene.relief.options,
-                                                "scene '" + scene.name + "'");
+    const TriangleMesh mesh =
+        make_pattern_mesh(relief.procedural, relief.options, "scene '" + scene.name + "'");
     map = bake_layers(with_neighbour_tiles(mesh), pattern_frame(), size.width, size.height,
-                      scene.relief.layers,
+                      relief.layers,
                       {glm::length(base.dpdu()), glm::length(base.dpdv()), scene.depth});
-  } else if (!scene.relief.procedural.empty()) {
-    map = make_procedural(scene.relief.procedural, resolution, scene.relief.options,
-                          scene.depth / base.texel_world(resolution), "scene '" + scene.name + "'");
+  } else if (!relief.procedural.empty()) {
+    map = make_procedural(relief.procedural, size.longer(), relief.options,
+                          scene.depth * tiling / base.texel_world(size.longer()),
+                          "scene '" + scene.name + "'");
   } else {
     // Normals from depth take the slope at the native texel size, before any resampling.
-    const double native_texel = base.texel_world(scene.relief.native.width);
-    map = load_relief_images(image_source(scene.relief), scene.depth / native_texel);
+    const double native_texel = base.texel_world(relief.native.width);
+    map = load_relief_images(image_source(relief), scene.depth * tiling / native_texel);
     map = resample(map, size.width, size.height);
   }
-  if (scene.quantize) quantize_8bit(map);
   return map;
+}
+
+}  // namespace
+
+ReliefMap build_relief_asset(const SceneDesc& scene, int resolution) {
+  ReliefMap map = build_map(scene, scene.relief, resolution, 1.0);
+  if (scene.quantize) quantize_8bit(map);
+  if (!scene.meta.active()) return map;
+  // A meta-relief: every layer at the sweep's resolution (its longer side), each at its tiling.
+  std::vector<MetaLayer> layers;
+  layers.push_back({map, 1.0, scene.meta.weight_normal, scene.meta.weight_depth});
+  for (const MetaLayerDesc& d : scene.meta.layers) {
+    ReliefMap layer = build_map(scene, d.relief, resolution, d.tiling);
+    if (scene.quantize) quantize_8bit(layer);
+    layers.push_back({std::move(layer), d.tiling, d.weight_normal, d.weight_depth});
+  }
+  auto meta = std::make_shared<const MetaRelief>(std::move(layers));
+  const int longer =
+      scene.meta.bake_resolution > 0 ? scene.meta.bake_resolution : std::max(map.width, map.height);
+  const int bake_w =
+      map.width >= map.height ? longer : std::max(1, longer * map.width / map.height);
+  const int bake_h =
+      map.width >= map.height ? std::max(1, longer * map.height / map.width) : longer;
+  ReliefMap baked = bake_meta_relief(*meta, bake_w, bake_h);
+  if (scene.quantize) quantize_8bit(baked);
+  baked.meta = std::move(meta);
+  return baked;
 }
 
 AoMap attach_ao_map(ReliefMap& map, const SceneDesc& scene, double texel_world) {
@@ -61,9 +100,39 @@ AoMap attach_ao_map(ReliefMap& map, const SceneDesc& scene, double texel_world) 
   o.directions = scene.ao.directions;
   o.filter = scene.ao.filter;
   o.height_texels = scene.ao.depth_of_map(scene.depth) / texel_world;
-  AoMap ao = cached_ao_map(map, o);
-  map.ambient_visibility = ao.visibility;
-  return ao;
+  // `texel_world` is layer 0's texel for a meta-relief; its bake may have another size.
+  const double layer0_width = map.meta ? map.meta->layers()[0].map.width : map.width;
+  if (!map.meta || scene.meta.ao_combine == MetaReliefDesc::AoCombine::Bake) {
+    o.height_texels *= map.width / layer0_width;
+    AoMap ao = cached_ao_map(map, o);
+    map.ambient_visibility = ao.visibility;
+    return ao;
+  }
+  // A meta-relief: each layer's AO map at its share of the depth and its texel size on the
+  // base, combined by product or minimum (Section IV-A) at the bake's texels.
+  AoMap combined;
+  combined.width = map.width;
+  combined.height = map.height;
+  combined.from_cache = true;
+  std::vector<std::vector<float>> per_layer;
+  for (size_t i = 0; i < map.meta->layers().size(); ++i) {
+    const MetaLayer& l = map.meta->layers()[i];
+    const double layer_texel = texel_world * layer0_width / (l.map.width * l.tiling);
+    AoMapOptions lo = o;
+    lo.height_texels = map.meta->depth_share(i) * scene.ao.depth_of_map(scene.depth) / layer_texel;
+    AoMap ao = cached_ao_map(l.map, lo);
+    combined.compute_ms += ao.compute_ms;
+    combined.from_cache = combined.from_cache && ao.from_cache;
+    per_layer.push_back(std::move(ao.visibility));
+  }
+  const auto start = std::chrono::steady_clock::now();
+  combined.visibility =
+      combine_ao_maps(*map.meta, per_layer, map.width, map.height,
+                      scene.meta.ao_combine == MetaReliefDesc::AoCombine::Min ? AoCombine::Min
+                                                                              : AoCombine::Product);
+  combined.compute_ms += ms_since(start);
+  map.ambient_visibility = combined.visibility;
+  return combined;
 }
 
 }  // namespace rl

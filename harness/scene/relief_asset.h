@@ -1,7 +1,9 @@
 #pragma once
 // Builds a scene's relief map at a texture resolution (its longer side; ReliefSourceDesc::
 // size_at): procedural maps are generated at that resolution, image maps are loaded and
-// resampled keeping their aspect; then quantised to 8 bits if the scene asks.
+// resampled keeping their aspect; then quantised to 8 bits if the scene asks. A scene with a
+// meta-relief gets the bake of its combination (relief/meta_relief.h) with the layers attached
+// (map.meta), each layer at that resolution (its longer side) and the scene's quantisation.
 #include "relief/ao_map.h"
 #include "relief/image_io.h"
 #include "relief/mesh_bake.h"
@@ -14,7 +16,9 @@ ReliefMap build_relief_asset(const SceneDesc& scene, int resolution);
 
 // Where the scene asks for ambient_occlusion, computes (or reads from the cache) the AO map of
 // the relief as tall as scene.ao.map_depth (the scene's depth unless it is a rescale), with
-// texels `texel_world` wide on the base, and stores it in map.ambient_visibility. Returns the
+// texels `texel_world` wide on the base (a meta-relief's layer 0), and stores it in
+// map.ambient_visibility: for a meta-relief, its layers' maps combined (MetaReliefDesc::AoCombine)
+// or the bake's own. Returns the
 // map's timing; does nothing (and returns an empty AoMap) otherwise.
 AoMap attach_ao_map(ReliefMap& map, const SceneDesc& scene, double texel_world);
 

@@ -113,6 +113,33 @@ struct AmbientOcclusionDesc {
   double rescale(double depth) const { return depth / depth_of_map(depth); }
 };
 
+// A meta-relief (Limberger, Schetinger & Oliveira, Section III; relief/meta_relief.h): finer
+// relief layers added on top of the scene's relief (layer 0), each with its own source,
+// resolution, tiling and weights.
+struct MetaLayerDesc {
+  ReliefSourceDesc relief;
+  double tiling = 1;  // repeats per unit of the base's texture coordinate (fractional allowed)
+  double weight_normal = 1, weight_depth = 1;  // w_n, w_d of Eqs. 1-2
+};
+
+// Layers of a meta-relief, the scene's relief included: the shaders bind one texture unit each
+// (units 10 to 17).
+inline constexpr int kMaxMetaLayers = 8;
+
+struct MetaReliefDesc {
+  std::vector<MetaLayerDesc> layers;           // the finer layers (layer 0 is scene.relief)
+  double weight_normal = 1, weight_depth = 1;  // layer 0's w_n, w_d
+  // Runtime: the shader samples every layer per fetch (techniques with meta_relief support).
+  // Baked: one map of the combination at bake_resolution, for every heightfield technique.
+  enum class Combine { Runtime, Baked } combine = Combine::Runtime;
+  int bake_resolution = 0;  // longer side of the bake; 0 = layer 0's size
+  // The AO map of the combination: the layers' maps multiplied or their minimum (Section IV-A),
+  // or computed on the bake itself.
+  enum class AoCombine { Product, Min, Bake } ao_combine = AoCombine::Product;
+  bool active() const { return !layers.empty(); }
+  bool runtime() const { return active() && combine == Combine::Runtime; }  // combined per fetch
+};
+
 struct SceneDesc {
   std::string name;
   Framing framing = Framing::Fit;
@@ -133,6 +160,7 @@ struct SceneDesc {
   bool quantize = true;  // 8-bit textures like the papers; false keeps float
   EffectSet effects;
   AmbientOcclusionDesc ao;  // used when effects has AmbientOcclusion
+  MetaReliefDesc meta;      // finer relief layers on top of `relief`, if any
   glm::dvec3 light_position{0.9, -0.6, 1.4};
   Material material;
   double fov_deg = 40;

@@ -23,6 +23,10 @@ void check_sweep_assets(const SweepConfig& config) {
       const ReliefSourceDesc& r = scene.relief;
       if (!r.normal_path.empty() || !r.depth_path.empty()) load_relief_images(image_source(r), 1.0);
       if (!r.mesh_path.empty()) load_mesh(r.mesh_path);
+      where = at(true, "meta_relief");
+      for (const MetaLayerDesc& layer : scene.meta.layers)
+        if (!layer.relief.normal_path.empty() || !layer.relief.depth_path.empty())
+          load_relief_images(image_source(layer.relief), 1.0);
       where = at(false, "base");
       if (scene.base.kind == "file") load_mesh(scene.base.path);
       where = at(false, "objects");

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "sweep/config_effects.h"
+#include "sweep/config_meta.h"
 #include "sweep/config_relief.h"
 
 namespace rl {
@@ -96,7 +97,8 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
                  "shadow_bias", "ambient",
                  "diffuse",     "specular",
                  "shininess",   "shadow_intensity",
-                 "framing",     "ambient_occlusion"},
+                 "framing",     "ambient_occlusion",
+                 "meta_relief"},
              src, "[[scene]]");
   SceneDesc& s = parsed.scene;
   parsed.sites.scene = src.at(node);
@@ -186,6 +188,7 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
   parse_base(t, src, base_dir, s, canon, parsed.sites);
   parse_objects(t, src, base_dir, s, canon);
   parse_effect_options(t, src, node, s, canon);
+  parse_meta_relief(t, src, base_dir, node, s, canon);
   canon["name"] = s.name;
   canon["proxy"] = s.proxy == Proxy::Box ? "box" : "base";
   canon["truth"] = truth_level_name(s.truth);

@@ -143,6 +143,12 @@ void check_technique_sweep(const TechniqueSweep& ts, const std::vector<SceneDesc
       fail(ts.where, "technique '" + ts.name + "' cannot render scene '" + s.name +
                          "', a relief impostor (a mesh baked into layers, seen from both "
                          "sides); restrict it with scenes = [...]");
+    if (runs && s.meta.runtime() && !info.meta_relief)
+      fail(ts.where, "technique '" + ts.name +
+                         "' cannot combine the meta-relief layers of scene '" + s.name +
+                         "' at run time (its search needs one map); set "
+                         "combine = \"baked\" in the scene's meta_relief or restrict it with "
+                         "scenes = [...]");
     if (runs && s.proxy == Proxy::Box && !info.box_proxy)
       fail(ts.where, "technique '" + ts.name + "' cannot render scene '" + s.name +
                          "' with proxy = \"box\" (it only shades the base surface); restrict "

@@ -207,7 +207,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       const AoMap ao = attach_ao_map(asset->map, scene, asset->texel_world);
       asset->ao_ms = ao.compute_ms;
       asset->ao_from_cache = ao.from_cache;
-      asset->relief = std::make_unique<GpuRelief>(asset->map);
+      asset->relief = std::make_unique<GpuRelief>(asset->map, scene.meta.runtime());
       asset->build_ms = ms_since(t0);
       asset_key = cell.asset_key;
       truth_key.clear();

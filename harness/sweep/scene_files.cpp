@@ -31,6 +31,17 @@ std::string file_id(const std::string& path) {
   return file_name(path) + ":" + content_hash(path);
 }
 
+// An image relief's native size, and its files' hashes into its canonical description.
+void read_relief_images(ReliefSourceDesc& r, nlohmann::json& canon, const std::string& site) {
+  if (r.normal_path.empty() && r.depth_path.empty()) return;
+  const std::string& sized = r.depth_path.empty() ? r.normal_path : r.depth_path;
+  auto in = OIIO::ImageInput::open(sized);
+  if (!in) throw ConfigError(site + ": cannot read image " + sized + ": " + OIIO::geterror());
+  r.native = {in->spec().width, in->spec().height};
+  for (const std::string* p : {&r.normal_path, &r.depth_path, &r.color_path})
+    if (!p->empty()) canon["files"].push_back({file_name(*p), content_hash(*p)});
+}
+
 }  // namespace
 
 void read_scene_files(ParsedScene& parsed) {
@@ -44,16 +55,10 @@ void read_scene_files(ParsedScene& parsed) {
       throw ConfigError(site + ": scene '" + s.name + "': " + e.what());
     }
   };
-  if (!r.normal_path.empty() || !r.depth_path.empty()) {
-    const std::string& sized = r.depth_path.empty() ? r.normal_path : r.depth_path;
-    auto in = OIIO::ImageInput::open(sized);
-    if (!in)
-      throw ConfigError(parsed.sites.relief + ": cannot read image " + sized + ": " +
-                        OIIO::geterror());
-    r.native = {in->spec().width, in->spec().height};
-    for (const std::string* p : {&r.normal_path, &r.depth_path, &r.color_path})
-      if (!p->empty()) canon["relief"]["files"].push_back({file_name(*p), content_hash(*p)});
-  }
+  read_relief_images(r, canon["relief"], parsed.sites.relief);
+  for (size_t i = 0; i < s.meta.layers.size(); ++i)
+    read_relief_images(s.meta.layers[i].relief, canon["meta_relief"]["layers"][i]["relief"],
+                       parsed.sites.relief);
   if (!r.mesh_path.empty()) {
     canon["relief"]["mesh"] = file_id(r.mesh_path);
     // A baked mesh keeps its proportions: the relief depth follows from the footprint.

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "gl/context.h"
+#include "relief/meta_relief.h"
 
 namespace rl {
 namespace {
@@ -24,7 +25,7 @@ GLuint make_texture(int w, int h, GLenum internal_format, GLenum format, const f
 
 }  // namespace
 
-GpuRelief::GpuRelief(const ReliefMap& map) {
+GpuRelief::GpuRelief(const ReliefMap& map, bool meta_layers) {
   GlContext::shared();
   const GLenum rgba = map.quantized ? GL_RGBA8 : GL_RGBA32F;
   relief_ = make_texture(map.width, map.height, rgba, GL_RGBA,
@@ -34,19 +35,26 @@ GpuRelief::GpuRelief(const ReliefMap& map) {
   if (!map.ambient_visibility.empty())
     ambient_ = make_texture(map.width, map.height, map.quantized ? GL_R8 : GL_R32F, GL_RED,
                             map.ambient_visibility.data());
-  bytes_ = map.gpu_bytes();
+  if (meta_layers && map.meta)
+    for (const MetaLayer& layer : map.meta->layers())
+      meta_layers_.push_back(make_texture(layer.map.width, layer.map.height, rgba, GL_RGBA,
+                                          reinterpret_cast<const float*>(layer.map.relief.data())));
+  bytes_ = map.gpu_bytes(!meta_layers_.empty());
 }
 
 GpuRelief::~GpuRelief() {
   glDeleteTextures(1, &relief_);
   glDeleteTextures(1, &color_);
   if (ambient_) glDeleteTextures(1, &ambient_);
+  if (!meta_layers_.empty()) glDeleteTextures(GLsizei(meta_layers_.size()), meta_layers_.data());
 }
 
 void GpuRelief::bind(GLuint relief_unit, GLuint color_unit) const {
   glBindTextureUnit(relief_unit, relief_);
   glBindTextureUnit(color_unit, color_);
   if (ambient_) glBindTextureUnit(8, ambient_);
+  for (size_t i = 0; i < meta_layers_.size(); ++i)
+    glBindTextureUnit(GLuint(10 + i), meta_layers_[i]);
 }
 
 GpuBase::GpuBase(const BaseGeometry& g) {

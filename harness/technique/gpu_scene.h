@@ -1,6 +1,8 @@
 #pragma once
 // GPU resources shared by every technique of one (scene, texture resolution): the relief and
 // colour textures and the base geometry. Created once, reused by all rows that need them.
+#include <vector>
+
 #include <epoxy/gl.h>
 
 #include "relief/relief_map.h"
@@ -10,7 +12,9 @@ namespace rl {
 
 class GpuRelief {
  public:
-  explicit GpuRelief(const ReliefMap& map);  // RGBA8 when the map is quantised, else RGBA32F
+  // RGBA8 when the map is quantised, else RGBA32F. `meta_layers`: also the layers of the map's
+  // meta-relief, for shaders that combine them per fetch (units 10 + i).
+  explicit GpuRelief(const ReliefMap& map, bool meta_layers = false);
   ~GpuRelief();
   GpuRelief(const GpuRelief&) = delete;
   GpuRelief& operator=(const GpuRelief&) = delete;
@@ -20,6 +24,7 @@ class GpuRelief {
 
  private:
   GLuint relief_ = 0, color_ = 0, ambient_ = 0;
+  std::vector<GLuint> meta_layers_;
   size_t bytes_ = 0;
 };
 

@@ -1,10 +1,13 @@
 #include "technique/shader_technique.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <vector>
 
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/render_target.h"
+#include "relief/meta_relief.h"
 #include "technique/scene_uniforms.h"
 
 namespace rl {
@@ -16,6 +19,22 @@ Defines layered_floor_define(const ReliefMap& map) {
                                    std::to_string(c.b) + ")"}};
 }
 
+void set_meta_relief_uniforms(GLuint program, const ReliefMap& map) {
+  if (!map.meta) throw std::logic_error("a meta-relief variant without the map's layers");
+  std::vector<float> tiling, normal_share, depth_share;
+  for (size_t i = 0; i < map.meta->layers().size(); ++i) {
+    tiling.push_back(float(map.meta->layers()[i].tiling));
+    normal_share.push_back(float(map.meta->normal_share(i)));
+    depth_share.push_back(float(map.meta->depth_share(i)));
+  }
+  const GLsizei n = GLsizei(tiling.size());
+  glProgramUniform1fv(program, glGetUniformLocation(program, "rl_meta_tiling"), n, tiling.data());
+  glProgramUniform1fv(program, glGetUniformLocation(program, "rl_meta_normal_share"), n,
+                      normal_share.data());
+  glProgramUniform1fv(program, glGetUniformLocation(program, "rl_meta_depth_share"), n,
+                      depth_share.data());
+}
+
 SurfaceVariant ShaderTechnique::variant_of(const SceneDesc& scene) {
   return {scene.proxy,
           scene.empty_floor,
@@ -24,7 +43,8 @@ SurfaceVariant ShaderTechnique::variant_of(const SceneDesc& scene) {
           scene.base.curved() && scene.relief.layers > 0,
           scene.effects.has(Effect::AmbientOcclusion) &&
               scene.ao.update == AmbientOcclusionDesc::Update::Eq6 &&
-              scene.ao.rescale(scene.depth) != 1.0};
+              scene.ao.rescale(scene.depth) != 1.0,
+          scene.meta.runtime() ? 1 + int(scene.meta.layers.size()) : 0};
 }
 
 bool ShaderTechnique::draws_back_faces(const SurfaceVariant& variant) const {
@@ -48,6 +68,7 @@ ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Ki
   if (variant.impostor) d.defines["RL_IMPOSTOR"] = "1";
   if (draws_back_faces(variant)) d.defines["RL_TWO_SIDED"] = "1";
   if (variant.ao_eq6 && effects.has(Effect::AmbientOcclusion)) d.defines["RL_AO_EQ6"] = "1";
+  if (variant.meta_layers > 0) d.defines["RL_META_LAYERS"] = std::to_string(variant.meta_layers);
   return d;
 }
 
@@ -74,6 +95,7 @@ void ShaderTechnique::render(const FrameInput& frame, RenderTarget::Kind target)
   set_uniform(p, "rl_depth_scale", s.depth);
   set_uniform(p, "rl_shadow_bias", s.shadow_bias);
   set_uniform(p, "rl_ao_rescale", s.ao.rescale(s.depth));
+  if (variant_of(s).meta_layers > 0) set_meta_relief_uniforms(p, frame.map);
   frame.relief.bind();
   bind_resources(p);
   glEnable(GL_DEPTH_TEST);

@@ -13,6 +13,8 @@ namespace rl {
 // The #define a technique on a multilayer map adds so its misses shade like the truth's solid
 // floor (kLayeredFloorColor, facing up); empty for heightfield maps.
 Defines layered_floor_define(const ReliefMap& map);
+// The tilings and weight shares of a meta-relief combined per fetch (RL_META_LAYERS).
+void set_meta_relief_uniforms(GLuint program, const ReliefMap& map);
 
 // How a scene's relief is drawn, as far as the surface shader is concerned.
 struct SurfaceVariant {
@@ -22,6 +24,7 @@ struct SurfaceVariant {
   bool impostor = false;
   bool two_sided = false;  // a pattern on a closed curved base: back faces show through gaps
   bool ao_eq6 = false;     // ambient_occlusion on a rescaled relief, updated by Eq. 6
+  int meta_layers = 0;     // a meta-relief combined per fetch: its layer count (RL_META_LAYERS)
 };
 
 class ShaderTechnique : public Technique {

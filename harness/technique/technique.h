@@ -38,6 +38,9 @@ struct TechniqueInfo {
   // Searches upward as well as downward: renders relief impostors (SceneDesc::impostor()) and
   // the back faces of a pattern on a closed curved base seen through its gaps.
   bool impostor = false;
+  // Reads the relief only through rl_relief_texel / rl_relief_depth (relief_common.glsl), so
+  // it runs on a meta-relief whose layers are combined per fetch (MetaReliefDesc::Runtime).
+  bool meta_relief = false;
 };
 
 // Throws std::logic_error naming the technique when its metadata is inconsistent: an empty or

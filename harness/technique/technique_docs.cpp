@@ -26,13 +26,15 @@ std::string effects_cell(const EffectSet& effects) {
 
 std::string techniques_markdown() {
   std::string out =
-      "| technique | what | source | effects | proxies |\n| --- | --- | --- | --- | --- |\n";
+      "| technique | what | source | effects | proxies | meta-relief |\n"
+      "| --- | --- | --- | --- | --- | --- |\n";
   const auto& registry = TechniqueRegistry::instance();
   for (const std::string& name : registry.names()) {
     const TechniqueInfo& info = registry.find(name)->info;
     out += "| [`" + name + "`](techniques/" + name + "/README.md) | " + cell(info.title) + " | " +
            cell(info.citation) + " | " + effects_cell(info.effects) + " | base" +
-           (info.box_proxy ? ", box" : "") + (info.impostor ? ", impostor" : "") + " |\n";
+           (info.box_proxy ? ", box" : "") + (info.impostor ? ", impostor" : "") + " | " +
+           (info.meta_relief ? "runtime or baked" : "baked") + " |\n";
   }
   return out;
 }
@@ -40,7 +42,11 @@ std::string techniques_markdown() {
 std::string interface_markdown(const TechniqueInfo& info) {
   std::string out = "Effects it can simulate: " + effects_cell(info.effects) + ". Draws: the base" +
                     (info.box_proxy ? " or the relief's box proxy" : "") +
-                    (info.impostor ? "; relief impostors, from both sides" : "") + ".\n\n";
+                    (info.impostor ? "; relief impostors, from both sides" : "") +
+                    ". Meta-reliefs: " +
+                    (info.meta_relief ? "its layers combined per fetch, or their bake"
+                                      : "their bake (its search needs one map)") +
+                    ".\n\n";
   if (info.params.empty()) return out + "Parameters: none.\n";
   out += "| parameter | kind | default | range | meaning |\n| --- | --- | ---: | --- | --- |\n";
   for (const ParamSpec& p : info.params) {

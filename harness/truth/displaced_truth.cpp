@@ -1,5 +1,7 @@
 #include "truth/displaced_truth.h"
 
+#include "relief/meta_relief.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -29,7 +31,7 @@ std::vector<double> grid_lines(double lo, double hi, int texels, int k) {
 
 glm::dvec3 displaced(const glm::dvec3& p, const glm::dvec3& n, const glm::dvec2& uv,
                      const ReliefMap& map, double depth) {
-  return p - n * (depth * map.sample_depth(uv.x, uv.y));
+  return p - n * (depth * map.surface_depth(uv.x, uv.y));
 }
 
 // A point of the base mesh as the rasteriser sees it: triangle t at barycentrics (1 - b1 - b2,
@@ -86,7 +88,9 @@ void locate_on_chart(const SurfaceChart& c, unsigned first, const glm::dvec2& uv
 DisplacedTruth::DisplacedTruth(const BaseMesh& base, const ReliefMap& map, double depth,
                                double tolerance, size_t max_triangles) {
   const auto start = std::chrono::steady_clock::now();
-  if (!base.charts.empty())
+  // Chart grids run along one map's crease lines; a meta-relief's layers have several, so its
+  // base triangles are split uniformly and the deviation measured like a mesh base's.
+  if (!base.charts.empty() && !map.meta)
     build_from_charts(base, map, depth, tolerance, max_triangles);
   else
     build_from_triangles(base, map, depth, tolerance, max_triangles);
@@ -205,11 +209,13 @@ void DisplacedTruth::build_from_charts(const BaseMesh& base, const ReliefMap& ma
 
 void DisplacedTruth::build_from_triangles(const BaseMesh& base, const ReliefMap& map, double depth,
                                           double tolerance, size_t max_triangles) {
-  double longest = 0;  // longest base edge, in texels
+  double longest = 0;  // longest base edge, in texels (of a meta-relief's finest layer)
+  const glm::dvec2 texels =
+      map.meta ? glm::dvec2(map.meta->finest_texels()) : glm::dvec2(map.width, map.height);
   for (const glm::uvec3& t : base.triangles)
     for (int e = 0; e < 3; ++e) {
       const glm::dvec2 d = base.uv[t[(e + 1) % 3]] - base.uv[t[e]];
-      longest = std::max(longest, glm::length(d * glm::dvec2(map.width, map.height)));
+      longest = std::max(longest, glm::length(d * texels));
     }
   const size_t cap =
       std::max<size_t>(1, max_triangles / std::max<size_t>(1, base.triangles.size()));

@@ -13,6 +13,7 @@
 #include "truth/heightfield_truth.h"
 #include "truth/layers_truth.h"
 #include "truth/mesh_truth.h"
+#include "truth/meta_relief_truth.h"
 #include "truth/pattern_base_truth.h"
 
 namespace rl {
@@ -32,6 +33,9 @@ std::unique_ptr<TruthSurface> make_truth(const SceneDesc& scene, const ReliefMap
     return std::make_unique<MeshTruth>(mesh, relief_bake_frame(scene.relief, mesh),
                                        scene.projection);
   }
+  // A meta-relief's truth is its layers' combination, whether the technique combines them at
+  // run time or samples a bake.
+  if (map.meta) return std::make_unique<MetaReliefTruth>(map.meta);
   return std::make_unique<HeightfieldTruth>(map, tolerance);
 }
 
@@ -42,8 +46,7 @@ SceneTruth::SceneTruth(const SceneDesc& scene, const ReliefMap& map, double tole
     const TriangleMesh pattern = make_pattern_mesh(scene.relief.procedural, scene.relief.options,
                                                    "scene '" + scene.name + "'");
     pattern_ = std::make_unique<PatternBaseTruth>(
-        pattern, base ? *base : make_base_mesh(scene.base, scene.size, scene.tile),
-        scene.depth);
+        pattern, base ? *base : make_base_mesh(scene.base, scene.size, scene.tile), scene.depth);
   } else if (scene.base.curved()) {
     displaced_ = std::make_unique<DisplacedTruth>(
         base ? *base : make_base_mesh(scene.base, scene.size, scene.tile), map, scene.depth,

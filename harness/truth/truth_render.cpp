@@ -62,7 +62,7 @@ bool trace_primary(const TruthSurface& truth, const ReliefMap& map, const SceneD
     double t_in = 0, t_out = 0;
     if (!clip_to_box(o, d, scene.tile, t_in, t_out)) return false;
     const glm::dvec3 entry = o + d * t_in;
-    if (entry.z > kAboveTop && entry.z >= map.sample_depth(entry.x, entry.y)) {
+    if (entry.z > kAboveTop && entry.z >= map.surface_depth(entry.x, entry.y)) {
       t_start = t_in;  // entered through a side below the surface: the box's wall
       h.hit = true;
       h.t = 0;
@@ -202,7 +202,7 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
             return glm::normalize(t.x * glm::normalize(base.dpdu()) +
                                   t.y * glm::normalize(base.dpdv()) + t.z * base.normal());
           };
-          glm::dvec3 n = in_base_frame(decode_normal(map.sample_relief(uv.x, uv.y)));
+          glm::dvec3 n = in_base_frame(decode_normal(map.surface_relief(uv.x, uv.y)));
           if (h.tangent_normal) {
             n = in_base_frame(h.normal);
           } else if (h.has_normal) {
@@ -303,7 +303,7 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
           // the surface's own normal and colour (a pattern).
           glm::dvec3 n = h.surface_normal, albedo = h.albedo;
           if (!h.has_surface) {
-            const glm::dvec3 tn = decode_normal(map.sample_relief(h.uv.x, h.uv.y));
+            const glm::dvec3 tn = decode_normal(map.surface_relief(h.uv.x, h.uv.y));
             n = glm::normalize(tn.x * h.tangent + tn.y * h.bitangent + tn.z * h.normal);
             albedo = glm::dvec3(map.sample_color(h.uv.x, h.uv.y));
           }
@@ -322,7 +322,7 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
             // Hemisphere rays about the base's normal, as far as they stay within the relief's
             // shell over a locally flat base: the relief occludes itself, while the base's own
             // shape (a handle over the body) is what no texture-space AO can know.
-            const double below_top = scene.depth * map.sample_depth(h.uv.x, h.uv.y) + 1e-6;
+            const double below_top = scene.depth * map.surface_depth(h.uv.x, h.uv.y) + 1e-6;
             ao = reference_ao(
                 scene.ao.samples, ao_seed(i), h.normal, h.tangent, [&](const glm::dvec3& w) {
                   const double rise = std::max(glm::dot(w, h.normal), 1e-6);

@@ -13,7 +13,8 @@ class NormalMapping final : public Described<NormalMapping, ShaderTechnique> {
                 "Book chapter 5, 'Parallax mapping' and Figure 5.9 (the normal-map baseline); "
                 "Chapter 3 bump mapping",
             .effects = {Effect::DepthCorrect, Effect::AmbientOcclusion},
-            .params = {}};
+            .params = {},
+            .meta_relief = true};
   }
 
  protected:

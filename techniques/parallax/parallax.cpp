@@ -12,22 +12,24 @@ class ParallaxMapping final : public Described<ParallaxMapping, ShaderTechnique>
         .title = "Parallax (offset) mapping",
         .citation = "Book chapter 5, 'Parallax mapping', Listing 5.1 (after Kaneko et al. 2001)",
         .effects = {Effect::DepthCorrect, Effect::AmbientOcclusion},
-        .params = {
-            {.name = "offset_limiting",
-             .kind = ParamKind::Bool,
-             .default_value = 1,
-             .min_value = 0,
-             .max_value = 1,
-             .doc =
-                 "shift by d * view.xy of the unit view vector (Listing 5.1) instead of reaching "
-                 "the view ray at depth d"},
-            {.name = "bias",
-             .kind = ParamKind::Float,
-             .default_value = 0,
-             .min_value = -1,
-             .max_value = 1,
-             .doc = "depth subtracted before shifting (Listing 5.1 uses half the scale because its "
-                    "polygon sits mid-relief; ReliefLab's base is the top, so 0)"}}};
+        .params =
+            {{.name = "offset_limiting",
+              .kind = ParamKind::Bool,
+              .default_value = 1,
+              .min_value = 0,
+              .max_value = 1,
+              .doc =
+                  "shift by d * view.xy of the unit view vector (Listing 5.1) instead of reaching "
+                  "the view ray at depth d"},
+             {.name = "bias",
+              .kind = ParamKind::Float,
+              .default_value = 0,
+              .min_value = -1,
+              .max_value = 1,
+              .doc =
+                  "depth subtracted before shifting (Listing 5.1 uses half the scale because its "
+                  "polygon sits mid-relief; ReliefLab's base is the top, so 0)"}},
+        .meta_relief = true};
   }
 
  protected:

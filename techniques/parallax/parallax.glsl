@@ -6,7 +6,7 @@
 #include "harness/glsl/relief_common.glsl"
 
 RlHit rl_intersect(vec3 p, vec3 s) {
-  float d = RL_FETCH(rl_relief, p.xy).a - RL_PARALLAX_BIAS;
+  float d = rl_relief_depth(p.xy) - RL_PARALLAX_BIAS;
   vec2 offset = s.xy * d;
 #if RL_OFFSET_LIMITING
   // Unit tangent-space view z from the texture-space step s (s.z = 1 depth unit).
@@ -20,7 +20,7 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   // shading fetch, so it costs no extra fetch in a real shader. Here it is an extra counted
   // fetch only in ray-probe mode, where no shading fetch follows.
 #ifdef RL_PROBE
-  h.depth = RL_FETCH(rl_relief, h.uv).a;
+  h.depth = rl_relief_depth(h.uv);
 #else
   h.depth = textureLod(rl_relief, h.uv, 0.0).a;
 #endif

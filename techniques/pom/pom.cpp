@@ -25,7 +25,8 @@ class ParallaxOcclusion final : public Described<ParallaxOcclusion, ShaderTechni
                         .default_value = 32,
                         .min_value = 2,
                         .max_value = 1024,
-                        .doc = "linear search samples at grazing views"}}};
+                        .doc = "linear search samples at grazing views"}},
+            .meta_relief = true};
   }
   static void validate(const ParamValues& p, const std::string& where) {
     if (p.at("min_samples") > p.at("max_samples"))

@@ -12,12 +12,12 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   samples = clamp(samples, RL_MIN_SAMPLES, RL_MAX_SAMPLES);
   float size = (1.0 - p.z) / float(samples);
   // gap(t) = map depth - ray depth: positive while the ray is above the surface.
-  float gap_prev = RL_FETCH(rl_relief, p.xy).a - p.z;
+  float gap_prev = rl_relief_depth(p.xy) - p.z;
   float t_prev = 0.0;
   for (int i = 1; i <= RL_MAX_SAMPLES; i++) {
     if (i > samples) break;
     float t = size * float(i);
-    float gap = RL_FETCH(rl_relief, p.xy + s.xy * t).a - (p.z + t);
+    float gap = rl_relief_depth(p.xy + s.xy * t) - (p.z + t);
     if (gap <= 0.0) {
       // The ray crosses the segment between the two samples where the gaps meet zero.
       float w = gap_prev > 0.0 ? gap_prev / (gap_prev - gap) : 0.0;

@@ -28,7 +28,8 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
               .min_value = 0,
               .max_value = 32,
               .doc = "binary search refinements after the linear search (Listing 5.3: 5)"}},
-        .box_proxy = true};
+        .box_proxy = true,
+        .meta_relief = true};
   }
 
  protected:

@@ -17,7 +17,7 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   float best = 1.0 - p.z;  // no inside point found: the bottom
   for (int i = 0; i < linear_steps - 1; i++) {
     t += size;
-    if (p.z + t >= RL_FETCH(rl_relief, p.xy + s.xy * t).a) {
+    if (p.z + t >= rl_relief_depth(p.xy + s.xy * t)) {
       best = t;
       break;
     }
@@ -25,7 +25,7 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   t = best;
   for (int i = 0; i < binary_steps; i++) {
     size *= 0.5;
-    if (p.z + t >= RL_FETCH(rl_relief, p.xy + s.xy * t).a) {
+    if (p.z + t >= rl_relief_depth(p.xy + s.xy * t)) {
       best = t;
       t -= 2.0 * size;
     }

@@ -35,7 +35,8 @@ class ReliefSilhouette final : public Described<ReliefSilhouette, ShaderTechniqu
               .max_value = 1,
               .doc = "1: ray-quadric distance of Equation 5.2 with the discriminant test; 0: the "
                      "vertical distance of Equation 5.3 (the chapter's 'twofold speedup')"}},
-        .box_proxy = false};
+        .box_proxy = false,
+        .meta_relief = true};
   }
 
  protected:

@@ -55,7 +55,7 @@ RlHit rl_intersect_curved(vec3 p, vec3 s, vec2 quadric, vec3 metric) {
   for (int i = 0; i < linear_steps; i++) {
     t += size;
     if (rl_bent_depth(Vw * t, quadric, u_dir, a_u, metric.z) >=
-        RL_FETCH(rl_relief, p.xy + s.xy * t).a) {
+        rl_relief_depth(p.xy + s.xy * t)) {
       best = t;
       break;
     }
@@ -65,7 +65,7 @@ RlHit rl_intersect_curved(vec3 p, vec3 s, vec2 quadric, vec3 metric) {
   for (int i = 0; i < binary_steps; i++) {
     size *= 0.5;
     if (rl_bent_depth(Vw * (t + size), quadric, u_dir, a_u, metric.z) >=
-        RL_FETCH(rl_relief, p.xy + s.xy * (t + size)).a)
+        rl_relief_depth(p.xy + s.xy * (t + size)))
       best = t + size;
     else
       t += size;

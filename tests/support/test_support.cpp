@@ -49,7 +49,7 @@ Measured measure(const SceneDesc& scene, const std::string& technique, const Par
   const int res = scene.relief.native.longer();
   ReliefMap map = build_relief_asset(scene, res);
   attach_ao_map(map, scene, texel_world(scene, res));
-  GpuRelief relief(map);
+  GpuRelief relief(map, scene.meta.runtime());
   GpuBase base(make_base_geometry(scene));
   ObjectPass objects(scene.objects);
   const SceneTruth truth(scene, map, truth_tolerance);
