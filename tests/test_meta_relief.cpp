@@ -11,6 +11,7 @@
 #include "relief/heightfield_reference.h"
 #include "relief/meta_relief.h"
 #include "relief/procedural.h"
+#include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
 #include "technique/shader_technique.h"
@@ -214,6 +215,37 @@ TEST(MetaReliefRender, EveryRuntimeTechniqueCombinesFractionalTilingsFinitely) {
   }
 }
 
+TEST(MetaReliefRender, RuntimeAoIsTheLayersAoCombinedAtTheHitPastTheFirstTile) {
+  // Three base tiles: a 5.5 tiling does not repeat with the base, so a map of the combination
+  // over one tile would seam at u = 1 and 2; the per-fetch combination must not.
+  for (auto how : {MetaReliefDesc::AoCombine::Product, MetaReliefDesc::AoCombine::Min}) {
+    SceneDesc s = meta_scene("bricks", 20, 5.5, 0.3);
+    s.tile = 3;
+    s.effects.add(Effect::AmbientOcclusion);
+    s.ao.samples = 4;
+    s.meta.ao_combine = how;
+    const test::Measured m =
+        test::measure(s, "relief", {{"linear_steps", 16}, {"binary_steps", 5}}, View{45, 30}, 64);
+    ReliefMap map = build_relief_asset(s, 48);
+    attach_ao_map(map, s, texel_world(s, 48));
+    ASSERT_EQ(map.meta_ambient_visibility.size(), 2u);
+    const AoCombine cpu =
+        how == MetaReliefDesc::AoCombine::Min ? AoCombine::Min : AoCombine::Product;
+    int checked = 0, past_first_tile = 0;
+    for (size_t i = 0; i < m.technique.size(); ++i) {
+      if (!m.technique.covered(i)) continue;
+      const glm::dvec2 uv(m.technique.hit[i].x, m.technique.hit[i].y);
+      const double expected = combined_ao(*map.meta, map.meta_ambient_visibility, uv.x, uv.y, cpu);
+      // GL_LINEAR weights are 8-bit fractions on llvmpipe.
+      ASSERT_NEAR(m.technique.aux[i].x, expected, 4e-3) << "uv " << uv.x << ", " << uv.y;
+      ++checked;
+      past_first_tile += uv.x > 1.0 || uv.y > 1.0;
+    }
+    EXPECT_GT(checked, 1000);
+    EXPECT_GT(past_first_tile, 500);
+  }
+}
+
 TEST(MetaReliefRender, ScenesWithoutMetaReliefCompileNoLayerCombination) {
   GlContext::shared();
   for (const std::string& name : TechniqueRegistry::instance().names()) {
@@ -228,6 +260,19 @@ TEST(MetaReliefRender, ScenesWithoutMetaReliefCompileNoLayerCombination) {
         ShaderLibrary::shared().program(shader->surface_program({}, target, meta));
     EXPECT_EQ(glGetUniformLocation(plain, "rl_meta_tiling"), -1) << name;
     EXPECT_NE(glGetUniformLocation(combined, "rl_meta_tiling"), -1) << name;
+    if (!t->info().effects.has(Effect::AmbientOcclusion)) continue;
+    // With AO, the layers' maps per fetch (product or minimum), not the combined map.
+    for (auto how : {MetaReliefDesc::AoCombine::Product, MetaReliefDesc::AoCombine::Min}) {
+      meta.meta_ao = how;
+      const GLuint ao = ShaderLibrary::shared().program(
+          shader->surface_program({Effect::AmbientOcclusion}, target, meta));
+      EXPECT_NE(glGetUniformLocation(ao, "rl_meta_ao"), -1) << name;
+      EXPECT_EQ(glGetUniformLocation(ao, "rl_ao"), -1) << name;
+    }
+    meta.meta_ao = MetaReliefDesc::AoCombine::Bake;
+    const GLuint baked_ao = ShaderLibrary::shared().program(
+        shader->surface_program({Effect::AmbientOcclusion}, target, meta));
+    EXPECT_NE(glGetUniformLocation(baked_ao, "rl_ao"), -1) << name;
   }
 }
 

@@ -15,8 +15,30 @@ float rl_ao_rescaled(float ao, float s) {
   return clamp(ao / r2_prime, 0.0, 1.0);
 }
 
+#if defined(RL_META_AO_PRODUCT) || defined(RL_META_AO_MIN)
+// A meta-relief combined per fetch: each layer's AO map read at its own tiling and combined by
+// product or minimum (Section IV-A; relief/meta_relief.cpp, combine_ao_maps(), the same), so a
+// fractional tiling stays seamless beyond the first base tile.
+layout(binding = 18) uniform sampler2D rl_meta_ao[RL_META_LAYERS];
+
+float rl_stored_ao(vec2 uv) {
+  float ao = 1.0;
+  for (int i = 0; i < RL_META_LAYERS; ++i) {
+    float a = clamp(RL_FETCH(rl_meta_ao[i], uv * rl_meta_tiling[i]).r, 0.0, 1.0);
+#ifdef RL_META_AO_MIN
+    ao = min(ao, a);
+#else
+    ao *= a;
+#endif
+  }
+  return ao;
+}
+#else
+float rl_stored_ao(vec2 uv) { return RL_FETCH(rl_ao, uv).r; }
+#endif
+
 float rl_ambient_occlusion(vec2 uv) {
-  float ao = RL_FETCH(rl_ao, uv).r;
+  float ao = rl_stored_ao(uv);
 #ifdef RL_AO_EQ6
   ao = rl_ao_rescaled(ao, rl_ao_rescale);
 #endif

@@ -102,7 +102,7 @@ ImageMetrics compare_gbuffers(const GBuffer& t, const GBuffer& r, double depth_w
   ImageMetrics m;
   m.has_ao = ambient_occlusion;
   std::vector<double> ao_err;
-  double ao_signed = 0, ao_stderr = 0, ao_color = 0, color_err = 0;
+  double ao_signed = 0, ao_stderr = 0, ao_color = 0, color_err = 0, color_signed = 0;
   long both = 0, missed = 0, false_hits = 0, artifacts = 0, shadow_diff = 0, object_diff = 0;
   std::vector<double> pos, pos_texels, normal_deg, fetches;
   for (size_t i = 0; i < t.size(); ++i) {
@@ -134,7 +134,11 @@ ImageMetrics compare_gbuffers(const GBuffer& t, const GBuffer& r, double depth_w
       ao_signed += diff;
       ao_stderr += r.aux[i].y;
       ao_color += double(t.aux[i].z) * std::abs(diff);
-      for (int c = 0; c < 3; ++c) color_err += std::abs(double(t.color[i][c]) - r.color[i][c]) / 3;
+      for (int c = 0; c < 3; ++c) {
+        const double dc = double(t.color[i][c]) - r.color[i][c];
+        color_err += std::abs(dc) / 3;
+        color_signed += dc / 3;
+      }
     }
   }
   if (!ao_err.empty()) {
@@ -144,6 +148,7 @@ ImageMetrics compare_gbuffers(const GBuffer& t, const GBuffer& r, double depth_w
     m.ao_bias = ao_signed / double(ao_err.size());
     m.ao_ref_stderr = ao_stderr / double(ao_err.size());
     m.ao_color_share_pct = color_err > 0 ? std::min(100.0, 100.0 * ao_color / color_err) : 0;
+    m.color_bias = color_signed / double(ao_err.size());
   }
   const double covered = std::max<long>(1, m.truth_covered_px);
   m.missed_pct = 100.0 * missed / covered;
@@ -195,7 +200,8 @@ std::vector<std::pair<std::string, double>> ImageMetrics::named() const {
                        {"ao_err_p99", ao_err_p99},
                        {"ao_bias", ao_bias},
                        {"ao_ref_stderr", ao_ref_stderr},
-                       {"ao_color_share_pct", ao_color_share_pct}});
+                       {"ao_color_share_pct", ao_color_share_pct},
+                       {"color_bias", color_bias}});
   if (empty())
     for (auto& [name, value] : v)
       if (name != "covered_px" && name != "union_px" && name != "nonfinite_px")

@@ -24,7 +24,9 @@
 //   ao_bias = mean signed difference over jointly covered relief pixels; ao_ref_stderr = the
 //   truth's mean standard error there (its noise floor); ao_color_share_pct = the ambient
 //   term's AO difference (ambient * albedo * |ao - ao_truth|, rgb mean) in % of the colour
-//   error (rgb mean of |colour - truth's|) summed over the same pixels.
+//   error (rgb mean of |colour - truth's|) summed over the same pixels; color_bias = the mean
+//   signed colour difference (rgb mean) there: brighter (> 0) or darker than the truth, which
+//   a too open or too closed AO map shows as.
 #include <string>
 #include <utility>
 #include <vector>
@@ -56,6 +58,7 @@ struct ImageMetrics {
   long nonfinite_px = 0;
   bool has_ao = false;  // the AO columns below are measured (and named)
   double ao_err_mean = 0, ao_err_p99 = 0, ao_bias = 0, ao_ref_stderr = 0, ao_color_share_pct = 0;
+  double color_bias = 0;
 
   // Nothing to measure: neither side covers a pixel. Error columns are then reported empty
   // (NaN in named()), never as a perfect score.

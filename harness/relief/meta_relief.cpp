@@ -110,19 +110,32 @@ uint64_t MetaRelief::content_hash() const {
   return h;
 }
 
-ReliefMap bake_meta_relief(const MetaRelief& meta, int width, int height) {
+ReliefMap bake_meta_relief(const MetaRelief& meta, int width, int height, const ReliefMap* color) {
   ReliefMap out;
   out.name = meta.layers()[0].map.name + "+meta";
   out.width = width;
   out.height = height;
   out.relief.resize(size_t(width) * height);
   out.color.resize(out.relief.size());
-  const ReliefMap& base = meta.layers()[0].map;
+  const ReliefMap& base = color ? *color : meta.layers()[0].map;
   for_each_texel_centre(width, height, [&](size_t i, double u, double v) {
     out.relief[i] = glm::vec4(meta.relief(u, v));
     out.color[i] = glm::vec4(base.sample_color(u, v));
   });
   return out;
+}
+
+double combined_ao(const MetaRelief& meta, const std::vector<std::vector<float>>& layer_ao,
+                   double u, double v, AoCombine how) {
+  double ao = 1;
+  for (size_t i = 0; i < layer_ao.size(); ++i) {
+    const MetaLayer& l = meta.layers()[i];
+    const double a = std::clamp(
+        sample_scalar(layer_ao[i], l.map.width, l.map.height, u * l.tiling, v * l.tiling), 0.0,
+        1.0);
+    ao = how == AoCombine::Product ? ao * a : std::min(ao, a);
+  }
+  return ao;
 }
 
 std::vector<float> combine_ao_maps(const MetaRelief& meta,
@@ -132,15 +145,7 @@ std::vector<float> combine_ao_maps(const MetaRelief& meta,
     throw std::invalid_argument("combine_ao_maps: one AO map per layer");
   std::vector<float> out(size_t(width) * height);
   for_each_texel_centre(width, height, [&](size_t t, double u, double v) {
-    double ao = 1;
-    for (size_t i = 0; i < layer_ao.size(); ++i) {
-      const MetaLayer& l = meta.layers()[i];
-      const double a = std::clamp(
-          sample_scalar(layer_ao[i], l.map.width, l.map.height, u * l.tiling, v * l.tiling), 0.0,
-          1.0);
-      ao = how == AoCombine::Product ? ao * a : std::min(ao, a);
-    }
-    out[t] = float(ao);
+    out[t] = float(combined_ao(meta, layer_ao, u, v, how));
   });
   return out;
 }

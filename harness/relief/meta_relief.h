@@ -54,16 +54,22 @@ class MetaRelief {
 };
 
 // The combination sampled at the texel centres of a width x height map: normals and depth by
-// Eqs. 1-2, colour from layer 0 (bilinear, at the base's coordinates). A bake at any size;
-// with integer tilings whose grids all fall on the bake's texel centres it is exact, otherwise
-// the bake's bilinear reconstruction and its tile seam (a fractional tiling does not repeat
-// over one base tile) differ from the combination: what a bake costs in accuracy.
-ReliefMap bake_meta_relief(const MetaRelief& meta, int width, int height);
+// Eqs. 1-2, colour from layer 0 or `color` (bilinear, at the base's coordinates). A bake at any
+// size; with integer tilings whose grids all fall on the bake's texel centres it is exact,
+// otherwise the bake's bilinear reconstruction and its tile seam (a fractional tiling does not
+// repeat over one base tile) differ from the combination: what a bake costs in accuracy. `color`:
+// the map whose colour the bake samples (default: layer 0's).
+ReliefMap bake_meta_relief(const MetaRelief& meta, int width, int height,
+                           const ReliefMap* color = nullptr);
 
 // Combines the layers' AO maps (visibility, each at its layer's resolution, wrapping) into one
 // map at width x height on the base's coordinates, sampled bilinearly at each layer's tiling:
 // the product of the visibilities or their minimum (Section IV-A's two alternatives).
 enum class AoCombine { Product, Min };
+// The combined visibility at (u, v): what the shader computes per fetch
+// (ambient_occlusion.glsl, rl_stored_ao) and combine_ao_maps() stores per texel.
+double combined_ao(const MetaRelief& meta, const std::vector<std::vector<float>>& layer_ao,
+                   double u, double v, AoCombine how);
 std::vector<float> combine_ao_maps(const MetaRelief& meta,
                                    const std::vector<std::vector<float>>& layer_ao, int width,
                                    int height, AoCombine how);

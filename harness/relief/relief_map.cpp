@@ -108,6 +108,11 @@ size_t ReliefMap::gpu_bytes(bool meta_layers) const {
   if (meta_layers && meta) {
     bytes -= static_cast<size_t>(width) * height * texel;  // the bake is not sampled
     for (const MetaLayer& l : meta->layers()) bytes += size_t(l.map.width) * l.map.height * texel;
+    if (!meta_ambient_visibility.empty()) {  // nor the combined AO map: the layers' are
+      bytes -= static_cast<size_t>(width) * height * ambient;
+      for (const MetaLayer& l : meta->layers())
+        bytes += size_t(l.map.width) * l.map.height * ambient;
+    }
   }
   return bytes;
 }

@@ -62,6 +62,9 @@ struct ReliefMap {
   // A meta-relief (relief/meta_relief.h): the surface is the combination of its layers and
   // `relief` holds its bake; null for a plain map.
   std::shared_ptr<const MetaRelief> meta;
+  // Its layers' AO maps (each at its layer's size), where the scene combines them by product or
+  // minimum: the shader combines them per fetch when it combines the layers.
+  std::vector<std::vector<float>> meta_ambient_visibility;
 
   size_t index(int x, int y) const;  // wraps like GL_REPEAT
   float depth_texel(int x, int y) const { return relief[index(x, y)].a; }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 
 #include "core/elapsed.h"
@@ -73,11 +74,15 @@ ReliefMap build_relief_asset(const SceneDesc& scene, int resolution) {
   ReliefMap map = build_map(scene, scene.relief, resolution, 1.0);
   if (scene.quantize) quantize_8bit(map);
   if (!scene.meta.active()) return map;
-  // A meta-relief: every layer at the sweep's resolution (its longer side), each at its tiling.
+  // A meta-relief: the sweep's resolution is layer 0's; every other layer is scaled by the same
+  // factor from its native size (so "native" keeps each layer's own), each at its tiling.
   std::vector<MetaLayer> layers;
   layers.push_back({map, 1.0, scene.meta.weight_normal, scene.meta.weight_depth});
+  const double scale =
+      double(scene.relief.size_at(resolution).longer()) / std::max(1, scene.relief.native.longer());
   for (const MetaLayerDesc& d : scene.meta.layers) {
-    ReliefMap layer = build_map(scene, d.relief, resolution, d.tiling);
+    const int layer_res = std::max(2, int(std::lround(d.relief.native.longer() * scale)));
+    ReliefMap layer = build_map(scene, d.relief, layer_res, d.tiling);
     if (scene.quantize) quantize_8bit(layer);
     layers.push_back({std::move(layer), d.tiling, d.weight_normal, d.weight_depth});
   }
@@ -88,7 +93,13 @@ ReliefMap build_relief_asset(const SceneDesc& scene, int resolution) {
       map.width >= map.height ? longer : std::max(1, longer * map.width / map.height);
   const int bake_h =
       map.width >= map.height ? std::max(1, longer * map.height / map.width) : longer;
-  ReliefMap baked = bake_meta_relief(*meta, bake_w, bake_h);
+  ReliefMap color;
+  if (scene.meta.color_resolution > 0) {
+    color = build_map(scene, scene.relief, scene.meta.color_resolution, 1.0);
+    if (scene.quantize) quantize_8bit(color);
+  }
+  ReliefMap baked =
+      bake_meta_relief(*meta, bake_w, bake_h, scene.meta.color_resolution > 0 ? &color : nullptr);
   if (scene.quantize) quantize_8bit(baked);
   baked.meta = std::move(meta);
   return baked;
@@ -132,6 +143,7 @@ AoMap attach_ao_map(ReliefMap& map, const SceneDesc& scene, double texel_world) 
                                                                               : AoCombine::Product);
   combined.compute_ms += ms_since(start);
   map.ambient_visibility = combined.visibility;
+  map.meta_ambient_visibility = std::move(per_layer);
   return combined;
 }
 

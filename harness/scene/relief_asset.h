@@ -3,7 +3,8 @@
 // size_at): procedural maps are generated at that resolution, image maps are loaded and
 // resampled keeping their aspect; then quantised to 8 bits if the scene asks. A scene with a
 // meta-relief gets the bake of its combination (relief/meta_relief.h) with the layers attached
-// (map.meta), each layer at that resolution (its longer side) and the scene's quantisation.
+// (map.meta): the resolution is layer 0's, the other layers scaled from their native sizes by
+// the same factor; all with the scene's quantisation.
 #include "relief/ao_map.h"
 #include "relief/image_io.h"
 #include "relief/mesh_bake.h"

@@ -133,6 +133,10 @@ struct MetaReliefDesc {
   // Baked: one map of the combination at bake_resolution, for every heightfield technique.
   enum class Combine { Runtime, Baked } combine = Combine::Runtime;
   int bake_resolution = 0;  // longer side of the bake; 0 = layer 0's size
+  // Longer side at which layer 0's colour map is read for the bake's colour (0 = layer 0's
+  // size): high-resolution colour over low-resolution geometry (Figure 14, column d). The
+  // colour texture is the bake's, so it needs bake_resolution as high.
+  int color_resolution = 0;
   // The AO map of the combination: the layers' maps multiplied or their minimum (Section IV-A),
   // or computed on the bake itself.
   enum class AoCombine { Product, Min, Bake } ao_combine = AoCombine::Product;
@@ -148,6 +152,10 @@ struct SceneDesc {
   std::vector<SceneObject> objects;
   Proxy proxy = Proxy::Base;
   TruthLevel truth = TruthLevel::Sampled;
+  // The texture resolution (longer side) the truth's map is built at, whatever the cell's;
+  // 0 = the cell's. Measures a low-resolution map against the surface a finer one stands for
+  // (Limberger et al., Figure 14).
+  int truth_texture_res = 0;
   // With a box proxy, is depth 1 (the box's bottom) a floor, or empty (an object baked from a
   // mesh: chapter 5's "alpha = d < 1", Baboud & Decoret's objects)? Rays reaching it hit the
   // floor, or leave the box.

@@ -69,7 +69,14 @@ std::vector<Cell> expand_cells(const SweepConfig& config, size_t* duplicates) {
               c.view = view;
               const std::string scene_text = config.scene_canonical.at(scene.name);
               c.asset_key = hex64(fnv1a64(scene_text + "|res=" + std::to_string(res)));
-              nlohmann::ordered_json truth_id = {{"asset", c.asset_key},
+              // A truth of a fixed resolution (truth_resolution) is one surface for every
+              // texture resolution of the scene: traced once per view, shared by them all.
+              const std::string truth_source =
+                  scene.truth_texture_res > 0
+                      ? hex64(fnv1a64(scene_text +
+                                      "|truth_res=" + std::to_string(scene.truth_texture_res)))
+                      : c.asset_key;
+              nlohmann::ordered_json truth_id = {{"asset", truth_source},
                                                  {"w", w},
                                                  {"h", h},
                                                  {"el", view.elevation_deg},

@@ -35,7 +35,7 @@ void parse_meta_relief(const toml::table& t, const Src& src, const std::string& 
          "[[scene.meta_relief.layers]] sections");
   check_keys(*m,
              {"layers", "weight", "weight_normal", "weight_depth", "combine", "bake_resolution",
-              "ao_combine"},
+              "color_resolution", "ao_combine"},
              src, "meta_relief");
   const std::string scene = "scene '" + s.name + "': ";
   require_heightfield(s.relief, src, scene_node, scene + "the relief under a meta-relief");
@@ -105,6 +105,8 @@ void parse_meta_relief(const toml::table& t, const Src& src, const std::string& 
   }
   if (auto* n = m->get("bake_resolution"))
     meta.bake_resolution = positive_int(*n, src, "bake_resolution", 2, 8192);
+  if (auto* n = m->get("color_resolution"))
+    meta.color_resolution = positive_int(*n, src, "color_resolution", 2, 8192);
   if (auto* n = m->get("ao_combine")) {
     if (!s.effects.has(Effect::AmbientOcclusion))
       fail(src.at(*n), scene + "'ao_combine' needs the ambient_occlusion effect");
@@ -121,6 +123,7 @@ void parse_meta_relief(const toml::table& t, const Src& src, const std::string& 
   c["weights"] = {meta.weight_normal, meta.weight_depth};
   c["combine"] = meta.combine == MetaReliefDesc::Combine::Baked ? "baked" : "runtime";
   c["bake_resolution"] = meta.bake_resolution;
+  if (meta.color_resolution > 0) c["color_resolution"] = meta.color_resolution;
   if (s.effects.has(Effect::AmbientOcclusion))
     c["ao_combine"] = meta.ao_combine == MetaReliefDesc::AoCombine::Min    ? "min"
                       : meta.ao_combine == MetaReliefDesc::AoCombine::Bake ? "bake"

@@ -98,7 +98,7 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
                  "diffuse",     "specular",
                  "shininess",   "shadow_intensity",
                  "framing",     "ambient_occlusion",
-                 "meta_relief"},
+                 "meta_relief", "truth_resolution"},
              src, "[[scene]]");
   SceneDesc& s = parsed.scene;
   parsed.sites.scene = src.at(node);
@@ -154,6 +154,14 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
            "\"mesh\" (what it was baked from) and \"layers\" (its own layers)");
   } else if (s.relief.layers > 0) {
     s.truth = TruthLevel::Mesh;  // measured against the geometry it stands for
+  }
+  if (auto* n = t.get("truth_resolution")) {
+    if (s.truth != TruthLevel::Sampled || !s.relief.mesh_path.empty())
+      fail(src.at(*n), "scene '" + s.name +
+                           "': 'truth_resolution' applies to the sampled truth of a heightfield "
+                           "(the map at another resolution)");
+    s.truth_texture_res = positive_int(*n, src, "truth_resolution", 2, 8192);
+    canon["truth_resolution"] = s.truth_texture_res;
   }
   s.empty_floor = !s.relief.mesh_path.empty() || s.relief.pattern_mesh();
   if (auto* n = t.get("floor")) {

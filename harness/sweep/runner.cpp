@@ -18,6 +18,7 @@
 #include "gl/render_target.h"
 #include "metrics/metrics.h"
 #include "relief/image_io.h"
+#include "relief/meta_relief.h"
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 #include "sweep/asset_check.h"
@@ -66,6 +67,10 @@ std::string describe_params(const Cell& c) {
 // Everything built once per (scene, texture resolution).
 struct Asset {
   ReliefMap map;
+  // The map the truth is built from where the scene asks for another resolution
+  // (truth_resolution); null: `map` itself.
+  std::unique_ptr<ReliefMap> truth_map;
+  const ReliefMap& truth_source() const { return truth_map ? *truth_map : map; }
   std::unique_ptr<GpuRelief> relief;
   std::unique_ptr<GpuBase> base;
   std::unique_ptr<ObjectPass> objects;
@@ -180,6 +185,9 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   std::string asset_key, truth_key;
   GBuffer truth;
   TruthStats truth_stats;
+  // Truths of a scene's fixed truth resolution, kept across its texture resolutions.
+  std::map<std::string, std::pair<GBuffer, TruthStats>> truth_memo;
+  size_t memo_scene = size_t(-1);
   const auto work_start = Clock::now();
 
   for (size_t oi = 0; oi < order.size(); ++oi) {
@@ -191,17 +199,24 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       const auto t0 = Clock::now();
       asset = std::make_unique<Asset>();
       asset->map = build_relief_asset(scene, cell.texture_res);
+      if (scene.truth_texture_res > 0 &&
+          scene.relief.size_at(scene.truth_texture_res) != scene.relief.size_at(cell.texture_res))
+        asset->truth_map =
+            std::make_unique<ReliefMap>(build_relief_asset(scene, scene.truth_texture_res));
       asset->objects = std::make_unique<ObjectPass>(scene.objects);
       if (scene.base.curved()) {
         // One base mesh for the GPU, the truth and the texel size.
         const BaseMesh mesh = make_base_mesh(scene.base, scene.size, scene.tile);
         asset->base = std::make_unique<GpuBase>(base_geometry(mesh));
-        asset->truth =
-            std::make_unique<SceneTruth>(scene, asset->map, config.truth_tolerance, &mesh);
-        asset->texel_world = texel_world(mesh, MapSize{asset->map.width, asset->map.height});
+        asset->truth = std::make_unique<SceneTruth>(scene, asset->truth_source(),
+                                                    config.truth_tolerance, &mesh);
+        // A meta-relief's texel is its layer 0's (its bake may be finer).
+        const ReliefMap& layer0 = asset->map.meta ? asset->map.meta->layers()[0].map : asset->map;
+        asset->texel_world = texel_world(mesh, MapSize{layer0.width, layer0.height});
       } else {
         asset->base = std::make_unique<GpuBase>(make_base_geometry(scene));
-        asset->truth = std::make_unique<SceneTruth>(scene, asset->map, config.truth_tolerance);
+        asset->truth =
+            std::make_unique<SceneTruth>(scene, asset->truth_source(), config.truth_tolerance);
         asset->texel_world = texel_world(scene, cell.texture_res);
       }
       const AoMap ao = attach_ao_map(asset->map, scene, asset->texel_world);
@@ -212,23 +227,42 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       asset_key = cell.asset_key;
       truth_key.clear();
       ++summary.asset_builds;
-      char buf[256];
-      std::snprintf(buf, sizeof buf,
-                    "relieflab: asset %s at %dx%d: built in %.0f ms (Embree truth %.0f ms, "
-                    "tessellation %dx%d per %s, deviation <= %.2g depth units)",
-                    scene.name.c_str(), asset->map.width, asset->map.height, asset->build_ms,
-                    asset->truth->build_ms(), asset->truth->subdivision(),
-                    asset->truth->subdivision(),
-                    scene.base.curved() && !has_charts(scene.base) ? "base triangle" : "texel",
-                    asset->truth->tessellation_bound());
+      char buf[320];
+      const char* unit = scene.base.curved() && (!has_charts(scene.base) || scene.meta.active())
+                             ? "base triangle"
+                             : "texel";
+      if (scene.meta.active() && !scene.base.curved())
+        std::snprintf(buf, sizeof buf,
+                      "relieflab: asset %s at %dx%d: built in %.0f ms (truth: the %zu-layer "
+                      "meta-relief traced exactly)",
+                      scene.name.c_str(), asset->map.width, asset->map.height, asset->build_ms,
+                      scene.meta.layers.size() + 1);
+      else
+        std::snprintf(buf, sizeof buf,
+                      "relieflab: asset %s at %dx%d: built in %.0f ms (Embree truth %.0f ms, "
+                      "tessellation %dx%d per %s, deviation <= %.2g depth units)",
+                      scene.name.c_str(), asset->map.width, asset->map.height, asset->build_ms,
+                      asset->truth->build_ms(), asset->truth->subdivision(),
+                      asset->truth->subdivision(), unit, asset->truth->tessellation_bound());
       log.line(buf);
     }
     const Camera camera = make_camera(scene, cell.view, cell.width, cell.height);
     const std::string image_dir = options.out_dir + "/images/" + scene.name;
     const std::string gbuffer_dir = options.out_dir + "/gbuffers/" + scene.name;
-    if (cell.truth_key != truth_key) {
-      truth = asset->truth->render(asset->map, scene, camera, scene.effects, &truth_stats);
+    if (cell.scene_index != memo_scene) {
+      truth_memo.clear();
+      memo_scene = cell.scene_index;
+    }
+    auto memo = truth_memo.find(cell.truth_key);
+    if (cell.truth_key != truth_key && memo != truth_memo.end()) {
+      truth = memo->second.first;  // the same surface and view at another texture resolution
+      truth_stats = memo->second.second;
       truth_key = cell.truth_key;
+    } else if (cell.truth_key != truth_key) {
+      truth =
+          asset->truth->render(asset->truth_source(), scene, camera, scene.effects, &truth_stats);
+      truth_key = cell.truth_key;
+      if (scene.truth_texture_res > 0) truth_memo[truth_key] = {truth, truth_stats};
       ++summary.truth_traces;
       char buf[256];
       std::snprintf(buf, sizeof buf,
@@ -346,7 +380,9 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
                                                 (double(asset->map.width) * asset->map.height));
     row["depth_complexity"] =
         layers.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(layers.max_crossings);
-    row["truth"] = truth_level_name(scene.truth);
+    // "sampled@1024": the truth of the map at another resolution (truth_resolution).
+    row["truth"] = std::string(truth_level_name(scene.truth)) +
+                   (asset->truth_map ? "@" + std::to_string(scene.truth_texture_res) : "");
     row["renderer"] = gl.renderer();
     row["key"] = cell.key;
     if (config.write_images) {

@@ -39,6 +39,13 @@ GpuRelief::GpuRelief(const ReliefMap& map, bool meta_layers) {
     for (const MetaLayer& layer : map.meta->layers())
       meta_layers_.push_back(make_texture(layer.map.width, layer.map.height, rgba, GL_RGBA,
                                           reinterpret_cast<const float*>(layer.map.relief.data())));
+  if (meta_layers && map.meta)
+    for (size_t i = 0; i < map.meta_ambient_visibility.size(); ++i) {
+      const ReliefMap& layer = map.meta->layers()[i].map;
+      meta_ambient_.push_back(make_texture(layer.width, layer.height,
+                                           map.quantized ? GL_R8 : GL_R32F, GL_RED,
+                                           map.meta_ambient_visibility[i].data()));
+    }
   bytes_ = map.gpu_bytes(!meta_layers_.empty());
 }
 
@@ -47,6 +54,7 @@ GpuRelief::~GpuRelief() {
   glDeleteTextures(1, &color_);
   if (ambient_) glDeleteTextures(1, &ambient_);
   if (!meta_layers_.empty()) glDeleteTextures(GLsizei(meta_layers_.size()), meta_layers_.data());
+  if (!meta_ambient_.empty()) glDeleteTextures(GLsizei(meta_ambient_.size()), meta_ambient_.data());
 }
 
 void GpuRelief::bind(GLuint relief_unit, GLuint color_unit) const {
@@ -55,6 +63,8 @@ void GpuRelief::bind(GLuint relief_unit, GLuint color_unit) const {
   if (ambient_) glBindTextureUnit(8, ambient_);
   for (size_t i = 0; i < meta_layers_.size(); ++i)
     glBindTextureUnit(GLuint(10 + i), meta_layers_[i]);
+  for (size_t i = 0; i < meta_ambient_.size(); ++i)
+    glBindTextureUnit(GLuint(18 + i), meta_ambient_[i]);
 }
 
 GpuBase::GpuBase(const BaseGeometry& g) {

@@ -13,7 +13,8 @@ namespace rl {
 class GpuRelief {
  public:
   // RGBA8 when the map is quantised, else RGBA32F. `meta_layers`: also the layers of the map's
-  // meta-relief, for shaders that combine them per fetch (units 10 + i).
+  // meta-relief, for shaders that combine them per fetch (units 10 + i), and their AO maps
+  // where it has them (units 18 + i).
   explicit GpuRelief(const ReliefMap& map, bool meta_layers = false);
   ~GpuRelief();
   GpuRelief(const GpuRelief&) = delete;
@@ -24,7 +25,7 @@ class GpuRelief {
 
  private:
   GLuint relief_ = 0, color_ = 0, ambient_ = 0;
-  std::vector<GLuint> meta_layers_;
+  std::vector<GLuint> meta_layers_, meta_ambient_;
   size_t bytes_ = 0;
 };
 

@@ -44,7 +44,8 @@ SurfaceVariant ShaderTechnique::variant_of(const SceneDesc& scene) {
           scene.effects.has(Effect::AmbientOcclusion) &&
               scene.ao.update == AmbientOcclusionDesc::Update::Eq6 &&
               scene.ao.rescale(scene.depth) != 1.0,
-          scene.meta.runtime() ? 1 + int(scene.meta.layers.size()) : 0};
+          scene.meta.runtime() ? 1 + int(scene.meta.layers.size()) : 0,
+          scene.meta.runtime() ? scene.meta.ao_combine : MetaReliefDesc::AoCombine::Bake};
 }
 
 bool ShaderTechnique::draws_back_faces(const SurfaceVariant& variant) const {
@@ -69,6 +70,11 @@ ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Ki
   if (draws_back_faces(variant)) d.defines["RL_TWO_SIDED"] = "1";
   if (variant.ao_eq6 && effects.has(Effect::AmbientOcclusion)) d.defines["RL_AO_EQ6"] = "1";
   if (variant.meta_layers > 0) d.defines["RL_META_LAYERS"] = std::to_string(variant.meta_layers);
+  if (variant.meta_layers > 0 && effects.has(Effect::AmbientOcclusion)) {
+    if (variant.meta_ao == MetaReliefDesc::AoCombine::Product)
+      d.defines["RL_META_AO_PRODUCT"] = "1";
+    if (variant.meta_ao == MetaReliefDesc::AoCombine::Min) d.defines["RL_META_AO_MIN"] = "1";
+  }
   return d;
 }
 

@@ -25,6 +25,8 @@ struct SurfaceVariant {
   bool two_sided = false;  // a pattern on a closed curved base: back faces show through gaps
   bool ao_eq6 = false;     // ambient_occlusion on a rescaled relief, updated by Eq. 6
   int meta_layers = 0;     // a meta-relief combined per fetch: its layer count (RL_META_LAYERS)
+  // ... with ambient_occlusion from its layers' AO maps combined per fetch (not from the bake's)
+  MetaReliefDesc::AoCombine meta_ao = MetaReliefDesc::AoCombine::Bake;
 };
 
 class ShaderTechnique : public Technique {
