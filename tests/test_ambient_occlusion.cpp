@@ -12,6 +12,7 @@
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
+#include "technique/gpu_ao_map.h"
 #include "technique/shader_technique.h"
 #include "truth/reference_ao.h"
 
@@ -109,6 +110,32 @@ TEST(AoMap, CachedMapEqualsComputedOne) {
   EXPECT_EQ(a.visibility, b.visibility);
   o.height_texels = 6;  // another relief height is another map
   EXPECT_FALSE(cached_ao_map(m, o).from_cache);
+}
+
+TEST(AoMap, FragmentShaderVersionMatchesTheCpuOne) {
+  // Same search in float on the GPU: equal up to rounding, on non-square, non-power-of-two
+  // maps (where GLSL's % on negative texels once wrapped wrongly) with the border wrap.
+  for (const char* kind : {"sines", "domes", "pyramids"}) {
+    const std::map<std::string, double> options = std::string(kind) == "sines"
+                                                      ? std::map<std::string, double>{}
+                                                      : std::map<std::string, double>{{"count", 3}};
+    ReliefMap map = make_procedural(kind, 40, options, 3.0, "test");
+    map = resample(map, 40, 24);
+    AoMapOptions o;
+    o.height_texels = 6.0;
+    for (bool filter : {false, true}) {
+      o.filter = filter;
+      const AoMap cpu = compute_ao_map(map, o), gpu = compute_ao_map_gpu(map, o);
+      ASSERT_EQ(gpu.visibility.size(), cpu.visibility.size());
+      double worst = 0, mean_cpu = 0;
+      for (size_t i = 0; i < cpu.visibility.size(); ++i) {
+        worst = std::max(worst, double(std::abs(gpu.visibility[i] - cpu.visibility[i])));
+        mean_cpu += cpu.visibility[i];
+      }
+      EXPECT_LT(worst, 1e-4) << kind << " filter " << filter;
+      EXPECT_LT(mean_cpu / cpu.visibility.size(), 0.999) << kind;  // some occlusion to compare
+    }
+  }
 }
 
 TEST(AoEq6, ExactForACircularConeAndFiniteAtTheExtremes) {

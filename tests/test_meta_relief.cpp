@@ -3,6 +3,7 @@
 // combination against all of them.
 #include <cmath>
 #include <random>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -14,6 +15,8 @@
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
+#include "sweep/cells.h"
+#include "sweep/config.h"
 #include "technique/shader_technique.h"
 #include "truth/meta_relief_truth.h"
 
@@ -274,6 +277,37 @@ TEST(MetaReliefRender, ScenesWithoutMetaReliefCompileNoLayerCombination) {
         shader->surface_program({Effect::AmbientOcclusion}, target, meta));
     EXPECT_NE(glGetUniformLocation(baked_ao, "rl_ao"), -1) << name;
   }
+}
+
+TEST(MetaReliefSweep, ATruthResolutionSharesTheTruthAcrossTextureResolutionsNotTheCells) {
+  const std::string text = R"(
+[sweep]
+name = "t"
+elevations = [30, 60]
+viewports = [16]
+texture_res = [16, 32, 64]
+[[scene]]
+name = "meta"
+relief = { procedural = "sines", resolution = 64 }
+truth_resolution = 64
+[scene.meta_relief]
+[[scene.meta_relief.layers]]
+relief = { procedural = "bricks", resolution = 32 }
+tiling = 2.5
+[[technique]]
+name = "relief"
+)";
+  const std::vector<Cell> cells = expand_cells(parse_sweep_config(text, "t.toml", "."));
+  std::set<std::string> keys, truths, assets;
+  for (const Cell& c : cells) {
+    keys.insert(c.key);
+    truths.insert(c.truth_key);
+    assets.insert(c.asset_key);
+  }
+  EXPECT_EQ(cells.size(), 6u);  // 3 resolutions x 2 views: none dropped as a repeat
+  EXPECT_EQ(keys.size(), 6u);
+  EXPECT_EQ(assets.size(), 3u);
+  EXPECT_EQ(truths.size(), 2u);  // one truth per view, whatever the resolution
 }
 
 }  // namespace

@@ -283,6 +283,21 @@ TEST(RobustSearch, MissesFarFewerIntersectionsThanBinarySearchAtGrazingAngles) {
   }
 }
 
+TEST(RobustSearch, NonPowerOfTwoMapsWrapAtNegativeTexels) {
+  // Rays start at u, v in [-1, 2): radii are looked up at negative texels of a non-power-of-two
+  // map. The wrap no longer uses GLSL's % (undefined for negative operands; it broke the AO
+  // map's fragment shader on llvmpipe at such sizes, though not this search's answers here).
+  ReliefMap map = resample(make_procedural("pyramids", 40, {{"count", 5}}, 10.0, "test"), 40, 24);
+  quantize_8bit(map);
+  const std::vector<ProbeRay> rays =
+      test::as_probe_rays(test::random_tangent_rays(2048, 10, 60, 0.08, 23, -1e-4));
+  const int exact =
+      misses("relief_robust", {{"exact_zero_radius", 1}, {"ignore_blocked", 0}}, map, rays, 0.01);
+  std::printf("40 x 24 pyramids: robust+exact, conservative radii: %d of %zu missed\n", exact,
+              rays.size());
+  EXPECT_LE(exact, int(rays.size()) / 200);
+}
+
 TEST(RobustSearch, ErrorAllowedTradesFetchesForAccuracy) {
   ReliefMap map = make_procedural("sines", 64, {}, 10.0, "test");
   quantize_8bit(map);

@@ -79,21 +79,22 @@ AoMap compute_ao_map(const ReliefMap& map, const AoMapOptions& o) {
         }
       },
       64);
-  if (o.filter) {
-    // The low-pass filter, only where there is some occlusion.
-    const std::vector<float> raw = out.visibility;
-    for (int y = 0; y < map.height; ++y)
-      for (int x = 0; x < map.width; ++x) {
-        const size_t i = size_t(y) * map.width + x;
-        if (raw[i] >= 1.0f) continue;
-        double sum = 0;
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) sum += raw[map.index(x + dx, y + dy)];
-        out.visibility[i] = float(sum / 9.0);
-      }
-  }
+  if (o.filter) filter_occluded_texels(map, out.visibility);
   out.compute_ms = ms_since(start);
   return out;
+}
+
+void filter_occluded_texels(const ReliefMap& map, std::vector<float>& visibility) {
+  const std::vector<float> raw = visibility;
+  for (int y = 0; y < map.height; ++y)
+    for (int x = 0; x < map.width; ++x) {
+      const size_t i = size_t(y) * map.width + x;
+      if (raw[i] >= 1.0f) continue;
+      double sum = 0;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) sum += raw[map.index(x + dx, y + dy)];
+      visibility[i] = float(sum / 9.0);
+    }
 }
 
 AoMap cached_ao_map(const ReliefMap& map, const AoMapOptions& o) {

@@ -41,6 +41,10 @@ struct AoMap {
 // map's longer side.
 AoMap compute_ao_map(const ReliefMap& map, const AoMapOptions& options);
 
+// The paper's low-pass filter: a 3 x 3 box (wrapping) on the texels with some occlusion only,
+// so that none is introduced where there was none.
+void filter_occluded_texels(const ReliefMap& map, std::vector<float>& visibility);
+
 // compute_ao_map through the precompute cache (core/precompute_cache.h).
 AoMap cached_ao_map(const ReliefMap& map, const AoMapOptions& options);
 

@@ -31,7 +31,9 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   for (int n = 0; n < RL_MAX_CELLS; n++) {
     // The crossing lies within texel (i, j) of the nearest centre.
     ivec2 texel = ivec2(floor(start + dir * t + 0.5));
-    texel = ((texel % isize) + isize) % isize;
+    // Wrap into the map; not with %, undefined in GLSL for negative operands (llvmpipe wrapped
+    // non-power-of-two maps wrongly that way).
+    texel -= isize * ivec2(floor(vec2(texel) / vec2(isize)));
     uint r = RL_FETCH_RADIUS(texel);
 #ifdef RL_EXACT_ZERO_RADIUS
     if (r == 0u) {
