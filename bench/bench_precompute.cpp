@@ -103,14 +103,18 @@ RL_CONE_BENCH(cone_domes, "domes", true);
 RL_CONE_BENCH(cone_rock_conservative, "rock", false);
 RL_CONE_BENCH(cone_pyramids_conservative, "pyramids", false);
 
-void BM_AoMap(benchmark::State& state, std::string kind) {
+// The AO map by the multithreaded CPU search, or (gpu) by the fragment shader
+// (harness/glsl/ao_map.frag): on llvmpipe that is the CPU again, JIT-compiled and vectorised;
+// with a GPU, the GPU. Both give the same map (mean_visibility agrees).
+void BM_AoMap(benchmark::State& state, std::string kind, bool gpu) {
   const int size = int(state.range(0));
   const ReliefMap map = bench_map(kind, size);
   AoMapOptions o;
   o.height_texels = 0.08 * size;
+  if (gpu) compute_ao_map_gpu(bench_map(kind, 16), o);  // compile outside the timing
   AoMap a;
   for (auto _ : state) {
-    a = compute_ao_map(map, o);
+    a = gpu ? compute_ao_map_gpu(map, o) : compute_ao_map(map, o);
     benchmark::DoNotOptimize(a.visibility.data());
   }
   double mean = 0;
@@ -118,47 +122,20 @@ void BM_AoMap(benchmark::State& state, std::string kind) {
   state.counters["mean_visibility"] = mean / a.visibility.size();
 }
 
-// The same map from the fragment shader (harness/glsl/ao_map.frag): on llvmpipe that is the
-// CPU again, JIT-compiled and vectorised; with a GPU, the GPU.
-void BM_AoMapGpu(benchmark::State& state, std::string kind) {
-  const int size = int(state.range(0));
-  const ReliefMap map = bench_map(kind, size);
-  AoMapOptions o;
-  o.height_texels = 0.08 * size;
-  compute_ao_map_gpu(bench_map(kind, 16), o);  // compile outside the timing
-  AoMap a;
-  for (auto _ : state) {
-    a = compute_ao_map_gpu(map, o);
-    benchmark::DoNotOptimize(a.visibility.data());
-  }
-  double mean = 0;
-  for (float v : a.visibility) mean += v;
-  state.counters["mean_visibility"] = mean / a.visibility.size();
-}
-
-#define RL_AO_BENCH(name, kind)           \
-  BENCHMARK_CAPTURE(BM_AoMap, name, kind) \
-      ->Arg(256)                          \
-      ->Arg(512)                          \
-      ->Arg(1024)                         \
-      ->Unit(benchmark::kMillisecond)     \
-      ->UseRealTime()                     \
+#define RL_AO_BENCH(name, kind, gpu)           \
+  BENCHMARK_CAPTURE(BM_AoMap, name, kind, gpu) \
+      ->Arg(256)                               \
+      ->Arg(512)                               \
+      ->Arg(1024)                              \
+      ->Unit(benchmark::kMillisecond)          \
+      ->UseRealTime()                          \
       ->Iterations(1)
-RL_AO_BENCH(ao_rock, "rock");
-RL_AO_BENCH(ao_bricks, "bricks");
-RL_AO_BENCH(ao_sines, "sines");
-
-#define RL_AO_GPU_BENCH(name, kind)          \
-  BENCHMARK_CAPTURE(BM_AoMapGpu, name, kind) \
-      ->Arg(256)                             \
-      ->Arg(512)                             \
-      ->Arg(1024)                            \
-      ->Unit(benchmark::kMillisecond)        \
-      ->UseRealTime()                        \
-      ->Iterations(1)
-RL_AO_GPU_BENCH(ao_gpu_rock, "rock");
-RL_AO_GPU_BENCH(ao_gpu_bricks, "bricks");
-RL_AO_GPU_BENCH(ao_gpu_sines, "sines");
+RL_AO_BENCH(ao_rock, "rock", false);
+RL_AO_BENCH(ao_bricks, "bricks", false);
+RL_AO_BENCH(ao_sines, "sines", false);
+RL_AO_BENCH(ao_gpu_rock, "rock", true);
+RL_AO_BENCH(ao_gpu_bricks, "bricks", true);
+RL_AO_BENCH(ao_gpu_sines, "sines", true);
 
 }  // namespace
 }  // namespace rl

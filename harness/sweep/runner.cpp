@@ -77,7 +77,10 @@ struct Asset {
   std::unique_ptr<SceneTruth> truth;
   double build_ms = 0;
   double texel_world = 0;  // world size of a texel on the base
-  double ao_ms = 0;        // the texture-space AO map's precompute (ambient_occlusion)
+  // The texel errors are measured in: the truth's where it has its own resolution, so that
+  // every texture resolution of a scene is judged by one yardstick.
+  double metric_texel = 0;
+  double ao_ms = 0;  // the texture-space AO map's precompute (ambient_occlusion)
   bool ao_from_cache = false;
   // Prepared technique instances by (technique, parameters): prepare() runs once per asset.
   std::map<std::string, std::pair<std::unique_ptr<Technique>, double>> prepared;
@@ -213,11 +216,17 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
         // A meta-relief's texel is its layer 0's (its bake may be finer).
         const ReliefMap& layer0 = asset->map.meta ? asset->map.meta->layers()[0].map : asset->map;
         asset->texel_world = texel_world(mesh, MapSize{layer0.width, layer0.height});
+        const ReliefMap& truth0 = asset->truth_source().meta
+                                      ? asset->truth_source().meta->layers()[0].map
+                                      : asset->truth_source();
+        asset->metric_texel = texel_world(mesh, MapSize{truth0.width, truth0.height});
       } else {
         asset->base = std::make_unique<GpuBase>(make_base_geometry(scene));
         asset->truth =
             std::make_unique<SceneTruth>(scene, asset->truth_source(), config.truth_tolerance);
         asset->texel_world = texel_world(scene, cell.texture_res);
+        asset->metric_texel = texel_world(
+            scene, scene.truth_texture_res > 0 ? scene.truth_texture_res : cell.texture_res);
       }
       const AoMap ao = attach_ao_map(asset->map, scene, asset->texel_world);
       asset->ao_ms = ao.compute_ms;
@@ -231,17 +240,21 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       const char* unit = scene.base.curved() && (!has_charts(scene.base) || scene.meta.active())
                              ? "base triangle"
                              : "texel";
+      // A meta-relief's size is its layer 0's (its bake, `map`, may differ).
+      const MapSize layer0_size = asset->map.meta ? MapSize{asset->map.meta->layers()[0].map.width,
+                                                            asset->map.meta->layers()[0].map.height}
+                                                  : MapSize{asset->map.width, asset->map.height};
       if (scene.meta.active() && !scene.base.curved())
         std::snprintf(buf, sizeof buf,
-                      "relieflab: asset %s at %dx%d: built in %.0f ms (truth: the %zu-layer "
-                      "meta-relief traced exactly)",
-                      scene.name.c_str(), asset->map.width, asset->map.height, asset->build_ms,
-                      scene.meta.layers.size() + 1);
+                      "relieflab: asset %s at %dx%d (bake %dx%d): built in %.0f ms (truth: the "
+                      "%zu-layer meta-relief traced exactly)",
+                      scene.name.c_str(), layer0_size.width, layer0_size.height, asset->map.width,
+                      asset->map.height, asset->build_ms, scene.meta.layers.size() + 1);
       else
         std::snprintf(buf, sizeof buf,
                       "relieflab: asset %s at %dx%d: built in %.0f ms (Embree truth %.0f ms, "
                       "tessellation %dx%d per %s, deviation <= %.2g depth units)",
-                      scene.name.c_str(), asset->map.width, asset->map.height, asset->build_ms,
+                      scene.name.c_str(), layer0_size.width, layer0_size.height, asset->build_ms,
                       asset->truth->build_ms(), asset->truth->subdivision(),
                       asset->truth->subdivision(), unit, asset->truth->tessellation_bound());
       log.line(buf);
@@ -308,7 +321,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     }
     const bool ambient_occlusion = scene.effects.has(Effect::AmbientOcclusion);
     const ImageMetrics m =
-        compare_gbuffers(g, truth, scene.depth, asset->texel_world, ambient_occlusion);
+        compare_gbuffers(g, truth, scene.depth, asset->metric_texel, ambient_occlusion);
     RenderTarget timing_target(cell.width, cell.height, RenderTarget::Kind::ColorOnly);
     const FrameTiming timing = time_frames(
         [&] {
@@ -390,7 +403,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       const std::string error_png = image_dir + "/" + cell.key + "_error.png";
       write_png(render_png, g.width, g.height, 3, rgb_of(g));
       write_png(error_png, g.width, g.height, 3,
-                error_heat_map(g, truth, asset->texel_world, config.heat_map_scale));
+                error_heat_map(g, truth, asset->metric_texel, config.heat_map_scale));
       row["image_render"] = fs::relative(render_png, options.out_dir).string();
       row["image_truth"] =
           fs::relative(image_dir + "/truth_" + cell.truth_key + ".png", options.out_dir).string();
