@@ -8,6 +8,7 @@
 #include "gl/context.h"
 #include "gl/shader_library.h"
 #include "relief/ao_map.h"
+#include "relief/image_io.h"
 #include "relief/procedural.h"
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
@@ -110,6 +111,10 @@ TEST(AoMap, CachedMapEqualsComputedOne) {
   EXPECT_EQ(a.visibility, b.visibility);
   o.height_texels = 6;  // another relief height is another map
   EXPECT_FALSE(cached_ao_map(m, o).from_cache);
+  // The fragment shader's maps have their own cache entries (equal only up to rounding).
+  const AoMapMethod shader{"fragment_shader", compute_ao_map_gpu};
+  EXPECT_FALSE(cached_ao_map(m, o, shader).from_cache);
+  EXPECT_TRUE(cached_ao_map(m, o, shader).from_cache);
 }
 
 TEST(AoMap, FragmentShaderVersionMatchesTheCpuOne) {
@@ -136,6 +141,32 @@ TEST(AoMap, FragmentShaderVersionMatchesTheCpuOne) {
       EXPECT_LT(mean_cpu / cpu.visibility.size(), 0.999) << kind;  // some occlusion to compare
     }
   }
+}
+
+TEST(AoMap, FragmentShaderLeavesOpenPlateausOpen) {
+  // The TRaK5 panel, 8-bit and upsampled: wide plateaus at the top height, where a rise of a
+  // float rounding decides whether the low-pass filter (occluded texels only) applies. At this
+  // size the two agree but for a handful of texels. (At 1024^2 they do not yet: the sweep
+  // keeps the CPU search; see the README.)
+  ReliefImageSource src;
+  src.normal_path = RELIEFLAB_SOURCE_DIR "/assets/relief/trak5/panel1_n.png";
+  src.height_convention = true;
+  src.normalize = true;
+  ReliefMap map = resample(load_relief_images(src, 10.0), 128, 128);
+  map = resample(map, 192, 192);
+  quantize_8bit(map);
+  AoMapOptions o;
+  o.height_texels = 8.0;
+  const AoMap cpu = compute_ao_map(map, o), gpu = compute_ao_map_gpu(map, o);
+  long differing = 0;
+  double total = 0;
+  for (size_t i = 0; i < cpu.visibility.size(); ++i) {
+    const double d = std::abs(double(gpu.visibility[i]) - cpu.visibility[i]);
+    differing += d > 1e-3;
+    total += d;
+  }
+  EXPECT_LE(differing, long(cpu.visibility.size()) / 1000);  // at most 0.1% of the texels
+  EXPECT_LT(total / cpu.visibility.size(), 1e-5);
 }
 
 TEST(AoEq6, ExactForACircularConeAndFiniteAtTheExtremes) {

@@ -39,7 +39,10 @@ void main() {
       float rise = rl_height_sample(vec2(p) + d * float(k)) - h0;
       best = max(best, rise / float(k));
     }
-    float r = inversesqrt(1.0 + best * best);
+    // Exactly 1 for an open direction, as on the CPU: inversesqrt may be approximate, and the
+    // low-pass filter treats anything below 1 as occluded.
+    float q = 1.0 + best * best;
+    float r = q == 1.0 ? 1.0 : inversesqrt(q);
     if (j == 0) first = r; else area += previous * r;
     previous = r;
   }

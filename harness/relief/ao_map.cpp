@@ -97,14 +97,16 @@ void filter_occluded_texels(const ReliefMap& map, std::vector<float>& visibility
     }
 }
 
-AoMap cached_ao_map(const ReliefMap& map, const AoMapOptions& o) {
-  constexpr int kAlgorithmVersion = 1;  // bump when compute_ao_map changes its answers
+AoMap cached_ao_map(const ReliefMap& map, const AoMapOptions& o, AoMapMethod method) {
+  // Bump when a method changes its answers (2: the fragment shader's open directions are made
+  // exactly 1, as the CPU's always were).
+  constexpr int kAlgorithmVersion = 2;
   char options[128];
-  std::snprintf(options, sizeof options, "v%d|%d|%d|%.9g|", kAlgorithmVersion, o.directions,
-                int(o.filter), o.height_texels);
+  std::snprintf(options, sizeof options, "v%d|%d|%d|%.9g|%s|", kAlgorithmVersion, o.directions,
+                int(o.filter), o.height_texels, method.name);
   const auto start = std::chrono::steady_clock::now();
   AoMap m = cached_precompute("ao_map", options, map.width, map.height, map.content_hash(),
-                              &AoMap::visibility, [&] { return compute_ao_map(map, o); });
+                              &AoMap::visibility, [&] { return method.compute(map, o); });
   if (m.from_cache) m.compute_ms = ms_since(start);
   return m;
 }

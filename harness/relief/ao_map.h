@@ -45,8 +45,16 @@ AoMap compute_ao_map(const ReliefMap& map, const AoMapOptions& options);
 // so that none is introduced where there was none.
 void filter_occluded_texels(const ReliefMap& map, std::vector<float>& visibility);
 
-// compute_ao_map through the precompute cache (core/precompute_cache.h).
-AoMap cached_ao_map(const ReliefMap& map, const AoMapOptions& options);
+// Who computes a map: the multithreaded CPU search (compute_ao_map), or another with the same
+// answers up to float rounding (technique/gpu_ao_map.h, the fragment shader). `name` keys the
+// cache, so the two never read each other's files.
+struct AoMapMethod {
+  const char* name = "cpu";
+  AoMap (*compute)(const ReliefMap&, const AoMapOptions&) = compute_ao_map;
+};
+
+// `method`'s map through the precompute cache (core/precompute_cache.h).
+AoMap cached_ao_map(const ReliefMap& map, const AoMapOptions& options, AoMapMethod method = {});
 
 // Eq. 6: visibility after the relief depth is scaled by s, from the stored value alone. The
 // visible cone is taken to be a circular one of radius r = sqrt(ao) on the unit hemisphere

@@ -105,7 +105,8 @@ ReliefMap build_relief_asset(const SceneDesc& scene, int resolution) {
   return baked;
 }
 
-AoMap attach_ao_map(ReliefMap& map, const SceneDesc& scene, double texel_world) {
+AoMap attach_ao_map(ReliefMap& map, const SceneDesc& scene, double texel_world,
+                    AoMapMethod method) {
   if (!scene.effects.has(Effect::AmbientOcclusion)) return {};
   AoMapOptions o;
   o.directions = scene.ao.directions;
@@ -115,7 +116,7 @@ AoMap attach_ao_map(ReliefMap& map, const SceneDesc& scene, double texel_world) 
   const double layer0_width = map.meta ? map.meta->layers()[0].map.width : map.width;
   if (!map.meta || scene.meta.ao_combine == MetaReliefDesc::AoCombine::Bake) {
     o.height_texels *= map.width / layer0_width;
-    AoMap ao = cached_ao_map(map, o);
+    AoMap ao = cached_ao_map(map, o, method);
     map.ambient_visibility = ao.visibility;
     return ao;
   }
@@ -131,7 +132,7 @@ AoMap attach_ao_map(ReliefMap& map, const SceneDesc& scene, double texel_world) 
     const double layer_texel = texel_world * layer0_width / (l.map.width * l.tiling);
     AoMapOptions lo = o;
     lo.height_texels = map.meta->depth_share(i) * scene.ao.depth_of_map(scene.depth) / layer_texel;
-    AoMap ao = cached_ao_map(l.map, lo);
+    AoMap ao = cached_ao_map(l.map, lo, method);
     combined.compute_ms += ao.compute_ms;
     combined.from_cache = combined.from_cache && ao.from_cache;
     per_layer.push_back(std::move(ao.visibility));

@@ -21,7 +21,9 @@ ReliefMap build_relief_asset(const SceneDesc& scene, int resolution);
 // map.ambient_visibility: for a meta-relief, its layers' maps combined (MetaReliefDesc::AoCombine)
 // or the bake's own. Returns the
 // map's timing; does nothing (and returns an empty AoMap) otherwise.
-AoMap attach_ao_map(ReliefMap& map, const SceneDesc& scene, double texel_world);
+// `method`: who computes the maps (the CPU search by default).
+AoMap attach_ao_map(ReliefMap& map, const SceneDesc& scene, double texel_world,
+                    AoMapMethod method = {});
 
 // The bake box of a mesh relief: the mesh's footprint, padded in depth too when it is baked
 // into layers (an impostor). Used alike by the bake, the truth and the scene's depth.
