@@ -88,14 +88,13 @@ void BM_ConeMap(benchmark::State& state, std::string kind, bool relaxed) {
   state.counters["mean_ratio"] = mean / c.ratio.size();
 }
 
-#define RL_CONE_BENCH(name, kind, relaxed)           \
-  BENCHMARK_CAPTURE(BM_ConeMap, name, kind, relaxed) \
-      ->Arg(256)                                     \
-      ->Arg(512)                                     \
-      ->Arg(1024)                                    \
-      ->Unit(benchmark::kMillisecond)                \
-      ->UseRealTime()                                \
-      ->Iterations(1)
+// Map sizes 256, 512 and 1024, one timed run each (a precompute takes seconds).
+void at_map_sizes(benchmark::internal::Benchmark* b) {
+  b->Arg(256)->Arg(512)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+}
+
+#define RL_CONE_BENCH(name, kind, relaxed) \
+  BENCHMARK_CAPTURE(BM_ConeMap, name, kind, relaxed)->Apply(at_map_sizes)
 RL_CONE_BENCH(cone_rock, "rock", true);
 RL_CONE_BENCH(cone_bricks, "bricks", true);
 RL_CONE_BENCH(cone_pyramids, "pyramids", true);
@@ -122,14 +121,8 @@ void BM_AoMap(benchmark::State& state, std::string kind, bool gpu) {
   state.counters["mean_visibility"] = mean / a.visibility.size();
 }
 
-#define RL_AO_BENCH(name, kind, gpu)           \
-  BENCHMARK_CAPTURE(BM_AoMap, name, kind, gpu) \
-      ->Arg(256)                               \
-      ->Arg(512)                               \
-      ->Arg(1024)                              \
-      ->Unit(benchmark::kMillisecond)          \
-      ->UseRealTime()                          \
-      ->Iterations(1)
+#define RL_AO_BENCH(name, kind, gpu) \
+  BENCHMARK_CAPTURE(BM_AoMap, name, kind, gpu)->Apply(at_map_sizes)
 RL_AO_BENCH(ao_rock, "rock", false);
 RL_AO_BENCH(ao_bricks, "bricks", false);
 RL_AO_BENCH(ao_sines, "sines", false);

@@ -5,7 +5,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/hash.h"
 #include "core/parallel.h"
 
 namespace rl {
@@ -97,17 +96,6 @@ double MetaRelief::finest_texels() const {
   for (const MetaLayer& l : layers_)
     m = std::max({m, l.map.width * l.tiling, l.map.height * l.tiling});
   return m;
-}
-
-uint64_t MetaRelief::content_hash() const {
-  uint64_t h = fnv1a64("meta", 4);
-  for (const MetaLayer& l : layers_) {
-    const uint64_t m = l.map.content_hash();
-    const double numbers[3] = {l.tiling, l.weight_normal, l.weight_depth};
-    h = fnv1a64(&m, sizeof m, h);
-    h = fnv1a64(numbers, sizeof numbers, h);
-  }
-  return h;
 }
 
 ReliefMap bake_meta_relief(const MetaRelief& meta, int width, int height, const ReliefMap* color) {

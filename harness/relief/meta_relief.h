@@ -45,7 +45,6 @@ class MetaRelief {
   double max_depth() const { return max_depth_; }
   // Texels per unit of base texture coordinate of the finest layer along u and v.
   double finest_texels() const;
-  uint64_t content_hash() const;
 
  private:
   std::vector<MetaLayer> layers_;

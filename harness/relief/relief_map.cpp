@@ -58,14 +58,6 @@ glm::dvec4 ReliefMap::surface_relief(double u, double v) const {
   return meta ? meta->relief(u, v) : sample_relief(u, v);
 }
 
-double ReliefMap::surface_min_depth() const {
-  return meta ? meta->min_depth() : min_depth();
-}
-
-double ReliefMap::surface_max_depth() const {
-  return meta ? meta->max_depth() : max_depth();
-}
-
 glm::dvec4 ReliefMap::sample_color(double u, double v) const {
   return bilinear(*this, u, v, [&](int x, int y) { return glm::dvec4(color[index(x, y)]); });
 }

@@ -76,9 +76,6 @@ struct ReliefMap {
   // of which `relief` is only the bake. What the truth traces and shades with.
   double surface_depth(double u, double v) const;
   glm::dvec4 surface_relief(double u, double v) const;
-  // Bounds of surface_depth (a meta-relief's may lie outside its bake's texels).
-  double surface_min_depth() const;
-  double surface_max_depth() const;
   float min_depth() const;
   float max_depth() const;
   // Hash of the size and contents: keys precompute caches and result rows.
