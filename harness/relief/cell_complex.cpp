@@ -1,0 +1,642 @@
+#include "relief/cell_complex.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <memory>
+#include <stdexcept>
+
+#include <embree3/rtcore.h>
+
+#include "core/elapsed.h"
+#include "core/embree_util.h"
+#include "core/error.h"
+#include "core/parallel.h"
+
+namespace rl {
+namespace {
+
+int popcount6(unsigned m) {
+  int c = 0;
+  for (int f = 0; f < 6; ++f) c += (m >> f) & 1u;
+  return c;
+}
+
+glm::dvec3 axis_vector(int a) {
+  glm::dvec3 v(0);
+  v[a] = 1;
+  return v;
+}
+
+// Outward normal of face f.
+glm::dvec3 face_normal(int f) {
+  return axis_vector(f / 2) * (f % 2 ? 1.0 : -1.0);
+}
+
+glm::dvec3 face_centre(int f) {
+  glm::dvec3 c(0.5);
+  c[f / 2] = f % 2;
+  return c;
+}
+
+// The projection line's inner end for a point q on it (or on the cell's boundary).
+glm::dvec3 inner_point(const CellProjection& p, const glm::dvec3& q) {
+  using T = CellProjection::Type;
+  switch (p.type) {
+    case T::Perspective:
+      return p.point;
+    case T::Axial: {
+      glm::dvec3 foot = p.point;
+      foot[p.axis] = q[p.axis];
+      return foot;
+    }
+    case T::Planar: {
+      glm::dvec3 on = q;
+      on[p.axis] = p.point[p.axis];
+      return on;
+    }
+    case T::Parallel: {
+      glm::dvec3 far = q;
+      far[p.axis / 2] = p.axis % 2 ? 0.0 : 1.0;
+      return far;
+    }
+  }
+  return p.point;
+}
+
+// Fragments along a segment: every surface crossing of o + t d, t in [0, t_max] (d unit),
+// up to kMaxCrossings; the first one's geometry in `first`.
+constexpr int kMaxCrossings = 64;
+int crossings(RTCScene scene, const glm::dvec3& o, const glm::dvec3& d, double t_max,
+              RTCRayHit* first) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  int n = 0;
+  double t0 = 0;
+  while (n < kMaxCrossings) {
+    RTCRayHit rh = embree_ray(o, d, t0, t_max);
+    rtcIntersect1(scene, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+    if (n == 0 && first) *first = rh;
+    ++n;
+    // Past this crossing: a relative step, so a shared edge is not counted twice but the next
+    // sheet (at least float rounding away) is.
+    t0 = double(rh.ray.tfar) + 1e-6 * std::max(1.0, t_max);
+  }
+  return n;
+}
+
+// Inside by the parity of crossings out to beyond the cube, voted over three directions.
+// Returns the majority; `agreed` false when the votes differ (an open or non-manifold mesh).
+bool parity_inside(RTCScene scene, const glm::dvec3& p, bool* agreed) {
+  // Directions off the axes so rays do not run along the grid's (and a CAD mesh's) planes.
+  static const glm::dvec3 dirs[3] = {glm::normalize(glm::dvec3(1, 0.0123, 0.0271)),
+                                     glm::normalize(glm::dvec3(-0.0317, 1, 0.0149)),
+                                     glm::normalize(glm::dvec3(0.0213, -0.0371, -1))};
+  int votes = 0;
+  for (const glm::dvec3& d : dirs) votes += crossings(scene, p, d, 4.0, nullptr) % 2;
+  if (agreed) *agreed = votes == 0 || votes == 3;
+  return votes >= 2;
+}
+
+struct EmbreeScene {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  explicit EmbreeScene(const TriangleMesh& mesh) {
+    device = rtcNewDevice(nullptr);
+    scene = embree_triangle_scene(device, mesh);
+  }
+  ~EmbreeScene() {
+    rtcReleaseScene(scene);
+    rtcReleaseDevice(device);
+  }
+};
+
+glm::vec3 neutral_albedo() {
+  return {0.78f, 0.74f, 0.70f};
+}
+
+// Bilinear weights of face coordinates st on a res x res map with texel centres at
+// (i + 0.5) / res, clamped to the outer centres (a face's map does not wrap).
+struct Bilinear {
+  int x0, y0, x1, y1;
+  double fx, fy;
+};
+Bilinear bilinear(glm::dvec2 st, int res) {
+  const double x = std::clamp(st.x * res - 0.5, 0.0, double(res - 1));
+  const double y = std::clamp(st.y * res - 0.5, 0.0, double(res - 1));
+  Bilinear b;
+  b.x0 = std::min(int(x), res - 1);
+  b.y0 = std::min(int(y), res - 1);
+  b.x1 = std::min(b.x0 + 1, res - 1);
+  b.y1 = std::min(b.y0 + 1, res - 1);
+  b.fx = x - b.x0;
+  b.fy = y - b.y0;
+  return b;
+}
+
+}  // namespace
+
+const char* cell_case_name(CellCase c) {
+  static const char* names[] = {"0", "1", "2a", "2b", "3a", "3b", "4a", "4b", "5", "6"};
+  return names[int(c)];
+}
+
+const char* projection_type_name(CellProjection::Type t) {
+  static const char* names[] = {"perspective", "axial", "planar", "parallel"};
+  return names[int(t)];
+}
+
+CellConfiguration configure_cell(uint8_t internal_mask) {
+  using T = CellProjection::Type;
+  const unsigned internal = internal_mask & 63u, external = ~internal_mask & 63u;
+  CellConfiguration c;
+  c.domain_mask = uint8_t(external);
+  CellProjection& p = c.projection;
+  auto faces_of = [](unsigned m) {
+    std::vector<int> f;
+    for (int i = 0; i < 6; ++i)
+      if ((m >> i) & 1u) f.push_back(i);
+    return f;
+  };
+  const std::vector<int> in = faces_of(internal), ex = faces_of(external);
+  switch (in.size()) {
+    case 0:  // all external: perspective from the centre
+      c.base_case = CellCase::C0;
+      p = {T::Perspective, glm::dvec3(0.5), 0};
+      break;
+    case 1:  // one internal face F: perspective from F's middle
+      c.base_case = CellCase::C1;
+      p = {T::Perspective, face_centre(in[0]), 0};
+      break;
+    case 2:
+      if (in[0] / 2 == in[1] / 2) {  // two opposite internal faces: axial through their middles
+        c.base_case = CellCase::C2b;
+        p = {T::Axial, glm::dvec3(0.5), in[0] / 2};
+      } else {  // one internal edge: perspective from its middle
+        c.base_case = CellCase::C2a;
+        glm::dvec3 m(0.5);
+        m[in[0] / 2] = in[0] % 2;
+        m[in[1] / 2] = in[1] % 2;
+        p = {T::Perspective, m, 0};
+      }
+      break;
+    case 3: {
+      int pair_axis = -1;
+      for (int a = 0; a < 3; ++a)
+        if (((internal >> (2 * a)) & 3u) == 3u) pair_axis = a;
+      if (pair_axis >= 0) {
+        // Two opposite internal faces and the one between them: two internal edges, parallel;
+        // the axis joins their middles, across the middle face, along the pair's normal.
+        c.base_case = CellCase::C3a;
+        int middle = -1;
+        for (int f : in)
+          if (f / 2 != pair_axis) middle = f;
+        glm::dvec3 a(0.5);
+        a[middle / 2] = middle % 2;
+        p = {T::Axial, a, pair_axis};
+      } else {  // three internal faces meeting at a vertex: perspective from it
+        c.base_case = CellCase::C3b;
+        glm::dvec3 v(0.5);
+        for (int f : in) v[f / 2] = f % 2;
+        p = {T::Perspective, v, 0};
+      }
+      break;
+    }
+    case 4:
+      if (ex[0] / 2 == ex[1] / 2) {  // two parallel external faces: the plane between them
+        c.base_case = CellCase::C4a;
+        p = {T::Planar, glm::dvec3(0.5), ex[0] / 2};
+      } else {  // one external edge: axial from the opposite edge
+        c.base_case = CellCase::C4b;
+        const int a1 = ex[0] / 2, a2 = ex[1] / 2, along = 3 - a1 - a2;
+        glm::dvec3 a(0.5);
+        a[a1] = 1 - ex[0] % 2;
+        a[a2] = 1 - ex[1] % 2;
+        p = {T::Axial, a, along};
+      }
+      break;
+    case 5:  // one external face: parallel along its normal
+      c.base_case = CellCase::C5;
+      p = {T::Parallel, glm::dvec3(0.5), ex[0]};
+      break;
+    default:  // all internal (an interior grey cell): perspective from the centre, onto all six
+      c.base_case = CellCase::C6;
+      p = {T::Perspective, glm::dvec3(0.5), 0};
+      c.domain_mask = 63;
+      break;
+  }
+  return c;
+}
+
+glm::dvec3 face_point(int face, glm::dvec2 st) {
+  const int a = face / 2;
+  glm::dvec3 q;
+  q[a] = face % 2;
+  q[(a + 1) % 3] = st.x;
+  q[(a + 2) % 3] = st.y;
+  return q;
+}
+
+glm::dvec2 face_coords(int face, const glm::dvec3& q) {
+  const int a = face / 2;
+  return {q[(a + 1) % 3], q[(a + 2) % 3]};
+}
+
+CellLine face_line(const CellProjection& p, int face, glm::dvec2 st) {
+  CellLine l;
+  l.face = face;
+  l.on_face = face_point(face, st);
+  l.inner = inner_point(p, l.on_face);
+  l.length = glm::length(l.on_face - l.inner);
+  l.along = 0;
+  return l;
+}
+
+CellLine project_in_cell(const CellProjection& p, uint8_t domain_mask, const glm::dvec3& q) {
+  using T = CellProjection::Type;
+  CellLine l;
+  l.inner = inner_point(p, q);
+  glm::dvec3 dir;
+  if (p.type == T::Planar) {
+    dir = axis_vector(p.axis) * (q[p.axis] >= p.point[p.axis] ? 1.0 : -1.0);
+  } else if (p.type == T::Parallel) {
+    dir = face_normal(p.axis);
+  } else {
+    dir = q - l.inner;
+  }
+  if (glm::dot(dir, dir) < 1e-24) {
+    // q is the centre (or on the axis): every line passes through it; take the one towards the
+    // first domain face, perpendicular to an axial projection's axis.
+    int f = 0;
+    while (f < 5 && !((domain_mask >> f) & 1u)) ++f;
+    dir = face_normal(f);
+  }
+  double s = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a)
+    if (dir[a] != 0) s = std::min(s, ((dir[a] > 0 ? 1.0 : 0.0) - q[a]) / dir[a]);
+  s = std::max(s, 0.0);
+  // The exit face; at an edge or corner a domain face wins the tie.
+  int face = -1;
+  for (int a = 0; a < 3; ++a) {
+    if (dir[a] == 0) continue;
+    const double sa = ((dir[a] > 0 ? 1.0 : 0.0) - q[a]) / dir[a];
+    if (sa > s + 1e-12) continue;
+    const int f = 2 * a + (dir[a] > 0 ? 1 : 0);
+    if (face < 0 || (((domain_mask >> f) & 1u) && !((domain_mask >> face) & 1u))) face = f;
+  }
+  l.face = face;
+  l.on_face = glm::clamp(q + dir * s, 0.0, 1.0);
+  l.on_face[face / 2] = face % 2;
+  l.along = glm::length(l.on_face - q);
+  l.length = glm::length(l.on_face - l.inner);
+  return l;
+}
+
+bool triangle_overlaps_box(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                           const glm::dvec3& box_lo, const glm::dvec3& box_hi) {
+  const glm::dvec3 centre = 0.5 * (box_lo + box_hi), half = 0.5 * (box_hi - box_lo);
+  const glm::dvec3 v[3] = {a - centre, b - centre, c - centre};
+  // The box's face normals: the triangle's bounding box against the box.
+  for (int k = 0; k < 3; ++k) {
+    const double lo = std::min({v[0][k], v[1][k], v[2][k]});
+    const double hi = std::max({v[0][k], v[1][k], v[2][k]});
+    if (lo > half[k] || hi < -half[k]) return false;
+  }
+  const glm::dvec3 e[3] = {v[1] - v[0], v[2] - v[1], v[0] - v[2]};
+  // The triangle's plane.
+  const glm::dvec3 n = glm::cross(e[0], e[1]);
+  const double r = half.x * std::abs(n.x) + half.y * std::abs(n.y) + half.z * std::abs(n.z);
+  if (std::abs(glm::dot(n, v[0])) > r) return false;
+  // Edge x box-axis cross products.
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec3 axis = glm::cross(axis_vector(k), e[i]);
+      if (glm::dot(axis, axis) < 1e-30) continue;
+      const double p0 = glm::dot(axis, v[0]), p1 = glm::dot(axis, v[1]), p2 = glm::dot(axis, v[2]);
+      const double rad =
+          half.x * std::abs(axis.x) + half.y * std::abs(axis.y) + half.z * std::abs(axis.z);
+      if (std::min({p0, p1, p2}) > rad || std::max({p0, p1, p2}) < -rad) return false;
+    }
+  return true;
+}
+
+BakeFrame cell_frame(const TriangleMesh& mesh, int up, double margin) {
+  if (up < 0 || up > 2) throw ConfigError("mesh up axis must be x, y or z");
+  BakeFrame f;
+  f.up = up;
+  f.axis_u = (up + 1) % 3;
+  f.axis_v = (up + 2) % 3;
+  const glm::dvec3 extent = mesh.hi - mesh.lo;
+  const double side = std::max({extent.x, extent.y, extent.z, 1e-9}) * (1 + 2 * margin);
+  f.side = f.height = side;
+  const glm::dvec3 centre = 0.5 * (mesh.lo + mesh.hi);
+  f.origin = centre - glm::dvec3(0.5 * side);
+  f.origin[up] = centre[up] + 0.5 * side;
+  return f;
+}
+
+TriangleMesh to_frame(const TriangleMesh& mesh, const BakeFrame& frame) {
+  TriangleMesh out = mesh;
+  out.lo = glm::dvec3(std::numeric_limits<double>::max());
+  out.hi = -out.lo;
+  for (glm::vec3& p : out.positions) {
+    const glm::dvec3 t = frame.texture_from_mesh(glm::dvec3(p));
+    p = glm::vec3(t);
+    out.lo = glm::min(out.lo, t);
+    out.hi = glm::max(out.hi, t);
+  }
+  return out;
+}
+
+namespace {
+
+// Classification (Section 3.3.1): grey by exact triangle-box overlap; white and black by a
+// flood fill from the grid's border through non-grey cells, each enclosed region decided by
+// parity rays from one of its cells.
+void classify(const TriangleMesh& mesh, RTCScene scene, int n,
+              std::vector<CellComplex::Cell>& cells, CellComplex::Stats& stats) {
+  const size_t count = size_t(n) * n * n;
+  auto grey = std::make_unique<std::atomic<uint8_t>[]>(count);
+  for (size_t i = 0; i < count; ++i) grey[i].store(0, std::memory_order_relaxed);
+  std::atomic<long> degenerate{0};
+  const double pad = 1e-9;  // closed boxes, and a hair more: touching is grey
+  parallel_for(
+      mesh.triangles.size(),
+      [&](size_t begin, size_t end) {
+        for (size_t t = begin; t < end; ++t) {
+          const glm::uvec3 tri = mesh.triangles[t];
+          const glm::dvec3 a(mesh.positions[tri.x]), b(mesh.positions[tri.y]),
+              c(mesh.positions[tri.z]);
+          if (glm::length(glm::cross(b - a, c - a)) < 1e-18) {
+            ++degenerate;  // no area: it bounds nothing (its edges belong to its neighbours)
+            continue;
+          }
+          const glm::dvec3 lo = glm::min(a, glm::min(b, c)) * double(n),
+                           hi = glm::max(a, glm::max(b, c)) * double(n);
+          glm::ivec3 i0, i1;
+          for (int k = 0; k < 3; ++k) {
+            i0[k] = std::clamp(int(std::floor(lo[k] - 1e-7)), 0, n - 1);
+            i1[k] = std::clamp(int(std::floor(hi[k] + 1e-7)), 0, n - 1);
+          }
+          for (int k = i0.z; k <= i1.z; ++k)
+            for (int j = i0.y; j <= i1.y; ++j)
+              for (int i = i0.x; i <= i1.x; ++i) {
+                const size_t idx = (size_t(k) * n + j) * n + i;
+                if (grey[idx].load(std::memory_order_relaxed)) continue;
+                const glm::dvec3 blo = glm::dvec3(i, j, k) / double(n) - pad,
+                                 bhi = glm::dvec3(i + 1, j + 1, k + 1) / double(n) + pad;
+                if (triangle_overlaps_box(a, b, c, blo, bhi))
+                  grey[idx].store(1, std::memory_order_relaxed);
+              }
+        }
+      },
+      256);
+  stats.degenerate_triangles = degenerate.load();
+  cells.assign(count, {});
+  std::vector<int8_t> state(count, -1);  // -1 undecided
+  for (size_t i = 0; i < count; ++i)
+    if (grey[i].load()) state[i] = int8_t(CellState::Grey);
+  auto neighbours = [n](size_t idx, auto&& visit) {
+    const int i = int(idx % n), j = int((idx / n) % n), k = int(idx / (size_t(n) * n));
+    const int d[6][3] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+    for (const auto& o : d) {
+      const int a = i + o[0], b = j + o[1], c = k + o[2];
+      if (a < 0 || b < 0 || c < 0 || a >= n || b >= n || c >= n) continue;
+      visit((size_t(c) * n + b) * n + a);
+    }
+  };
+  auto fill = [&](size_t seed, int8_t value) {
+    std::deque<size_t> queue{seed};
+    state[seed] = value;
+    while (!queue.empty()) {
+      const size_t c = queue.front();
+      queue.pop_front();
+      neighbours(c, [&](size_t nb) {
+        if (state[nb] != -1) return;
+        state[nb] = value;
+        queue.push_back(nb);
+      });
+    }
+  };
+  // The outside: non-grey cells on the grid's border and everything they reach.
+  for (size_t idx = 0; idx < count; ++idx) {
+    const int i = int(idx % n), j = int((idx / n) % n), k = int(idx / (size_t(n) * n));
+    const bool border = i == 0 || j == 0 || k == 0 || i == n - 1 || j == n - 1 || k == n - 1;
+    if (border && state[idx] == -1) fill(idx, int8_t(CellState::White));
+  }
+  // Enclosed regions: inside or outside by parity from one cell's centre.
+  for (size_t idx = 0; idx < count; ++idx) {
+    if (state[idx] != -1) continue;
+    const int i = int(idx % n), j = int((idx / n) % n), k = int(idx / (size_t(n) * n));
+    bool agreed = true;
+    const bool inside = parity_inside(scene, (glm::dvec3(i, j, k) + 0.5) / double(n), &agreed);
+    if (!agreed) ++stats.ambiguous_regions;
+    fill(idx, int8_t(inside ? CellState::Black : CellState::White));
+  }
+  for (size_t idx = 0; idx < count; ++idx) cells[idx].state = CellState(state[idx]);
+}
+
+}  // namespace
+
+CellComplex CellComplex::build(const TriangleMesh& mesh, const CellComplexOptions& options) {
+  if (options.grid > 0 && options.grid > kMaxCellGrid)
+    throw ConfigError("cell grid " + std::to_string(options.grid) + " is above the cap " +
+                      std::to_string(kMaxCellGrid));
+  if (options.resolution < 2 || options.resolution > 1024)
+    throw ConfigError("cell map resolution must be 2 to 1024, got " +
+                      std::to_string(options.resolution));
+  if (options.distance_bits != 8 && options.distance_bits != 16)
+    throw ConfigError("distance_bits must be 8 or 16");
+  if (options.grid <= 0) {
+    // Section 3.3.3: start at 1 and double until the occluded-fragment ratio is below the
+    // threshold or N_max is reached.
+    std::vector<GridTrial> trials;
+    const int cap = std::clamp(options.grid_max, 1, kMaxCellGrid);
+    for (int n = 1;; n *= 2) {
+      CellComplexOptions o = options;
+      o.grid = std::min(n, cap);
+      CellComplex c = build(mesh, o);
+      trials.push_back(
+          {o.grid, c.stats_.occluded_ratio(), c.stats_.grey_cells, c.stats_.domain_faces});
+      if (c.stats_.occluded_ratio() < options.threshold || o.grid >= cap) {
+        c.stats_.trials = trials;
+        return c;
+      }
+    }
+  }
+  CellComplex cc;
+  cc.n_ = options.grid;
+  cc.res_ = options.resolution;
+  cc.bits_ = options.distance_bits;
+  const int n = cc.n_, res = cc.res_;
+  EmbreeScene embree(mesh);
+  Stats& st = cc.stats_;
+
+  auto t0 = std::chrono::steady_clock::now();
+  classify(mesh, embree.scene, n, cc.cells_, st);
+  // Faces, cases and projections.
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        Cell& c = cc.cells_[cc.index(i, j, k)];
+        if (c.state == CellState::White) ++st.white_cells;
+        if (c.state == CellState::Black) ++st.black_cells;
+        if (c.state != CellState::Grey) continue;
+        ++st.grey_cells;
+        const int ijk[3] = {i, j, k};
+        uint8_t internal = 0;
+        for (int f = 0; f < 6; ++f) {
+          int nb[3] = {i, j, k};
+          nb[f / 2] += f % 2 ? 1 : -1;
+          const bool outside = nb[f / 2] < 0 || nb[f / 2] >= n;
+          (void)ijk;
+          if (!outside && cc.cells_[cc.index(nb[0], nb[1], nb[2])].state != CellState::White)
+            internal |= uint8_t(1u << f);
+        }
+        c.internal_mask = internal;
+        c.config = configure_cell(internal);
+        ++st.cases[int(c.config.base_case)];
+        (internal == 63 ? st.interior_grey : st.border_grey)++;
+        c.first_face = int(cc.faces_.size());
+        for (int f = 0; f < 6; ++f)
+          if ((c.config.domain_mask >> f) & 1u) cc.faces_.push_back({int(cc.index(i, j, k)), f});
+      }
+  st.domain_faces = long(cc.faces_.size());
+  st.classify_ms = ms_since(t0);
+
+  // Sampling (Section 3.3.2), by rays along each texel's projection line (exact per texel):
+  // the first crossing's distance, normal and colour; every crossing counted as a fragment.
+  t0 = std::chrono::steady_clock::now();
+  const size_t texels = size_t(res) * res;
+  cc.distance_.assign(cc.faces_.size() * texels, 0);
+  cc.face_inside_.assign(cc.faces_.size() * texels, 0);
+  cc.normal_.assign(cc.faces_.size() * texels, glm::vec3(0, 0, -1));
+  cc.color_.assign(cc.faces_.size() * texels, neutral_albedo());
+  std::atomic<long> fragments{0}, occluded{0}, multi{0};
+  const double scale = cc.distance_scale();
+  parallel_for(
+      cc.faces_.size() * texels,
+      [&](size_t begin, size_t end) {
+        long frag = 0, occ = 0, mul = 0;
+        for (size_t t = begin; t < end; ++t) {
+          const DomainFace& df = cc.faces_[t / texels];
+          const int x = int((t % texels) % res), y = int((t % texels) / res);
+          const Cell& c = cc.cells_[df.cell];
+          const glm::dvec3 cell0(df.cell % n, (df.cell / n) % n, df.cell / (size_t(n) * n));
+          const CellLine line =
+              face_line(c.config.projection, df.face, {(x + 0.5) / res, (y + 0.5) / res});
+          const glm::dvec3 from = (cell0 + line.on_face) / double(n);
+          const glm::dvec3 to = (cell0 + line.inner) / double(n);
+          const double length = glm::length(to - from);
+          // The face point is outside on an external face (it touches a white cell); on an
+          // interior grey cell's face it is inside next to a black cell, else by parity.
+          bool face_inside = false;
+          if (c.internal_mask == 63) {
+            int nb[3] = {int(cell0.x), int(cell0.y), int(cell0.z)};
+            nb[df.face / 2] += df.face % 2 ? 1 : -1;
+            const bool in_grid = nb[df.face / 2] >= 0 && nb[df.face / 2] < n;
+            const CellState s =
+                in_grid ? cc.cells_[cc.index(nb[0], nb[1], nb[2])].state : CellState::White;
+            face_inside = s == CellState::Black ||
+                          (s == CellState::Grey && parity_inside(embree.scene, from, nullptr));
+          }
+          double d = 1;  // outside all along
+          int hits = 0;
+          if (length > 0) {
+            RTCRayHit first{};
+            hits = crossings(embree.scene, from, (to - from) / length, length, &first);
+            frag += hits;
+            occ += std::max(0, hits - 1);
+            mul += hits > 1;
+            if (hits > 0) {
+              d = std::clamp(double(first.ray.tfar) / length, 0.0, 1.0);
+              const glm::dvec3 ng(first.hit.Ng_x, first.hit.Ng_y, first.hit.Ng_z);
+              if (glm::dot(ng, ng) > 0) cc.normal_[t] = glm::vec3(glm::normalize(ng));
+              if (!mesh.triangle_colors.empty())
+                cc.color_[t] = mesh.triangle_colors[first.hit.primID];
+            }
+          }
+          // A line inside all along is stored as entering at its face point (d = 0, no flag),
+          // so it interpolates continuously with its neighbours that enter just after theirs;
+          // the flag marks only lines that start inside and leave (inside up to d).
+          if (face_inside && hits == 0) d = 0;
+          cc.face_inside_[t] = face_inside && hits > 0;
+          cc.distance_[t] = uint16_t(std::lround(d * scale));
+        }
+        fragments += frag;
+        occluded += occ;
+        multi += mul;
+      },
+      1024);
+  st.fragments = fragments.load();
+  st.occluded_fragments = occluded.load();
+  st.multi_crossing_texels = multi.load();
+  st.sample_ms = ms_since(t0);
+  return cc;
+}
+
+size_t CellComplex::gpu_bytes() const {
+  const size_t texels = faces_.size() * size_t(res_) * res_;
+  // Distance + inside flag (2 x 16 or 2 x 8 bits), normal and colour RGBA8, the cell table.
+  return texels * (bits_ == 16 ? 4 : 2) + texels * 4 * 2 + size_t(n_) * n_ * n_ * 8;
+}
+
+CellComplex::Lookup CellComplex::lookup(const glm::dvec3& p) const {
+  Lookup l;
+  const glm::dvec3 g = p * double(n_);
+  glm::ivec3 c;
+  for (int k = 0; k < 3; ++k) {
+    if (!(g[k] >= 0 && g[k] <= n_)) return l;
+    c[k] = std::min(int(std::floor(g[k])), n_ - 1);
+  }
+  const Cell& cell = cells_[index(c.x, c.y, c.z)];
+  if (cell.state != CellState::Grey) return l;
+  l.line = project_in_cell(cell.config.projection, cell.config.domain_mask, g - glm::dvec3(c));
+  const unsigned mask = cell.config.domain_mask;
+  if (l.line.face < 0 || !((mask >> l.line.face) & 1u)) return l;
+  l.face_index = cell.first_face + popcount6(mask & ((1u << l.line.face) - 1u));
+  l.st = face_coords(l.line.face, l.line.on_face);
+  return l;
+}
+
+double CellComplex::sample_distance(int face_index, glm::dvec2 st, bool* inside_flag) const {
+  const Bilinear b = bilinear(st, res_);
+  const size_t base = size_t(face_index) * res_ * res_;
+  auto at = [&](int x, int y) { return base + size_t(y) * res_ + x; };
+  auto lerp2 = [&](auto value) {
+    const double top = value(at(b.x0, b.y0)) * (1 - b.fx) + value(at(b.x1, b.y0)) * b.fx;
+    const double bottom = value(at(b.x0, b.y1)) * (1 - b.fx) + value(at(b.x1, b.y1)) * b.fx;
+    return top * (1 - b.fy) + bottom * b.fy;
+  };
+  if (inside_flag) *inside_flag = lerp2([&](size_t i) { return double(face_inside_[i]); }) > 0.5;
+  return lerp2([&](size_t i) { return double(distance_[i]); }) / distance_scale();
+}
+
+glm::dvec3 CellComplex::sample_normal(int face_index, glm::dvec2 st) const {
+  const Bilinear b = bilinear(st, res_);
+  const size_t base = size_t(face_index) * res_ * res_;
+  auto at = [&](int x, int y) { return glm::dvec3(normal_[base + size_t(y) * res_ + x]); };
+  const glm::dvec3 n = (at(b.x0, b.y0) * (1 - b.fx) + at(b.x1, b.y0) * b.fx) * (1 - b.fy) +
+                       (at(b.x0, b.y1) * (1 - b.fx) + at(b.x1, b.y1) * b.fx) * b.fy;
+  const double len = glm::length(n);
+  return len > 0 ? n / len : glm::dvec3(0, 0, -1);
+}
+
+bool CellComplex::encoded_inside(const glm::dvec3& p) const {
+  const glm::dvec3 g = p * double(n_);
+  for (int k = 0; k < 3; ++k)
+    if (!(g[k] >= 0 && g[k] <= n_)) return false;
+  const glm::ivec3 c = glm::min(glm::ivec3(glm::floor(g)), glm::ivec3(n_ - 1));
+  const CellState s = cells_[index(c.x, c.y, c.z)].state;
+  if (s != CellState::Grey) return s == CellState::Black;
+  const Lookup l = lookup(p);
+  if (l.face_index < 0) return false;
+  bool flag = false;
+  const double d = sample_distance(l.face_index, l.st, &flag);
+  return flag != (l.line.along > d * l.line.length);
+}
+
+}  // namespace rl
