@@ -61,11 +61,6 @@ std::vector<HardCase> hard_cases() {
   return cases;
 }
 
-bool can_draw(const TechniqueInfo& info, const SceneDesc& scene) {
-  if (scene.proxy == Proxy::Box && !info.box_proxy) return false;
-  return info.effects.contains_all(scene.effects);
-}
-
 TEST(RegistryHardCases, EveryTechniqueKeepsCoverageNearTheExactSearch) {
   const auto names = TechniqueRegistry::instance().names();
   ASSERT_NE(std::find(names.begin(), names.end(), kReference), names.end());
@@ -77,7 +72,7 @@ TEST(RegistryHardCases, EveryTechniqueKeepsCoverageNearTheExactSearch) {
     EXPECT_LE(ref.metrics.missed_pct + ref.metrics.false_pct, 0.5);
     for (const std::string& name : names) {
       const TechniqueInfo& info = TechniqueRegistry::instance().find(name)->info;
-      if (name == kReference || !can_draw(info, hc.scene)) continue;
+      if (name == kReference || !cannot_render(info, hc.scene).empty()) continue;
       SCOPED_TRACE(name);
       const test::Measured m = test::measure(hc.scene, name, {}, hc.view, 96);
       EXPECT_EQ(m.metrics.nonfinite_px, 0);

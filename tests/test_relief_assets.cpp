@@ -140,7 +140,8 @@ TEST(Images, MissingFileOrAlphaIsAClearError) {
     load_relief_images(src, 1.0);
     FAIL();
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("a normal map holds RGB normals and depth in alpha"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("a normal map holds RGB normals and depth in alpha"),
+              std::string::npos);
   }
 }
 

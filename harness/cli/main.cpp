@@ -29,9 +29,13 @@ void print_list() {
     const rl::TechniqueInfo& info = registry.find(name)->info;
     std::printf("%s — %s\n  citation: %s\n  effects:  %s\n", info.name.c_str(), info.title.c_str(),
                 info.citation.c_str(), rl::join_effects(info.effects).c_str());
-    std::printf("  proxies:  base%s%s\n", info.box_proxy ? ", box" : "",
-                info.impostor ? ", impostor" : "");
-    std::printf("  meta-relief: %s\n", info.meta_relief ? "runtime or baked" : "baked");
+    if (info.cell_complex) {
+      std::printf("  draws:    cell-complex reliefs only (relief = { cells = \"mesh.obj\" })\n");
+    } else {
+      std::printf("  proxies:  base%s%s\n", info.box_proxy ? ", box" : "",
+                  info.impostor ? ", impostor" : "");
+      std::printf("  meta-relief: %s\n", info.meta_relief ? "runtime or baked" : "baked");
+    }
     if (info.params.empty()) std::printf("  parameters: none\n");
     for (const rl::ParamSpec& p : info.params) {
       std::printf("  %-16s %-5s default %s", p.name.c_str(), rl::param_kind_name(p.kind).c_str(),

@@ -114,10 +114,6 @@ struct EmbreeScene {
   }
 };
 
-glm::vec3 neutral_albedo() {
-  return {0.78f, 0.74f, 0.70f};
-}
-
 // Bilinear weights of face coordinates st on a res x res map with texel centres at
 // (i + 0.5) / res, clamped to the outer centres (a face's map does not wrap).
 struct Bilinear {
@@ -474,6 +470,7 @@ CellComplex CellComplex::build(const TriangleMesh& mesh, const CellComplexOption
   const int n = cc.n_, res = cc.res_;
   EmbreeScene embree(mesh);
   Stats& st = cc.stats_;
+  st.mesh_triangles = long(mesh.triangles.size());
 
   auto t0 = std::chrono::steady_clock::now();
   classify(mesh, embree.scene, n, cc.cells_, st);
@@ -514,7 +511,7 @@ CellComplex CellComplex::build(const TriangleMesh& mesh, const CellComplexOption
   cc.distance_.assign(cc.faces_.size() * texels, 0);
   cc.face_inside_.assign(cc.faces_.size() * texels, 0);
   cc.normal_.assign(cc.faces_.size() * texels, glm::vec3(0, 0, -1));
-  cc.color_.assign(cc.faces_.size() * texels, neutral_albedo());
+  cc.color_.assign(cc.faces_.size() * texels, kCellAlbedo);
   std::atomic<long> fragments{0}, occluded{0}, multi{0};
   const double scale = cc.distance_scale();
   parallel_for(

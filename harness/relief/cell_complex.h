@@ -75,6 +75,8 @@ struct CellComplexOptions {
   int grid_max = 16;        // auto grid: N_max
 };
 inline constexpr int kMaxCellGrid = 32;
+// The albedo of a mesh without colours (as the heightfield bake of a mesh uses).
+inline const glm::vec3 kCellAlbedo(0.78f, 0.74f, 0.70f);
 
 // One step of the automatic grid choice.
 struct GridTrial {
@@ -102,6 +104,7 @@ class CellComplex {
     // Non-grey regions whose inside/outside parity votes disagreed (an open or non-manifold
     // mesh): resolved by the majority.
     long ambiguous_regions = 0;
+    long mesh_triangles = 0;
     long degenerate_triangles = 0;  // zero-area triangles skipped
     double classify_ms = 0, sample_ms = 0;
     std::vector<GridTrial> trials;  // the automatic grid choice's steps, if any

@@ -12,7 +12,8 @@
 
 namespace rl {
 
-class MetaRelief;  // relief/meta_relief.h
+class MetaRelief;   // relief/meta_relief.h
+class CellComplex;  // relief/cell_complex.h
 
 // Several depth layers per texel (Policarpo & Oliveira 2006, Section 3): every crossing of
 // a vertical bake ray with a closed surface, sorted top to bottom, so a point at depth d is
@@ -65,6 +66,9 @@ struct ReliefMap {
   // Its layers' AO maps (each at its layer's size), where the scene combines them by product or
   // minimum: the shader combines them per fetch when it combines the layers.
   std::vector<std::vector<float>> meta_ambient_visibility;
+  // A mesh encoded as a cubic cell complex (relief/cell_complex.h): the GPU gets the complex;
+  // `relief` and `color` are a flat placeholder.
+  std::shared_ptr<const CellComplex> cells;
 
   size_t index(int x, int y) const;  // wraps like GL_REPEAT
   float depth_texel(int x, int y) const { return relief[index(x, y)].a; }

@@ -259,6 +259,7 @@ BaseMesh make_base_mesh(const BaseDesc& desc, double size, double tile, bool req
 }
 
 double texel_world(const SceneDesc& scene, int res) {
+  if (scene.cell_complex()) return scene.size / kCellMetricTexels;
   const MapSize size = scene.relief.size_at(res);
   if (!scene.base.curved()) return planar_base(scene).texel_world(size.width);
   return texel_world(make_base_mesh(scene.base, scene.size, scene.tile), size);

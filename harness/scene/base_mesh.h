@@ -44,7 +44,7 @@ inline bool has_charts(const BaseDesc& desc) {
 
 // World size of one texel of the scene's map at texture resolution `res` (size_at) on its base
 // (planar: exact; curved: the mean mapping scale over the base's vertices and both axes), the
-// unit of position errors in texels.
+// unit of position errors in texels; a cell complex's is kCellMetricTexels of its cube.
 double texel_world(const SceneDesc& scene, int res);
 double texel_world(const BaseMesh& mesh, const MapSize& size);
 

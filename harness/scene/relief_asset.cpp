@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "core/elapsed.h"
+#include "relief/cell_complex.h"
 #include "relief/image_io.h"
 #include "relief/layer_bake.h"
 #include "relief/mesh_bake.h"
@@ -27,10 +28,34 @@ ReliefImageSource image_source(const ReliefSourceDesc& relief) {
 }
 
 BakeFrame relief_bake_frame(const ReliefSourceDesc& relief, const TriangleMesh& mesh) {
+  // A cell complex lives in the mesh's bounding cube: one scale on all three axes.
+  if (relief.cells.active) return cell_frame(mesh, relief.mesh_up);
   return bake_frame(mesh, relief.mesh_up, 0.04, relief.layers > 0 ? 0.02 : 0.0);
 }
 
 namespace {
+
+// A cell complex of the relief's mesh, faces `resolution` texels square (0: native). The map
+// itself is a flat placeholder of that size in the neutral albedo (what the truth shades a
+// colourless mesh with); the complex is what the GPU gets (GpuRelief).
+ReliefMap build_cell_complex_asset(const ReliefSourceDesc& relief, int resolution) {
+  const TriangleMesh mesh = load_mesh(relief.mesh_path);
+  const int res = resolution > 0 ? resolution : relief.native.width;
+  CellComplexOptions options;
+  options.grid = relief.cells.grid;
+  options.resolution = res;
+  options.distance_bits = relief.cells.distance_bits;
+  options.threshold = relief.cells.threshold;
+  options.grid_max = relief.cells.grid_max;
+  ReliefMap map;
+  map.name = mesh.name;
+  map.width = map.height = res;
+  map.relief.assign(size_t(res) * res, glm::vec4(0.5f, 0.5f, 1.0f, 0.0f));
+  map.color.assign(size_t(res) * res, glm::vec4(kCellAlbedo, 1.0f));
+  map.cells = std::make_shared<const CellComplex>(
+      CellComplex::build(to_frame(mesh, relief_bake_frame(relief, mesh)), options));
+  return map;
+}
 
 // One heightfield or layered map from `relief` at `resolution`, before quantisation. `tiling`:
 // how often it repeats per base tile (a meta-relief layer), which shrinks its texels on the
@@ -71,6 +96,7 @@ ReliefMap build_map(const SceneDesc& scene, const ReliefSourceDesc& relief, int 
 }  // namespace
 
 ReliefMap build_relief_asset(const SceneDesc& scene, int resolution) {
+  if (scene.cell_complex()) return build_cell_complex_asset(scene.relief, resolution);
   ReliefMap map = build_map(scene, scene.relief, resolution, 1.0);
   if (scene.quantize) quantize_8bit(map);
   if (!scene.meta.active()) return map;

@@ -38,7 +38,16 @@ struct ReliefSourceDesc {
   int mesh_up = 1;         // its up axis: 0, 1, 2 = x, y, z
   double reverse_cop = 0;  // reverse perspective: centre of projection depth (> 1), or 0
   int layers = 0;          // > 0: baked into that many depth layers (a mesh or a pattern)
-  MapSize native;          // size when texture_res = 0 ("native")
+  // The mesh encoded as a cubic cell complex instead of baked into a map (Apaza & Andujar,
+  // relief/cell_complex.h): `native` is each domain face's map size.
+  struct Cells {
+    bool active = false;
+    int grid = 0;             // N; 0 = chosen by the occluded-fragment ratio (Section 3.3.3)
+    double threshold = 0.05;  // ... below this ratio
+    int grid_max = 16;        // ... or at most this N
+    int distance_bits = 16;   // 16 (Table 1) or 8
+  } cells;
+  MapSize native;  // size when texture_res = 0 ("native")
   // A non-height-field pattern generated as a mesh (relief/pattern_mesh.h): weave, helix.
   bool pattern_mesh() const;
   // The map's size at a sweep's texture_res (the longer side; 0 = native).
@@ -177,7 +186,14 @@ struct SceneDesc {
   // A relief impostor (Policarpo & Oliveira 2006, Section 4): a mesh baked into depth layers,
   // drawn on one quad through its middle (depth 0.5) and seen from either side.
   bool impostor() const { return relief.layers > 0 && !relief.mesh_path.empty(); }
+  // A closed mesh as a cubic cell complex (relief = { cells = "mesh.obj" }): drawn by the
+  // techniques that read it, in its bounding cube (the box proxy, depth = size).
+  bool cell_complex() const { return relief.cells.active; }
 };
+
+// Position errors of a cell complex are in 1/256 of its cube's side (what a 64^2 face map on a
+// 4^3 grid resolves), whatever its grid and face resolution: one yardstick across a grid study.
+inline constexpr int kCellMetricTexels = 256;
 
 // The planar base: texture space (u, v, depth) <-> world. The quad spans [-size/2, size/2] in
 // x (u) and `aspect` times that in y (v) at z = 0; depth 1 lies `depth` below it.

@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "relief/pattern_mesh.h"
 #include "relief/procedural.h"
+#include "sweep/config_cells.h"
 
 namespace rl {
 namespace {
@@ -24,11 +25,20 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
                               nlohmann::json& canon) {
   const toml::table* t = node.as_table();
   if (!t) fail(src.at(node), "'relief' must be a table, e.g. { procedural = \"bricks\" }");
+  ReliefSourceDesc r;
+  if (t->contains("cells")) {
+    for (const char* k : {"procedural", "normal", "depth", "mesh"})
+      if (t->contains(k))
+        fail(src.at(node), std::string("relief needs exactly one of 'procedural', image files, "
+                                       "'mesh' or 'cells'; this one also has '") +
+                               k + "'");
+    parse_cells_relief(*t, src, base_dir, r, canon);
+    return r;
+  }
   check_keys(*t,
              {"procedural", "resolution", "options", "normal", "depth", "color", "convention",
               "flip_green", "normalize", "mesh", "up", "reverse_perspective", "layers"},
              src, "relief");
-  ReliefSourceDesc r;
   const bool procedural = t->contains("procedural");
   const bool images = t->contains("normal") || t->contains("depth");
   const bool mesh = t->contains("mesh");

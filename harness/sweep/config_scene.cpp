@@ -5,6 +5,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "sweep/config_cells.h"
 #include "sweep/config_effects.h"
 #include "sweep/config_meta.h"
 #include "sweep/config_relief.h"
@@ -152,7 +153,7 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
       fail(src.at(*n),
            "a multilayer relief has no single heightfield to sample; its truths are "
            "\"mesh\" (what it was baked from) and \"layers\" (its own layers)");
-  } else if (s.relief.layers > 0) {
+  } else if (s.relief.layers > 0 || s.cell_complex()) {
     s.truth = TruthLevel::Mesh;  // measured against the geometry it stands for
   }
   if (auto* n = t.get("truth_resolution")) {
@@ -197,6 +198,7 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
   parse_objects(t, src, base_dir, s, canon);
   parse_effect_options(t, src, node, s, canon);
   parse_meta_relief(t, src, base_dir, node, s, canon);
+  apply_cells_scene(t, src, node, s);
   canon["name"] = s.name;
   canon["proxy"] = s.proxy == Proxy::Box ? "box" : "base";
   canon["truth"] = truth_level_name(s.truth);

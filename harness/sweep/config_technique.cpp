@@ -133,26 +133,11 @@ void check_technique_sweep(const TechniqueSweep& ts, const std::vector<SceneDesc
   for (const SceneDesc& s : scenes) {
     const bool runs = ts.scenes.empty() ||
                       std::find(ts.scenes.begin(), ts.scenes.end(), s.name) != ts.scenes.end();
-    if (runs && !info.effects.contains_all(s.effects))
-      fail(ts.where, "technique '" + ts.name + "' does not support effect(s) " +
-                         join_effects(info.effects.missing_from(s.effects)) +
-                         " requested by scene '" + s.name +
-                         "' (it supports: " + join_effects(info.effects) +
-                         "); restrict it with scenes = [...] or drop the effect");
-    if (runs && s.impostor() && !info.impostor)
-      fail(ts.where, "technique '" + ts.name + "' cannot render scene '" + s.name +
-                         "', a relief impostor (a mesh baked into layers, seen from both "
-                         "sides); restrict it with scenes = [...]");
-    if (runs && s.meta.runtime() && !info.meta_relief)
-      fail(ts.where, "technique '" + ts.name +
-                         "' cannot combine the meta-relief layers of scene '" + s.name +
-                         "' at run time (its search needs one map); set "
-                         "combine = \"baked\" in the scene's meta_relief or restrict it with "
-                         "scenes = [...]");
-    if (runs && s.proxy == Proxy::Box && !info.box_proxy)
-      fail(ts.where, "technique '" + ts.name + "' cannot render scene '" + s.name +
-                         "' with proxy = \"box\" (it only shades the base surface); restrict "
-                         "it with scenes = [...]");
+    if (!runs) continue;
+    const std::string why = cannot_render(info, s);
+    if (!why.empty())
+      fail(ts.where, "technique '" + ts.name + "' cannot render scene '" + s.name + "': " + why +
+                         "; restrict it with scenes = [...]");
   }
   // Every setting through the plugin's own checks, before any work.
   for (const ParamValues& setting : parameter_settings(ts))

@@ -17,6 +17,7 @@
 #include "gl/frame_timer.h"
 #include "gl/render_target.h"
 #include "metrics/metrics.h"
+#include "relief/cell_complex.h"
 #include "relief/image_io.h"
 #include "relief/meta_relief.h"
 #include "scene/base_mesh.h"
@@ -121,6 +122,33 @@ std::string stored_row_problem(const ResultStore& store, const Cell& cell) {
       return "holds a non-number in '" + m + "'";
   }
   return "";
+}
+
+// A cell complex's construction (Apaza & Andujar, Table 1) and ray throughput (Table 2):
+// intersections per second are the pixels the technique covers over the median frame time.
+void add_cell_columns(Row& row, const CellComplex& cc, const GBuffer& g, double frame_ms) {
+  const CellComplex::Stats& st = cc.stats();
+  row["cell_grid"] = cc.grid();
+  row["mesh_faces"] = double(st.mesh_triangles);
+  row["grey_cells"] = double(st.grey_cells);
+  row["domain_faces"] = double(st.domain_faces);
+  row["cell_bytes"] = double(cc.gpu_bytes());
+  row["cell_classify_ms"] = st.classify_ms;
+  row["cell_sample_ms"] = st.sample_ms;
+  row["occluded_fragment_pct"] = 100.0 * st.occluded_ratio();
+  const double texels = double(st.domain_faces) * cc.resolution() * cc.resolution();
+  row["multi_crossing_pct"] = texels > 0 ? 100.0 * double(st.multi_crossing_texels) / texels : 0.0;
+  std::string trials;
+  for (const GridTrial& t : st.trials) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%s%d:%.3g", trials.empty() ? "" : " ", t.grid,
+                  100.0 * t.occluded_ratio);
+    trials += buf;
+  }
+  row["grid_trials"] = trials;  // N:occluded % of each step of an automatic choice
+  long covered = 0;
+  for (size_t i = 0; i < g.size(); ++i) covered += g.covered(i);
+  row["intersections_per_s"] = frame_ms > 0 ? double(covered) / (frame_ms * 1e-3) : 0.0;
 }
 
 }  // namespace
@@ -244,7 +272,16 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       const MapSize layer0_size = asset->map.meta ? MapSize{asset->map.meta->layers()[0].map.width,
                                                             asset->map.meta->layers()[0].map.height}
                                                   : MapSize{asset->map.width, asset->map.height};
-      if (scene.meta.active() && !scene.base.curved())
+      if (const CellComplex* cc = asset->map.cells.get())
+        std::snprintf(buf, sizeof buf,
+                      "relieflab: asset %s: cell complex %d^3, %ld grey cells, %ld domain faces "
+                      "of %dx%d, classified in %.0f ms, sampled in %.0f ms, %.1f%% occluded "
+                      "fragments (Embree truth of the mesh %.0f ms)",
+                      scene.name.c_str(), cc->grid(), cc->stats().grey_cells,
+                      cc->stats().domain_faces, cc->resolution(), cc->resolution(),
+                      cc->stats().classify_ms, cc->stats().sample_ms,
+                      100.0 * cc->stats().occluded_ratio(), asset->truth->build_ms());
+      else if (scene.meta.active() && !scene.base.curved())
         std::snprintf(buf, sizeof buf,
                       "relieflab: asset %s at %dx%d (bake %dx%d): built in %.0f ms (truth: the "
                       "%zu-layer meta-relief traced exactly)",
@@ -393,6 +430,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
                                                 (double(asset->map.width) * asset->map.height));
     row["depth_complexity"] =
         layers.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(layers.max_crossings);
+    if (asset->map.cells) add_cell_columns(row, *asset->map.cells, g, timing.median_ms);
     // "sampled@1024": the truth of the map at another resolution (truth_resolution).
     row["truth"] = std::string(truth_level_name(scene.truth)) +
                    (asset->truth_map ? "@" + std::to_string(scene.truth_texture_res) : "");

@@ -47,6 +47,11 @@ GpuRelief::GpuRelief(const ReliefMap& map, bool meta_layers) {
                                            map.meta_ambient_visibility[i].data()));
     }
   bytes_ = map.gpu_bytes(!meta_layers_.empty());
+  if (map.cells) {
+    // The complex is the representation: its flat placeholder map counts for nothing.
+    cells_ = std::make_unique<GpuCellComplex>(*map.cells);
+    bytes_ = cells_->bytes();
+  }
 }
 
 GpuRelief::~GpuRelief() {
@@ -65,6 +70,7 @@ void GpuRelief::bind(GLuint relief_unit, GLuint color_unit) const {
     glBindTextureUnit(GLuint(10 + i), meta_layers_[i]);
   for (size_t i = 0; i < meta_ambient_.size(); ++i)
     glBindTextureUnit(GLuint(18 + i), meta_ambient_[i]);
+  if (cells_) cells_->bind();
 }
 
 GpuBase::GpuBase(const BaseGeometry& g) {

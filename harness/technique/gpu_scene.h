@@ -1,12 +1,14 @@
 #pragma once
 // GPU resources shared by every technique of one (scene, texture resolution): the relief and
 // colour textures and the base geometry. Created once, reused by all rows that need them.
+#include <memory>
 #include <vector>
 
 #include <epoxy/gl.h>
 
 #include "relief/relief_map.h"
 #include "scene/scene.h"
+#include "technique/gpu_cell_complex.h"
 
 namespace rl {
 
@@ -19,13 +21,17 @@ class GpuRelief {
   ~GpuRelief();
   GpuRelief(const GpuRelief&) = delete;
   GpuRelief& operator=(const GpuRelief&) = delete;
-  // Also binds the AO map, where the map has one, to unit 8 (harness/glsl/ambient_occlusion.glsl).
+  // Also binds the AO map, where the map has one, to unit 8 (harness/glsl/ambient_occlusion.glsl),
+  // and a cell complex's textures to units 4-7 (GpuCellComplex::bind).
   void bind(GLuint relief_unit = 0, GLuint color_unit = 1) const;
   size_t bytes() const { return bytes_; }
+  // A cell complex's textures (the map's `cells`), else null.
+  const GpuCellComplex* cells() const { return cells_.get(); }
 
  private:
   GLuint relief_ = 0, color_ = 0, ambient_ = 0;
   std::vector<GLuint> meta_layers_, meta_ambient_;
+  std::unique_ptr<GpuCellComplex> cells_;
   size_t bytes_ = 0;
 };
 

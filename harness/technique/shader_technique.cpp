@@ -123,12 +123,8 @@ void ShaderTechnique::render(const FrameInput& frame, RenderTarget::Kind target)
   glDisable(GL_CULL_FACE);
 }
 
-std::vector<ProbeHit> ShaderTechnique::probe(const ReliefMap& map, const GpuRelief& relief,
-                                             const std::vector<ProbeRay>& rays,
-                                             glm::dvec2 depth_aspect) {
-  (void)map;
-  std::vector<ProbeHit> hits(rays.size());
-  if (rays.empty()) return hits;
+GBuffer run_probe_pass(GLuint program, const std::vector<ProbeRay>& rays,
+                       const std::function<void()>& bind) {
   // Rays are laid out in rows of up to 1024 texels; one fragment traces one ray.
   const int width = static_cast<int>(std::min<size_t>(rays.size(), 1024));
   const int height = static_cast<int>((rays.size() + width - 1) / width);
@@ -149,11 +145,8 @@ std::vector<ProbeHit> ShaderTechnique::probe(const ReliefMap& map, const GpuReli
   }
   RenderTarget target(width, height, RenderTarget::Kind::GBuffer);
   target.bind_and_clear();
-  const GLuint p = ShaderLibrary::shared().program(probe_program());
-  glUseProgram(p);
-  set_uniform(p, "rl_probe_depth_aspect", depth_aspect);
-  relief.bind();
-  bind_resources(p);
+  glUseProgram(program);
+  bind();
   glBindTextureUnit(2, inputs[0]);
   glBindTextureUnit(3, inputs[1]);
   glDisable(GL_DEPTH_TEST);
@@ -165,6 +158,21 @@ std::vector<ProbeHit> ShaderTechnique::probe(const ReliefMap& map, const GpuReli
   target.read_back(out);
   glDeleteVertexArrays(1, &vao);
   glDeleteTextures(2, inputs);
+  return out;
+}
+
+std::vector<ProbeHit> ShaderTechnique::probe(const ReliefMap& map, const GpuRelief& relief,
+                                             const std::vector<ProbeRay>& rays,
+                                             glm::dvec2 depth_aspect) {
+  (void)map;
+  std::vector<ProbeHit> hits(rays.size());
+  if (rays.empty()) return hits;
+  const GLuint p = ShaderLibrary::shared().program(probe_program());
+  set_uniform(p, "rl_probe_depth_aspect", depth_aspect);
+  const GBuffer out = run_probe_pass(p, rays, [&] {
+    relief.bind();
+    bind_resources(p);
+  });
   for (size_t i = 0; i < rays.size(); ++i) {
     const glm::vec4 a = out.color[i], b = out.position[i];
     hits[i].t = a.x;

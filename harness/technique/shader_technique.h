@@ -3,8 +3,11 @@
 // vec3 s)`, run per fragment of the base surface. The harness owns the passes around it:
 // harness/glsl/surface_main.glsl (view ray, shading, self-shadow ray, G-buffer outputs) and
 // harness/glsl/probe_main.glsl (ray-probe mode), so every such technique is measured alike.
+#include <functional>
 #include <string>
+#include <vector>
 
+#include "core/gbuffer.h"
 #include "gl/shader_library.h"
 #include "technique/technique.h"
 
@@ -15,6 +18,12 @@ namespace rl {
 Defines layered_floor_define(const ReliefMap& map);
 // The tilings and weight shares of a meta-relief combined per fetch (RL_META_LAYERS).
 void set_meta_relief_uniforms(GLuint program, const ReliefMap& map);
+
+// Runs `program`, a probe pass, once per ray: origins (xyz, quadric.x) on unit 2 and
+// directions (xyz, quadric.y) on unit 3, one fragment per ray in rows of up to 1024, after
+// `bind` has bound its textures; returns the pass's G-buffer (ray i at texel i).
+GBuffer run_probe_pass(GLuint program, const std::vector<ProbeRay>& rays,
+                       const std::function<void()>& bind);
 
 // How a scene's relief is drawn, as far as the surface shader is concerned.
 struct SurfaceVariant {

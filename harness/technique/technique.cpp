@@ -130,4 +130,23 @@ std::unique_ptr<Technique> TechniqueRegistry::create(const std::string& name,
   return find(name)->create(resolved);
 }
 
+std::string cannot_render(const TechniqueInfo& info, const SceneDesc& s) {
+  if (!info.effects.contains_all(s.effects))
+    return "it does not support effect(s) " + join_effects(info.effects.missing_from(s.effects)) +
+           " (it supports: " + join_effects(info.effects) + "); drop the effect";
+  if (s.cell_complex() != info.cell_complex)
+    return info.cell_complex ? "it renders cell-complex reliefs (relief = { cells = ... }) only"
+                             : "the scene is a cell complex (relief = { cells = ... }), which "
+                               "only the cell-complex techniques read";
+  if (s.cell_complex()) return "";
+  if (s.impostor() && !info.impostor)
+    return "it is a relief impostor (a mesh baked into layers, seen from both sides)";
+  if (s.meta.runtime() && !info.meta_relief)
+    return "it cannot combine the meta-relief layers at run time (its search needs one map); "
+           "set combine = \"baked\" in the scene's meta_relief";
+  if (s.proxy == Proxy::Box && !info.box_proxy)
+    return "proxy = \"box\" (it only shades the base surface)";
+  return "";
+}
+
 }  // namespace rl

@@ -41,7 +41,16 @@ struct TechniqueInfo {
   // Reads the relief only through rl_relief_texel / rl_relief_depth (relief_common.glsl), so
   // it runs on a meta-relief whose layers are combined per fetch (MetaReliefDesc::Runtime).
   bool meta_relief = false;
+  // Renders a mesh encoded as a cubic cell complex (SceneDesc::cell_complex(), Apaza & Andujar)
+  // -- and only that: the other techniques search a heightfield map.
+  bool cell_complex = false;
 };
+
+// Why a technique cannot render `scene` ("" when it can): effects it does not simulate, a
+// relief impostor, a meta-relief combined at run time, a box proxy or a cell complex it does
+// not support (or, for a cell-complex technique, any other scene). Config checks and the tests
+// that iterate the registry ask the same question.
+std::string cannot_render(const TechniqueInfo& info, const SceneDesc& scene);
 
 // Throws std::logic_error naming the technique when its metadata is inconsistent: an empty or
 // non-identifier name, a duplicate parameter, min > max, a default outside its range, a

@@ -31,22 +31,31 @@ std::string techniques_markdown() {
   const auto& registry = TechniqueRegistry::instance();
   for (const std::string& name : registry.names()) {
     const TechniqueInfo& info = registry.find(name)->info;
+    const std::string proxies = info.cell_complex
+                                    ? "cell complex"
+                                    : std::string("base") + (info.box_proxy ? ", box" : "") +
+                                          (info.impostor ? ", impostor" : "");
+    const std::string meta =
+        info.cell_complex ? "-" : (info.meta_relief ? "runtime or baked" : "baked");
     out += "| [`" + name + "`](techniques/" + name + "/README.md) | " + cell(info.title) + " | " +
-           cell(info.citation) + " | " + effects_cell(info.effects) + " | base" +
-           (info.box_proxy ? ", box" : "") + (info.impostor ? ", impostor" : "") + " | " +
-           (info.meta_relief ? "runtime or baked" : "baked") + " |\n";
+           cell(info.citation) + " | " + effects_cell(info.effects) + " | " + proxies + " | " +
+           meta + " |\n";
   }
   return out;
 }
 
 std::string interface_markdown(const TechniqueInfo& info) {
-  std::string out = "Effects it can simulate: " + effects_cell(info.effects) + ". Draws: the base" +
-                    (info.box_proxy ? " or the relief's box proxy" : "") +
-                    (info.impostor ? "; relief impostors, from both sides" : "") +
-                    ". Meta-reliefs: " +
-                    (info.meta_relief ? "its layers combined per fetch, or their bake"
-                                      : "their bake (its search needs one map)") +
-                    ".\n\n";
+  std::string out =
+      info.cell_complex
+          ? "Effects it can simulate: " + effects_cell(info.effects) +
+                ". Draws: cell-complex reliefs only (relief = { cells = \"mesh.obj\" }), in "
+                "their bounding cube.\n\n"
+          : "Effects it can simulate: " + effects_cell(info.effects) + ". Draws: the base" +
+                (info.box_proxy ? " or the relief's box proxy" : "") +
+                (info.impostor ? "; relief impostors, from both sides" : "") + ". Meta-reliefs: " +
+                (info.meta_relief ? "its layers combined per fetch, or their bake"
+                                  : "their bake (its search needs one map)") +
+                ".\n\n";
   if (info.params.empty()) return out + "Parameters: none.\n";
   out += "| parameter | kind | default | range | meaning |\n| --- | --- | ---: | --- | --- |\n";
   for (const ParamSpec& p : info.params) {

@@ -56,6 +56,14 @@ bool trace_primary(const TruthSurface& truth, const ReliefMap& map, const SceneD
     h = truth.intersect(o + d * t_start, d, 0.0, std::max(t0, t1) - t_start);
     return h.hit;
   }
+  if (scene.cell_complex()) {
+    // A closed mesh in its cube, seen from anywhere: the first surface inside the cube.
+    double t_in = 0, t_out = 0;
+    if (!clip_to_box(o, d, 1.0, t_in, t_out)) return false;
+    t_start = t_in;
+    h = truth.intersect(o + d * t_in, d, 0.0, t_out - t_in);
+    return h.hit;
+  }
   if (d.z <= 0) return false;  // never descends into the relief
   if (scene.proxy == Proxy::Box) {
     // The solid under the heightfield, clipped to the box [0, tile]^2 x [0, 1].

@@ -1,0 +1,179 @@
+// Relief mapping on cubic cell complexes, ray casting (Apaza & Andujar, Section 3.5.2).
+#include <stdexcept>
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "relief/cell_complex.h"
+#include "technique/scene_uniforms.h"
+#include "technique/shader_technique.h"
+
+namespace rl {
+namespace {
+
+// The proxy (Section 3.5.2, CPU step 2): the faces of grey cells that border a white cell or
+// the grid, counter-clockwise seen from outside in world space (texture space is mirrored in
+// depth), as texture-space triangles.
+std::vector<glm::vec3> proxy_triangles(const CellComplex& cc) {
+  std::vector<glm::vec3> tris;
+  const int n = cc.grid();
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        if (cc.cell(i, j, k).state != CellState::Grey) continue;
+        const int ijk[3] = {i, j, k};
+        for (int f = 0; f < 6; ++f) {
+          int nb[3] = {i, j, k};
+          nb[f / 2] += f % 2 ? 1 : -1;
+          const bool border = nb[f / 2] < 0 || nb[f / 2] >= n ||
+                              cc.cell(nb[0], nb[1], nb[2]).state == CellState::White;
+          if (!border) continue;
+          const int a = f / 2, b = (a + 1) % 3, c = (a + 2) % 3;
+          auto corner = [&](int sb, int sc) {
+            glm::vec3 p{float(ijk[0]), float(ijk[1]), float(ijk[2])};
+            p[a] += float(f % 2);
+            p[b] += float(sb);
+            p[c] += float(sc);
+            return p / float(n);
+          };
+          glm::vec3 q[4] = {corner(0, 0), corner(1, 0), corner(1, 1), corner(0, 1)};
+          // (b, c, a) is right-handed, so this order is counter-clockwise seen from +a in
+          // texture space: from outside for side 1. The world mirrors depth, which flips the
+          // winding: counter-clockwise from outside in the world for side 0 only.
+          if (f % 2 == 1) std::swap(q[1], q[3]);
+          tris.insert(tris.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
+        }
+      }
+  return tris;
+}
+
+}  // namespace
+
+class CellComplexRaycast final : public Described<CellComplexRaycast, Technique> {
+ public:
+  using Described::Described;
+  static TechniqueInfo describe() {
+    return {.name = "cell_complex",
+            .title = "Relief mapping on cubic cell complexes (ray casting)",
+            .citation = "Apaza & Andujar, 'Relief mapping on cubic cell complexes', Section 3.5.2",
+            .effects = {Effect::DepthCorrect},
+            .params = {{.name = "steps_per_cell",
+                        .kind = ParamKind::Int,
+                        .default_value = 8,
+                        .min_value = 1,
+                        .max_value = 512,
+                        .doc = "linear search samples per cell side along the ray (the search "
+                               "runs until the ray leaves the grey cells)"},
+                       {.name = "binary_steps",
+                        .kind = ParamKind::Int,
+                        .default_value = 6,
+                        .min_value = 0,
+                        .max_value = 32,
+                        .doc = "binary search refinements after the linear search"}},
+            .cell_complex = true};
+  }
+
+  void prepare(const ReliefMap& map) override {
+    if (!map.cells) throw std::logic_error("cell_complex prepared without a cell complex");
+    const std::vector<glm::vec3> tris = proxy_triangles(*map.cells);
+    release();
+    glCreateVertexArrays(1, &vao_);
+    glCreateBuffers(1, &vbo_);
+    glNamedBufferStorage(vbo_, GLsizeiptr(std::max<size_t>(1, tris.size()) * sizeof(glm::vec3)),
+                         tris.empty() ? nullptr : tris.data(), 0);
+    glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, sizeof(glm::vec3));
+    glEnableVertexArrayAttrib(vao_, 0);
+    glVertexArrayAttribFormat(vao_, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao_, 0, 0);
+    vertices_ = GLsizei(tris.size());
+    bytes_ = tris.size() * sizeof(glm::vec3);
+  }
+  ~CellComplexRaycast() override { release(); }
+
+  void render(const FrameInput& frame, RenderTarget::Kind target) override {
+    if (!frame.relief.cells() || !frame.map.cells)
+      throw std::logic_error("cell_complex rendered on a scene without a cell complex");
+    ProgramDesc d = program();
+    d.vertex_file = "techniques/cell_complex/cell_proxy_vert.glsl";
+    if (target == RenderTarget::Kind::GBuffer) d.defines["RL_GBUFFER"] = "1";
+    const GLuint p = ShaderLibrary::shared().program(d);
+    glUseProgram(p);
+    set_scene_uniforms(p, frame.scene, frame.camera);
+    set_cell_uniforms(p, frame);
+    const PlanarBase base = planar_base(frame.scene);
+    const glm::dmat4 world_from_texture(glm::dvec4(base.dpdu(), 0), glm::dvec4(base.dpdv(), 0),
+                                        glm::dvec4(0, 0, -base.depth, 0),
+                                        glm::dvec4(base.world_from_texture({0, 0, 0}), 1));
+    const glm::mat4 m(world_from_texture);
+    glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "rl_world_from_texture"), 1, GL_FALSE,
+                              glm::value_ptr(m));
+    const glm::mat3 nm(glm::inverseTranspose(glm::dmat3(world_from_texture)));
+    glProgramUniformMatrix3fv(p, glGetUniformLocation(p, "rl_normal_from_texture"), 1, GL_FALSE,
+                              glm::value_ptr(nm));
+    set_uniform(p, "rl_eye_texture", base.texture_from_world(frame.camera.eye));
+    set_uniform(p, "rl_cell_albedo", glm::dvec3(kCellAlbedo));
+    frame.relief.bind();
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glBindVertexArray(vao_);
+    glDrawArrays(GL_TRIANGLES, 0, vertices_);
+    glDisable(GL_CULL_FACE);
+  }
+
+  // Probe rays are in the cube's texture space (u, v, depth), any direction; t counts
+  // multiples of the direction. The search runs along the whole chord of the grid.
+  std::vector<ProbeHit> probe(const ReliefMap& map, const GpuRelief& relief,
+                              const std::vector<ProbeRay>& rays, glm::dvec2) override {
+    std::vector<ProbeHit> hits(rays.size());
+    if (rays.empty()) return hits;
+    if (!map.cells || !relief.cells())
+      throw std::logic_error("cell_complex probed without a cell complex");
+    ProgramDesc d = program();
+    d.vertex_file = "harness/glsl/fullscreen.vert";
+    d.defines["RL_PROBE"] = "1";
+    const GLuint p = ShaderLibrary::shared().program(d);
+    glProgramUniform1i(p, glGetUniformLocation(p, "rl_cell_n"), map.cells->grid());
+    glProgramUniform1i(p, glGetUniformLocation(p, "rl_cell_res"), map.cells->resolution());
+    glProgramUniform1i(p, glGetUniformLocation(p, "rl_cell_tiles"), relief.cells()->tiles());
+    const GBuffer out = run_probe_pass(p, rays, [&] { relief.bind(); });
+    for (size_t i = 0; i < rays.size(); ++i) {
+      hits[i].t = out.color[i].x;
+      hits[i].uv = glm::vec2(out.color[i].y, out.color[i].z);
+      hits[i].fetches = int(out.color[i].w);
+      hits[i].depth = out.position[i].x;
+      hits[i].hit = out.position[i].z > 0.5f;
+    }
+    return hits;
+  }
+
+  size_t memory_bytes() const override { return bytes_; }
+
+ private:
+  ProgramDesc program() const {
+    ProgramDesc d;
+    d.owner = info().name;
+    d.fragment_files = {"techniques/cell_complex/cell_complex_main.glsl"};
+    d.defines["RL_STEPS_PER_CELL"] = std::to_string(int(param("steps_per_cell")));
+    d.defines["RL_BINARY_STEPS"] = std::to_string(int(param("binary_steps")));
+    return d;
+  }
+  static void set_cell_uniforms(GLuint p, const FrameInput& frame) {
+    glProgramUniform1i(p, glGetUniformLocation(p, "rl_cell_n"), frame.map.cells->grid());
+    glProgramUniform1i(p, glGetUniformLocation(p, "rl_cell_res"), frame.map.cells->resolution());
+    glProgramUniform1i(p, glGetUniformLocation(p, "rl_cell_tiles"), frame.relief.cells()->tiles());
+  }
+  void release() {
+    if (vao_) glDeleteVertexArrays(1, &vao_);
+    if (vbo_) glDeleteBuffers(1, &vbo_);
+    vao_ = vbo_ = 0;
+  }
+  GLuint vao_ = 0, vbo_ = 0;
+  GLsizei vertices_ = 0;
+  size_t bytes_ = 0;
+};
+
+RL_REGISTER_TECHNIQUE(CellComplexRaycast);
+
+}  // namespace rl
