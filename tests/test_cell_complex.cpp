@@ -235,5 +235,33 @@ TEST(CellComplexBuild, ANestedSheetIsOccludedAtN1AndSeparatedByAFinerGrid) {
     EXPECT_EQ(chosen.stats().trials[i].grid, 2 * chosen.stats().trials[i - 1].grid);
 }
 
+TEST(CellComplexMesh, ReconstructedVerticesLieOnTheSurfaceAndCoverIt) {
+  // Section 3.5.1: every vertex is a texel's first crossing, unprojected: on the sphere up to
+  // its tessellation and 16-bit rounding, at every level of detail.
+  const glm::dvec3 centre(0.5, 0.5, 0.5);
+  const double r = 0.37;
+  const TriangleMesh sphere = uv_sphere(centre, r, 96, 48);
+  for (int n : {1, 2, 4}) {
+    const CellComplex cc = CellComplex::build(sphere, {.grid = n, .resolution = 32});
+    for (int lod : {0, 2}) {
+      SCOPED_TRACE("N " + std::to_string(n) + " lod " + std::to_string(lod));
+      const CellMesh m = reconstruct_cell_mesh(cc, lod, 6);
+      ASSERT_GT(m.triangles.size(), 100u);
+      double worst = 0;
+      for (const glm::vec3& p : m.position)
+        worst = std::max(worst, std::abs(glm::length(glm::dvec3(p) - centre) - r));
+      // A vertex averages a block's distances along converging lines: a chord's sag.
+      EXPECT_LT(worst, lod == 0 ? 1e-2 : 4e-2);
+      // Each surface point lies in one cell and projects onto one of its faces: the triangles
+      // cover the sphere once, but for the cracks between faces.
+      double area = 0;
+      for (const glm::uvec3& t : m.triangles)
+        area += 0.5 * glm::length(glm::cross(glm::dvec3(m.position[t.y] - m.position[t.x]),
+                                             glm::dvec3(m.position[t.z] - m.position[t.x])));
+      EXPECT_NEAR(area / (4 * M_PI * r * r), 1.0, lod == 0 ? 0.1 : 0.2);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace rl

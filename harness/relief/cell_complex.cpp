@@ -69,8 +69,8 @@ glm::dvec3 inner_point(const CellProjection& p, const glm::dvec3& q) {
 // Fragments along a segment: every surface crossing of o + t d, t in [0, t_max] (d unit),
 // up to kMaxCrossings; the first one's geometry in `first`.
 constexpr int kMaxCrossings = 64;
-int crossings(RTCScene scene, const glm::dvec3& o, const glm::dvec3& d, double t_max,
-              RTCRayHit* first) {
+int count_crossings(RTCScene scene, const glm::dvec3& o, const glm::dvec3& d, double t_max,
+                    RTCRayHit* first) {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   int n = 0;
@@ -96,7 +96,7 @@ bool parity_inside(RTCScene scene, const glm::dvec3& p, bool* agreed) {
                                      glm::normalize(glm::dvec3(-0.0317, 1, 0.0149)),
                                      glm::normalize(glm::dvec3(0.0213, -0.0371, -1))};
   int votes = 0;
-  for (const glm::dvec3& d : dirs) votes += crossings(scene, p, d, 4.0, nullptr) % 2;
+  for (const glm::dvec3& d : dirs) votes += count_crossings(scene, p, d, 4.0, nullptr) % 2;
   if (agreed) *agreed = votes == 0 || votes == 3;
   return votes >= 2;
 }
@@ -510,6 +510,7 @@ CellComplex CellComplex::build(const TriangleMesh& mesh, const CellComplexOption
   const size_t texels = size_t(res) * res;
   cc.distance_.assign(cc.faces_.size() * texels, 0);
   cc.face_inside_.assign(cc.faces_.size() * texels, 0);
+  cc.crossings_.assign(cc.faces_.size() * texels, 0);
   cc.normal_.assign(cc.faces_.size() * texels, glm::vec3(0, 0, -1));
   cc.color_.assign(cc.faces_.size() * texels, kCellAlbedo);
   std::atomic<long> fragments{0}, occluded{0}, multi{0};
@@ -544,7 +545,7 @@ CellComplex CellComplex::build(const TriangleMesh& mesh, const CellComplexOption
           int hits = 0;
           if (length > 0) {
             RTCRayHit first{};
-            hits = crossings(embree.scene, from, (to - from) / length, length, &first);
+            hits = count_crossings(embree.scene, from, (to - from) / length, length, &first);
             frag += hits;
             occ += std::max(0, hits - 1);
             mul += hits > 1;
@@ -561,6 +562,7 @@ CellComplex CellComplex::build(const TriangleMesh& mesh, const CellComplexOption
           // the flag marks only lines that start inside and leave (inside up to d).
           if (face_inside && hits == 0) d = 0;
           cc.face_inside_[t] = face_inside && hits > 0;
+          cc.crossings_[t] = uint8_t(std::min(hits, 255));
           cc.distance_[t] = uint16_t(std::lround(d * scale));
         }
         fragments += frag;
@@ -634,6 +636,91 @@ bool CellComplex::encoded_inside(const glm::dvec3& p) const {
   bool flag = false;
   const double d = sample_distance(l.face_index, l.st, &flag);
   return flag != (l.line.along > d * l.line.length);
+}
+
+CellMesh reconstruct_cell_mesh(const CellComplex& cc, int lod, double max_edge_texels) {
+  CellMesh m;
+  const int res = cc.resolution(), n = cc.grid();
+  const int block = std::min(1 << std::max(0, lod), res), coarse = res / block;
+  // The mip level of one face: per coarse texel, the mean distance, normal and colour of the
+  // block's lines that meet the surface, valid where at least half of them do.
+  struct Texel {
+    bool valid = false;
+    double d = 0;
+    glm::dvec3 normal{0}, color{0};
+  };
+  std::vector<Texel> mip(size_t(coarse) * coarse);
+  std::vector<int> vertex(size_t(coarse + 1) * (coarse + 1));
+  for (size_t fi = 0; fi < cc.domain_faces().size(); ++fi) {
+    const CellComplex::DomainFace& df = cc.domain_faces()[fi];
+    const CellComplex::Cell& cell = cc.cells()[df.cell];
+    const glm::dvec3 cell0(df.cell % n, (df.cell / n) % n, df.cell / (size_t(n) * n));
+    const size_t base = fi * size_t(res) * res;
+    for (int y = 0; y < coarse; ++y)
+      for (int x = 0; x < coarse; ++x) {
+        Texel& tx = mip[size_t(y) * coarse + x];
+        tx = Texel{};
+        int hits = 0;
+        for (int by = 0; by < block; ++by)
+          for (int bx = 0; bx < block; ++bx) {
+            const size_t t = base + size_t(y * block + by) * res + (x * block + bx);
+            if (cc.crossings()[t] == 0) continue;
+            ++hits;
+            tx.d += cc.distance()[t] / cc.distance_scale();
+            tx.normal += glm::dvec3(cc.normal()[t]);
+            tx.color += glm::dvec3(cc.color()[t]);
+          }
+        tx.valid = 2 * hits >= block * block;
+        if (hits == 0) continue;
+        tx.d /= hits;
+        tx.color /= double(hits);
+      }
+    // Vertices at the texels' corners, so a face's triangles reach its edges (where its
+    // neighbours' begin): each the mean of the valid texels around it, if they all are.
+    for (int y = 0; y <= coarse; ++y)
+      for (int x = 0; x <= coarse; ++x) {
+        int& v = vertex[size_t(y) * (coarse + 1) + x];
+        v = -1;
+        Texel sum;
+        int count = 0;
+        bool valid = true;
+        for (int ty = std::max(0, y - 1); ty <= std::min(coarse - 1, y); ++ty)
+          for (int tx = std::max(0, x - 1); tx <= std::min(coarse - 1, x); ++tx) {
+            const Texel& t = mip[size_t(ty) * coarse + tx];
+            valid &= t.valid;
+            sum.d += t.d;
+            sum.normal += t.normal;
+            sum.color += t.color;
+            ++count;
+          }
+        if (!valid) continue;
+        const CellLine line =
+            face_line(cell.config.projection, df.face, {double(x) / coarse, double(y) / coarse});
+        const glm::dvec3 q = line.on_face + (line.inner - line.on_face) * (sum.d / count);
+        v = int(m.position.size());
+        m.position.push_back(glm::vec3((cell0 + q) / double(n)));
+        const double len = glm::length(sum.normal);
+        m.normal.push_back(glm::vec3(len > 0 ? sum.normal / len : glm::dvec3(0, 0, -1)));
+        m.color.push_back(glm::vec3(sum.color / double(count)));
+      }
+    for (int y = 0; y < coarse; ++y)
+      for (int x = 0; x < coarse; ++x) {
+        const int w = coarse + 1;
+        const int a = vertex[size_t(y) * w + x], b = vertex[size_t(y) * w + x + 1],
+                  c = vertex[size_t(y + 1) * w + x + 1], e = vertex[size_t(y + 1) * w + x];
+        if (a < 0 || b < 0 || c < 0 || e < 0) continue;
+        // A long edge joins two sheets across a depth discontinuity, not the surface.
+        const double limit = max_edge_texels / (double(coarse) * n);
+        auto short_edges = [&](int i, int j, int k) {
+          const glm::vec3 &p = m.position[i], &q = m.position[j], &r = m.position[k];
+          return glm::length(p - q) <= limit && glm::length(q - r) <= limit &&
+                 glm::length(r - p) <= limit;
+        };
+        if (short_edges(a, b, c)) m.triangles.push_back(glm::uvec3(a, b, c));
+        if (short_edges(a, c, e)) m.triangles.push_back(glm::uvec3(a, c, e));
+      }
+  }
+  return m;
 }
 
 }  // namespace rl

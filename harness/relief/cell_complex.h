@@ -131,6 +131,9 @@ class CellComplex {
   // The maps, res x res per domain face, row-major (t rows of s), face after face.
   const std::vector<uint16_t>& distance() const { return distance_; }  // d as a fraction of L
   const std::vector<uint8_t>& face_inside() const { return face_inside_; }
+  // Surface crossings of each texel's projection line inside its cell (capped at 255): 0 where
+  // the line misses the surface, > 1 where sheets behind the first are lost.
+  const std::vector<uint8_t>& crossings() const { return crossings_; }
   const std::vector<glm::vec3>& normal() const { return normal_; }  // texture-space, unit
   const std::vector<glm::vec3>& color() const { return color_; }
   double distance_scale() const { return bits_ == 16 ? 65535.0 : 255.0; }
@@ -156,10 +159,24 @@ class CellComplex {
   std::vector<Cell> cells_;
   std::vector<DomainFace> faces_;
   std::vector<uint16_t> distance_;
-  std::vector<uint8_t> face_inside_;
+  std::vector<uint8_t> face_inside_, crossings_;
   std::vector<glm::vec3> normal_, color_;
   Stats stats_;
 };
+
+// Geometry-based rendering (Section 3.5.1): the distance maps at mip level `lod` (texels
+// averaged in 2^lod x 2^lod blocks over the lines that meet the surface, valid where at least
+// half do) unprojected
+// along their projection lines, a vertex per texel corner (the mean of the valid texels around
+// it, so a face's triangles reach its edges) and two triangles per texel. Texture space;
+// normals and colours per vertex from the maps. A triangle with an edge longer than
+// `max_edge_texels` texels of its level joins two sheets across a depth discontinuity and is
+// dropped.
+struct CellMesh {
+  std::vector<glm::vec3> position, normal, color;
+  std::vector<glm::uvec3> triangles;
+};
+CellMesh reconstruct_cell_mesh(const CellComplex& cells, int lod, double max_edge_texels);
 
 // The mesh's bounding cube as a texture-space frame: u, v along the two axes after `up`
 // (cyclic), depth down `up`, the same length per unit on all three, padded by `margin` of the

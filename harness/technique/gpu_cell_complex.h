@@ -7,6 +7,7 @@
 #include <epoxy/gl.h>
 
 #include "relief/cell_complex.h"
+#include "scene/scene.h"
 
 namespace rl {
 
@@ -29,5 +30,11 @@ class GpuCellComplex {
   int tiles_ = 1;
   size_t bytes_ = 0;
 };
+
+// The uniforms both cell-complex techniques read: rl_world_from_texture (the cube's texture
+// space placed by the scene's planar base), rl_normal_from_texture, rl_eye_texture,
+// rl_cell_albedo, and the table's rl_cell_n / rl_cell_res / rl_cell_tiles.
+void set_cell_complex_uniforms(GLuint program, const SceneDesc& scene, const Camera& camera,
+                               const CellComplex& cells, const GpuCellComplex& gpu);
 
 }  // namespace rl

@@ -1,10 +1,8 @@
 // Relief mapping on cubic cell complexes, ray casting (Apaza & Andujar, Section 3.5.2).
 #include <stdexcept>
 
-#include <glm/gtc/matrix_inverse.hpp>
-#include <glm/gtc/type_ptr.hpp>
-
 #include "relief/cell_complex.h"
+#include "technique/gpu_cell_complex.h"
 #include "technique/scene_uniforms.h"
 #include "technique/shader_technique.h"
 
@@ -99,19 +97,8 @@ class CellComplexRaycast final : public Described<CellComplexRaycast, Technique>
     const GLuint p = ShaderLibrary::shared().program(d);
     glUseProgram(p);
     set_scene_uniforms(p, frame.scene, frame.camera);
-    set_cell_uniforms(p, frame);
-    const PlanarBase base = planar_base(frame.scene);
-    const glm::dmat4 world_from_texture(glm::dvec4(base.dpdu(), 0), glm::dvec4(base.dpdv(), 0),
-                                        glm::dvec4(0, 0, -base.depth, 0),
-                                        glm::dvec4(base.world_from_texture({0, 0, 0}), 1));
-    const glm::mat4 m(world_from_texture);
-    glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "rl_world_from_texture"), 1, GL_FALSE,
-                              glm::value_ptr(m));
-    const glm::mat3 nm(glm::inverseTranspose(glm::dmat3(world_from_texture)));
-    glProgramUniformMatrix3fv(p, glGetUniformLocation(p, "rl_normal_from_texture"), 1, GL_FALSE,
-                              glm::value_ptr(nm));
-    set_uniform(p, "rl_eye_texture", base.texture_from_world(frame.camera.eye));
-    set_uniform(p, "rl_cell_albedo", glm::dvec3(kCellAlbedo));
+    set_cell_complex_uniforms(p, frame.scene, frame.camera, *frame.map.cells,
+                              *frame.relief.cells());
     frame.relief.bind();
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
@@ -158,11 +145,6 @@ class CellComplexRaycast final : public Described<CellComplexRaycast, Technique>
     d.defines["RL_STEPS_PER_CELL"] = std::to_string(int(param("steps_per_cell")));
     d.defines["RL_BINARY_STEPS"] = std::to_string(int(param("binary_steps")));
     return d;
-  }
-  static void set_cell_uniforms(GLuint p, const FrameInput& frame) {
-    glProgramUniform1i(p, glGetUniformLocation(p, "rl_cell_n"), frame.map.cells->grid());
-    glProgramUniform1i(p, glGetUniformLocation(p, "rl_cell_res"), frame.map.cells->resolution());
-    glProgramUniform1i(p, glGetUniformLocation(p, "rl_cell_tiles"), frame.relief.cells()->tiles());
   }
   void release() {
     if (vao_) glDeleteVertexArrays(1, &vao_);

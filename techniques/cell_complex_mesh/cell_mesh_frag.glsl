@@ -1,0 +1,33 @@
+// Geometry-based rendering of a cell complex: the maps' normals and colours interpolated over
+// the reconstructed triangles by the rasteriser (no texture fetch per pixel).
+#include "harness/glsl/shading.glsl"
+
+in vec3 v_tex;
+in vec3 v_world;
+in vec3 v_normal;
+in vec3 v_color;
+
+uniform vec3 rl_eye;
+uniform vec3 rl_light;
+
+layout(location = 0) out vec4 o_color;
+#ifdef RL_GBUFFER
+layout(location = 1) out vec4 o_position;
+layout(location = 2) out vec4 o_normal;
+layout(location = 3) out vec4 o_hit;
+layout(location = 4) out vec4 o_aux;
+#endif
+
+void main() {
+  vec3 V = normalize(v_world - rl_eye);
+  vec3 n = dot(v_normal, v_normal) > 0.0 ? normalize(v_normal) : -V;
+  if (dot(n, V) > 0.0) n = -n;  // facing the viewer, as the truth's mesh normals
+  vec3 to_light = normalize(rl_light - v_world);
+  o_color = vec4(rl_shade(v_color, n, to_light, -V, false), 1.0);
+#ifdef RL_GBUFFER
+  o_position = vec4(v_world, 1.0);
+  o_normal = vec4(n, 0.0);
+  o_hit = vec4(v_tex.xy, 0.0, 0.0);
+  o_aux = vec4(1.0, 0.0, dot(rl_ambient * v_color, vec3(1.0 / 3.0)), 0.0);
+#endif
+}
