@@ -614,14 +614,26 @@ double CellComplex::sample_distance(int face_index, glm::dvec2 st, bool* inside_
   return lerp2([&](size_t i) { return double(distance_[i]); }) / distance_scale();
 }
 
+namespace {
+
+glm::dvec3 bilinear_vec3(const std::vector<glm::vec3>& texels, size_t base, int res,
+                         glm::dvec2 st) {
+  const Bilinear b = bilinear(st, res);
+  auto at = [&](int x, int y) { return glm::dvec3(texels[base + size_t(y) * res + x]); };
+  return (at(b.x0, b.y0) * (1 - b.fx) + at(b.x1, b.y0) * b.fx) * (1 - b.fy) +
+         (at(b.x0, b.y1) * (1 - b.fx) + at(b.x1, b.y1) * b.fx) * b.fy;
+}
+
+}  // namespace
+
 glm::dvec3 CellComplex::sample_normal(int face_index, glm::dvec2 st) const {
-  const Bilinear b = bilinear(st, res_);
-  const size_t base = size_t(face_index) * res_ * res_;
-  auto at = [&](int x, int y) { return glm::dvec3(normal_[base + size_t(y) * res_ + x]); };
-  const glm::dvec3 n = (at(b.x0, b.y0) * (1 - b.fx) + at(b.x1, b.y0) * b.fx) * (1 - b.fy) +
-                       (at(b.x0, b.y1) * (1 - b.fx) + at(b.x1, b.y1) * b.fx) * b.fy;
+  const glm::dvec3 n = bilinear_vec3(normal_, size_t(face_index) * res_ * res_, res_, st);
   const double len = glm::length(n);
   return len > 0 ? n / len : glm::dvec3(0, 0, -1);
+}
+
+glm::dvec3 CellComplex::sample_color(int face_index, glm::dvec2 st) const {
+  return bilinear_vec3(color_, size_t(face_index) * res_ * res_, res_, st);
 }
 
 bool CellComplex::encoded_inside(const glm::dvec3& p) const {

@@ -153,6 +153,7 @@ class CellComplex {
   // Bilinear sample of face `face_index`'s distance fraction (and inside flag, nearest).
   double sample_distance(int face_index, glm::dvec2 st, bool* inside_flag = nullptr) const;
   glm::dvec3 sample_normal(int face_index, glm::dvec2 st) const;
+  glm::dvec3 sample_color(int face_index, glm::dvec2 st) const;
 
  private:
   int n_ = 1, res_ = 64, bits_ = 16;

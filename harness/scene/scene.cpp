@@ -27,6 +27,8 @@ const char* truth_level_name(TruthLevel level) {
       return "mesh";
     case TruthLevel::Layers:
       return "layers";
+    case TruthLevel::Cells:
+      return "cells";
     default:
       return "sampled";
   }

@@ -73,9 +73,9 @@ enum class Proxy { Base, Box };
 // What the truth traces: the relief as the technique samples it (the bilinear heightfield of
 // the map), or, for a baked mesh, the mesh itself (includes representation error).
 // A multilayer map adds the truth of its own layers (nearest sampled), so search error and
-// representation error split there too.
-enum class TruthLevel { Sampled, Mesh, Layers };
-// "sampled", "mesh", "layers": the config's and the rows' name of a level.
+// representation error split there too; a cell complex the surface its distance maps encode.
+enum class TruthLevel { Sampled, Mesh, Layers, Cells };
+// "sampled", "mesh", "layers", "cells": the config's and the rows' name of a level.
 const char* truth_level_name(TruthLevel level);
 
 // The surface the relief is mapped onto. "plane" is the planar quad of PlanarBase (the

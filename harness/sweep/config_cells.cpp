@@ -60,9 +60,10 @@ void apply_cells_scene(const toml::table& t, const Src& src, const toml::node& n
                           "ambient_occlusion"})
     if (auto* n = t.get(key))
       fail(src.at(*n), no + "is drawn in its bounding cube; '" + key + "' does not apply");
-  if (s.truth != TruthLevel::Mesh)
+  if (s.truth != TruthLevel::Mesh && s.truth != TruthLevel::Cells)
     fail(src.at(t.get("truth") ? *t.get("truth") : node),
-         no + "is measured against its mesh: truth = \"mesh\"");
+         no + "is measured against its mesh (truth = \"mesh\") or the surface its distance maps "
+              "encode (truth = \"cells\")");
   s.proxy = Proxy::Box;
   s.empty_floor = true;
   s.framing = Framing::Fit;

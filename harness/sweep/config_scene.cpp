@@ -137,12 +137,17 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
   if (auto* n = t.get("light")) s.light_position = vec3_in(*n, src, "light", -1e3, 1e3);
   if (auto* n = t.get("truth")) {
     const std::string level = string_of(*n, src, "truth");
-    if (level != "sampled" && level != "mesh" && level != "layers")
+    if (level != "sampled" && level != "mesh" && level != "layers" && level != "cells")
       fail(src.at(*n),
            "'truth' must be \"sampled\" (the map's heightfield), \"mesh\" (the mesh or pattern "
-           "the map was baked from) or \"layers\" (a multilayer map's own layers)");
-    s.truth = level == "mesh" ? TruthLevel::Mesh
-                              : (level == "layers" ? TruthLevel::Layers : TruthLevel::Sampled);
+           "the map was baked from), \"layers\" (a multilayer map's own layers) or \"cells\" "
+           "(the surface a cell complex's distance maps encode)");
+    s.truth = level == "mesh"     ? TruthLevel::Mesh
+              : level == "layers" ? TruthLevel::Layers
+              : level == "cells"  ? TruthLevel::Cells
+                                  : TruthLevel::Sampled;
+    if (s.truth == TruthLevel::Cells && !s.cell_complex())
+      fail(src.at(*n), "truth = \"cells\" needs a cell-complex relief (relief = { cells = ... })");
     if (s.truth == TruthLevel::Mesh && s.relief.mesh_path.empty() && !s.relief.pattern_mesh())
       fail(src.at(*n),
            "truth = \"mesh\" needs a mesh relief (relief = { mesh = \"...\" }) or "

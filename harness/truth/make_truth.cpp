@@ -10,6 +10,7 @@
 #include "relief/layer_bake.h"
 #include "relief/mesh_bake.h"
 #include "relief/pattern_mesh.h"
+#include "truth/cell_complex_truth.h"
 #include "truth/heightfield_truth.h"
 #include "truth/layers_truth.h"
 #include "truth/mesh_truth.h"
@@ -20,6 +21,7 @@ namespace rl {
 
 std::unique_ptr<TruthSurface> make_truth(const SceneDesc& scene, const ReliefMap& map,
                                          double tolerance) {
+  if (scene.truth == TruthLevel::Cells) return std::make_unique<CellComplexTruth>(map.cells);
   if (scene.truth == TruthLevel::Layers)
     return std::make_unique<LayersTruth>(map, !scene.impostor());
   if (scene.truth == TruthLevel::Mesh && scene.relief.pattern_mesh()) {
