@@ -347,6 +347,36 @@ TriangleMesh to_frame(const TriangleMesh& mesh, const BakeFrame& frame) {
   return out;
 }
 
+TriangleMesh subdivide_midpoints(const TriangleMesh& mesh, int times) {
+  TriangleMesh m = mesh;
+  for (int k = 0; k < times; ++k) {
+    std::vector<glm::uvec3> tris;
+    std::vector<glm::vec3> colors;
+    tris.reserve(m.triangles.size() * 4);
+    for (size_t i = 0; i < m.triangles.size(); ++i) {
+      const glm::uvec3 t = m.triangles[i];
+      const unsigned base = unsigned(m.positions.size());
+      m.positions.push_back(0.5f * (m.positions[t.x] + m.positions[t.y]));
+      m.positions.push_back(0.5f * (m.positions[t.y] + m.positions[t.z]));
+      m.positions.push_back(0.5f * (m.positions[t.z] + m.positions[t.x]));
+      if (!m.uvs.empty()) {
+        m.uvs.push_back(0.5f * (m.uvs[t.x] + m.uvs[t.y]));
+        m.uvs.push_back(0.5f * (m.uvs[t.y] + m.uvs[t.z]));
+        m.uvs.push_back(0.5f * (m.uvs[t.z] + m.uvs[t.x]));
+      }
+      const unsigned ab = base, bc = base + 1, ca = base + 2;
+      for (glm::uvec3 c : {glm::uvec3(t.x, ab, ca), glm::uvec3(ab, t.y, bc),
+                           glm::uvec3(ca, bc, t.z), glm::uvec3(ab, bc, ca)}) {
+        tris.push_back(c);
+        if (!m.triangle_colors.empty()) colors.push_back(m.triangle_colors[i]);
+      }
+    }
+    m.triangles = std::move(tris);
+    if (!m.triangle_colors.empty()) m.triangle_colors = std::move(colors);
+  }
+  return m;
+}
+
 namespace {
 
 // Classification (Section 3.3.1): grey by exact triangle-box overlap; white and black by a
@@ -471,6 +501,7 @@ CellComplex CellComplex::build(const TriangleMesh& mesh, const CellComplexOption
   EmbreeScene embree(mesh);
   Stats& st = cc.stats_;
   st.mesh_triangles = long(mesh.triangles.size());
+  cc.mesh_ = mesh;
 
   auto t0 = std::chrono::steady_clock::now();
   classify(mesh, embree.scene, n, cc.cells_, st);

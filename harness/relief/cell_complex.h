@@ -123,6 +123,8 @@ class CellComplex {
   const std::vector<Cell>& cells() const { return cells_; }
   size_t index(int i, int j, int k) const { return (size_t(k) * n_ + j) * n_ + i; }
   const Stats& stats() const { return stats_; }
+  // The mesh it encodes, in texture space (the baseline draws it; the truth traces the file).
+  const TriangleMesh& mesh() const { return mesh_; }
   // Domain face `i`: its cell and face number.
   struct DomainFace {
     int cell = 0, face = 0;
@@ -163,6 +165,7 @@ class CellComplex {
   std::vector<uint8_t> face_inside_, crossings_;
   std::vector<glm::vec3> normal_, color_;
   Stats stats_;
+  TriangleMesh mesh_;
 };
 
 // Geometry-based rendering (Section 3.5.1): the distance maps at mip level `lod` (texels
@@ -185,6 +188,9 @@ CellMesh reconstruct_cell_mesh(const CellComplex& cells, int lod, double max_edg
 BakeFrame cell_frame(const TriangleMesh& mesh, int up, double margin = 0.02);
 // The mesh's vertices in the frame's texture space.
 TriangleMesh to_frame(const TriangleMesh& mesh, const BakeFrame& frame);
+// Each triangle split into four at its edges' midpoints, `times` times (4^times as many
+// triangles, the same surface): a stand-in for a finer scan of the same object.
+TriangleMesh subdivide_midpoints(const TriangleMesh& mesh, int times);
 
 // Exact test of a triangle against an axis-aligned box (separating axes, Akenine-Moeller),
 // closed box: touching counts.

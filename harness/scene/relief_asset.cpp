@@ -39,7 +39,7 @@ namespace {
 // itself is a flat placeholder of that size in the neutral albedo (what the truth shades a
 // colourless mesh with); the complex is what the GPU gets (GpuRelief).
 ReliefMap build_cell_complex_asset(const ReliefSourceDesc& relief, int resolution) {
-  const TriangleMesh mesh = load_mesh(relief.mesh_path);
+  const TriangleMesh mesh = subdivide_midpoints(load_mesh(relief.mesh_path), relief.cells.subdivide);
   const int res = resolution > 0 ? resolution : relief.native.width;
   CellComplexOptions options;
   options.grid = relief.cells.grid;

@@ -46,6 +46,7 @@ struct ReliefSourceDesc {
     double threshold = 0.05;  // ... below this ratio
     int grid_max = 16;        // ... or at most this N
     int distance_bits = 16;   // 16 (Table 1) or 8
+    int subdivide = 0;        // midpoint-subdivide the mesh this many times first (x4 each)
   } cells;
   MapSize native;  // size when texture_res = 0 ("native")
   // A non-height-field pattern generated as a mesh (relief/pattern_mesh.h): weave, helix.

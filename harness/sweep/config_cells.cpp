@@ -6,7 +6,9 @@ namespace rl {
 
 void parse_cells_relief(const toml::table& t, const Src& src, const std::string& base_dir,
                         ReliefSourceDesc& r, nlohmann::json& canon) {
-  check_keys(t, {"cells", "grid", "resolution", "up", "threshold", "grid_max", "distance_bits"},
+  check_keys(t,
+             {"cells", "grid", "resolution", "up", "threshold", "grid_max", "distance_bits",
+              "subdivide"},
              src, "a cell-complex relief");
   const toml::node& mn = *t.get("cells");
   r.mesh_path = resolve_path(string_of(mn, src, "cells"), base_dir, src, mn);
@@ -42,7 +44,9 @@ void parse_cells_relief(const toml::table& t, const Src& src, const std::string&
     if (r.cells.distance_bits != 8 && r.cells.distance_bits != 16)
       fail(src.at(*n), "'distance_bits' must be 16 (Table 1) or 8");
   }
+  if (auto* n = t.get("subdivide")) r.cells.subdivide = positive_int(*n, src, "subdivide", 0, 4);
   canon["cells"] = true;
+  canon["subdivide"] = r.cells.subdivide;
   canon["up"] = r.mesh_up;
   canon["grid"] = r.cells.grid;
   canon["resolution"] = res;

@@ -1,5 +1,6 @@
 // Relief mapping on cubic cell complexes, geometry-based rendering (Apaza & Andujar,
-// Section 3.5.1): the distance maps unprojected into triangles, level of detail by mip level.
+// Section 3.5.1): the distance maps unprojected into triangles, level of detail by mip level;
+// and the input mesh rasterised, the baseline of Table 2.
 #include <stdexcept>
 
 #include "gl/shader_library.h"
@@ -10,7 +11,81 @@
 
 namespace rl {
 
-class CellComplexMesh final : public Described<CellComplexMesh, Technique> {
+// Draws a triangle mesh in the cube's texture space with per-vertex normals and colours from
+// a CellMesh (the shaders of this folder): the reconstruction below and the mesh baseline.
+class CellTriangles : public Technique {
+ public:
+  using Technique::Technique;
+  ~CellTriangles() override { release(); }
+
+  void render(const FrameInput& frame, RenderTarget::Kind target) override {
+    if (!frame.relief.cells() || !frame.map.cells)
+      throw std::logic_error(info().name + " rendered on a scene without a cell complex");
+    ProgramDesc d;
+    d.owner = info().name;
+    d.vertex_file = "techniques/cell_complex_mesh/cell_mesh_vert.glsl";
+    d.fragment_files = {"techniques/cell_complex_mesh/cell_mesh_frag.glsl"};
+    if (target == RenderTarget::Kind::GBuffer) d.defines["RL_GBUFFER"] = "1";
+    const GLuint p = ShaderLibrary::shared().program(d);
+    glUseProgram(p);
+    set_scene_uniforms(p, frame.scene, frame.camera);
+    set_cell_complex_uniforms(p, frame.scene, frame.camera, *frame.map.cells,
+                              *frame.relief.cells());
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_CULL_FACE);  // windings are the texel order's or the file's, not outward
+    glBindVertexArray(vao_);
+    glDrawElements(GL_TRIANGLES, indices_, GL_UNSIGNED_INT, nullptr);
+  }
+
+  // No search to probe: the surface is rasterised.
+  std::vector<ProbeHit> probe(const ReliefMap&, const GpuRelief&, const std::vector<ProbeRay>&,
+                              glm::dvec2) override {
+    throw std::logic_error(info().name + " rasterises its surface; it has no ray search to probe");
+  }
+
+  size_t memory_bytes() const override { return bytes_; }
+
+ protected:
+  void upload(const CellMesh& mesh) {
+    std::vector<glm::vec3> interleaved;
+    interleaved.reserve(3 * mesh.position.size());
+    for (size_t i = 0; i < mesh.position.size(); ++i)
+      interleaved.insert(interleaved.end(), {mesh.position[i], mesh.normal[i], mesh.color[i]});
+    release();
+    glCreateVertexArrays(1, &vao_);
+    glCreateBuffers(1, &vbo_);
+    glCreateBuffers(1, &ibo_);
+    glNamedBufferStorage(vbo_,
+                         GLsizeiptr(std::max<size_t>(1, interleaved.size()) * sizeof(glm::vec3)),
+                         interleaved.empty() ? nullptr : interleaved.data(), 0);
+    glNamedBufferStorage(
+        ibo_, GLsizeiptr(std::max<size_t>(1, mesh.triangles.size()) * sizeof(glm::uvec3)),
+        mesh.triangles.empty() ? nullptr : mesh.triangles.data(), 0);
+    glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, 3 * sizeof(glm::vec3));
+    glVertexArrayElementBuffer(vao_, ibo_);
+    for (GLuint a = 0; a < 3; ++a) {
+      glEnableVertexArrayAttrib(vao_, a);
+      glVertexArrayAttribFormat(vao_, a, 3, GL_FLOAT, GL_FALSE, a * sizeof(glm::vec3));
+      glVertexArrayAttribBinding(vao_, a, 0);
+    }
+    indices_ = GLsizei(3 * mesh.triangles.size());
+    bytes_ = interleaved.size() * sizeof(glm::vec3) + mesh.triangles.size() * sizeof(glm::uvec3);
+  }
+
+ private:
+  void release() {
+    if (vao_) glDeleteVertexArrays(1, &vao_);
+    if (vbo_) glDeleteBuffers(1, &vbo_);
+    if (ibo_) glDeleteBuffers(1, &ibo_);
+    vao_ = vbo_ = ibo_ = 0;
+  }
+  GLuint vao_ = 0, vbo_ = 0, ibo_ = 0;
+  GLsizei indices_ = 0;
+  size_t bytes_ = 0;
+};
+
+class CellComplexMesh final : public Described<CellComplexMesh, CellTriangles> {
  public:
   using Described::Described;
   static TechniqueInfo describe() {
@@ -35,77 +110,51 @@ class CellComplexMesh final : public Described<CellComplexMesh, Technique> {
                            "is dropped: it would join two sheets across a depth discontinuity"}},
         .cell_complex = true};
   }
-  ~CellComplexMesh() override { release(); }
 
   void prepare(const ReliefMap& map) override {
     if (!map.cells) throw std::logic_error("cell_complex_mesh prepared without a cell complex");
-    const CellMesh mesh =
-        reconstruct_cell_mesh(*map.cells, int(param("lod")), param("max_edge_texels"));
-    std::vector<glm::vec3> interleaved;
-    for (size_t i = 0; i < mesh.position.size(); ++i)
-      interleaved.insert(interleaved.end(), {mesh.position[i], mesh.normal[i], mesh.color[i]});
-    release();
-    glCreateVertexArrays(1, &vao_);
-    glCreateBuffers(1, &vbo_);
-    glCreateBuffers(1, &ibo_);
-    glNamedBufferStorage(vbo_,
-                         GLsizeiptr(std::max<size_t>(1, interleaved.size()) * sizeof(glm::vec3)),
-                         interleaved.empty() ? nullptr : interleaved.data(), 0);
-    glNamedBufferStorage(
-        ibo_, GLsizeiptr(std::max<size_t>(1, mesh.triangles.size()) * sizeof(glm::uvec3)),
-        mesh.triangles.empty() ? nullptr : mesh.triangles.data(), 0);
-    glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, 3 * sizeof(glm::vec3));
-    glVertexArrayElementBuffer(vao_, ibo_);
-    for (GLuint a = 0; a < 3; ++a) {
-      glEnableVertexArrayAttrib(vao_, a);
-      glVertexArrayAttribFormat(vao_, a, 3, GL_FLOAT, GL_FALSE, a * sizeof(glm::vec3));
-      glVertexArrayAttribBinding(vao_, a, 0);
+    upload(reconstruct_cell_mesh(*map.cells, int(param("lod")), param("max_edge_texels")));
+  }
+};
+
+// The baseline the paper compares against (Section 4, Table 2): the input mesh itself,
+// rasterised with its triangles' normals, as it is in the cell complex's texture space.
+class CellSourceMesh final : public Described<CellSourceMesh, CellTriangles> {
+ public:
+  using Described::Described;
+  static TechniqueInfo describe() {
+    return {
+        .name = "cell_source_mesh",
+        .title = "The cell complex's input mesh, rasterised (baseline)",
+        .citation = "Apaza & Andujar, Section 4 (rendering the input model, Table 2's comparison)",
+        .effects = {Effect::DepthCorrect},
+        .params = {},
+        .cell_complex = true};
+  }
+
+  void prepare(const ReliefMap& map) override {
+    if (!map.cells) throw std::logic_error("cell_source_mesh prepared without a cell complex");
+    const TriangleMesh& src = map.cells->mesh();
+    CellMesh m;
+    m.position.reserve(3 * src.triangles.size());
+    for (size_t i = 0; i < src.triangles.size(); ++i) {
+      const glm::uvec3 t = src.triangles[i];
+      const glm::vec3 a = src.positions[t.x], b = src.positions[t.y], c = src.positions[t.z];
+      const glm::vec3 n = glm::cross(b - a, c - a);
+      const glm::vec3 color = src.triangle_colors.empty() ? kCellAlbedo : src.triangle_colors[i];
+      for (const glm::vec3& p : {a, b, c}) {
+        m.position.push_back(p);
+        m.normal.push_back(n);  // unnormalised: the shader normalises (and faces it)
+        m.color.push_back(color);
+      }
+      const unsigned k = unsigned(3 * i);
+      m.triangles.push_back({k, k + 1, k + 2});
     }
-    indices_ = GLsizei(3 * mesh.triangles.size());
-    bytes_ = interleaved.size() * sizeof(glm::vec3) + mesh.triangles.size() * sizeof(glm::uvec3);
+    upload(m);
   }
-
-  void render(const FrameInput& frame, RenderTarget::Kind target) override {
-    if (!frame.relief.cells() || !frame.map.cells)
-      throw std::logic_error("cell_complex_mesh rendered on a scene without a cell complex");
-    ProgramDesc d;
-    d.owner = info().name;
-    d.vertex_file = "techniques/cell_complex_mesh/cell_mesh_vert.glsl";
-    d.fragment_files = {"techniques/cell_complex_mesh/cell_mesh_frag.glsl"};
-    if (target == RenderTarget::Kind::GBuffer) d.defines["RL_GBUFFER"] = "1";
-    const GLuint p = ShaderLibrary::shared().program(d);
-    glUseProgram(p);
-    set_scene_uniforms(p, frame.scene, frame.camera);
-    set_cell_complex_uniforms(p, frame.scene, frame.camera, *frame.map.cells,
-                              *frame.relief.cells());
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDisable(GL_CULL_FACE);  // a face's triangles are wound by its texel order, not outward
-    glBindVertexArray(vao_);
-    glDrawElements(GL_TRIANGLES, indices_, GL_UNSIGNED_INT, nullptr);
-  }
-
-  // No search to probe: the surface is rasterised.
-  std::vector<ProbeHit> probe(const ReliefMap&, const GpuRelief&, const std::vector<ProbeRay>&,
-                              glm::dvec2) override {
-    throw std::logic_error(
-        "cell_complex_mesh rasterises its surface; it has no ray search to probe");
-  }
-
-  size_t memory_bytes() const override { return bytes_; }
-
- private:
-  void release() {
-    if (vao_) glDeleteVertexArrays(1, &vao_);
-    if (vbo_) glDeleteBuffers(1, &vbo_);
-    if (ibo_) glDeleteBuffers(1, &ibo_);
-    vao_ = vbo_ = ibo_ = 0;
-  }
-  GLuint vao_ = 0, vbo_ = 0, ibo_ = 0;
-  GLsizei indices_ = 0;
-  size_t bytes_ = 0;
 };
 
 RL_REGISTER_TECHNIQUE(CellComplexMesh);
+RL_REGISTER_TECHNIQUE(CellSourceMesh);
 
 }  // namespace rl
