@@ -83,6 +83,7 @@ struct GridTrial {
   int grid = 0;
   double occluded_ratio = 0;  // occluded fragments / all fragments
   long grey_cells = 0, domain_faces = 0;
+  double construction_ms = 0;  // classification + sampling at this N
 };
 
 class CellComplex {
@@ -105,8 +106,11 @@ class CellComplex {
     // mesh): resolved by the majority.
     long ambiguous_regions = 0;
     long mesh_triangles = 0;
-    long degenerate_triangles = 0;  // zero-area triangles skipped
-    double classify_ms = 0, sample_ms = 0;
+    long degenerate_triangles = 0;          // zero-area triangles skipped
+    double classify_ms = 0, sample_ms = 0;  // of this grid
+    // With an automatic grid: classification and sampling of every grid tried, this one's
+    // included (what choosing N costs); else classify_ms + sample_ms.
+    double construction_ms = 0;
     std::vector<GridTrial> trials;  // the automatic grid choice's steps, if any
     double occluded_ratio() const {
       return fragments ? double(occluded_fragments) / double(fragments) : 0.0;
@@ -141,6 +145,8 @@ class CellComplex {
   double distance_scale() const { return bits_ == 16 ? 65535.0 : 255.0; }
   // Bytes of the maps as uploaded (distance + flag, normal, colour, cell table).
   size_t gpu_bytes() const;
+  // Bytes of the distances alone at distance_bits (what the paper's Table 1 counts).
+  size_t distance_bytes() const { return faces_.size() * size_t(res_) * res_ * size_t(bits_ / 8); }
 
   // The encoded surface at a texture-space point: inside the object? (bilinear distances,
   // clamped to the face's texel centres, as the shader samples them).

@@ -23,14 +23,38 @@ const std::vector<std::string>& measured_columns() {
     ImageMetrics every;  // with the columns only some scenes measure (ambient occlusion)
     every.has_ao = true;
     for (const auto& [name, value] : every.named()) n.push_back(name);
-    for (const char* c :
-         {"elev_min_deg", "elev_max_deg", "frame_ms", "frame_ms_min", "frame_ms_iqr",
-          "frames_timed", "precompute_ms", "memory_bytes", "truth_bound", "truth_subdivision",
-          "truth_ms", "truth_unresolved_px", "layers", "layer_overflow_pct", "layer_odd_pct",
-          "depth_complexity", "ao_precompute_ms", "ao_rescale", "truth_ao_rays", "cell_grid",
-          "mesh_faces", "grey_cells", "domain_faces", "cell_bytes", "cell_classify_ms",
-          "cell_sample_ms", "occluded_fragment_pct", "multi_crossing_pct",
-          "intersections_per_s"})
+    for (const char* c : {"elev_min_deg",
+                          "elev_max_deg",
+                          "frame_ms",
+                          "frame_ms_min",
+                          "frame_ms_iqr",
+                          "frames_timed",
+                          "precompute_ms",
+                          "memory_bytes",
+                          "truth_bound",
+                          "truth_subdivision",
+                          "truth_ms",
+                          "truth_unresolved_px",
+                          "layers",
+                          "layer_overflow_pct",
+                          "layer_odd_pct",
+                          "depth_complexity",
+                          "ao_precompute_ms",
+                          "ao_rescale",
+                          "truth_ao_rays",
+                          "cell_grid",
+                          "mesh_faces",
+                          "grey_cells",
+                          "domain_faces",
+                          "cell_bytes",
+                          "cell_classify_ms",
+                          "cell_sample_ms",
+                          "cell_construction_ms",
+                          "cell_distance_bytes",
+                          "cell_ambiguous_regions",
+                          "occluded_fragment_pct",
+                          "multi_crossing_pct",
+                          "intersections_per_s"})
       n.push_back(c);
     return n;
   }();

@@ -6,10 +6,10 @@ namespace rl {
 
 void parse_cells_relief(const toml::table& t, const Src& src, const std::string& base_dir,
                         ReliefSourceDesc& r, nlohmann::json& canon) {
-  check_keys(t,
-             {"cells", "grid", "resolution", "up", "threshold", "grid_max", "distance_bits",
-              "subdivide"},
-             src, "a cell-complex relief");
+  check_keys(
+      t,
+      {"cells", "grid", "resolution", "up", "threshold", "grid_max", "distance_bits", "subdivide"},
+      src, "a cell-complex relief");
   const toml::node& mn = *t.get("cells");
   r.mesh_path = resolve_path(string_of(mn, src, "cells"), base_dir, src, mn);
   r.cells.active = true;

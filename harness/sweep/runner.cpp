@@ -135,6 +135,9 @@ void add_cell_columns(Row& row, const CellComplex& cc, const GBuffer& g, double 
   row["cell_bytes"] = double(cc.gpu_bytes());
   row["cell_classify_ms"] = st.classify_ms;
   row["cell_sample_ms"] = st.sample_ms;
+  row["cell_construction_ms"] = st.construction_ms;
+  row["cell_distance_bytes"] = double(cc.distance_bytes());
+  row["cell_ambiguous_regions"] = double(st.ambiguous_regions);
   row["occluded_fragment_pct"] = 100.0 * st.occluded_ratio();
   const double texels = double(st.domain_faces) * cc.resolution() * cc.resolution();
   row["multi_crossing_pct"] = texels > 0 ? 100.0 * double(st.multi_crossing_texels) / texels : 0.0;
@@ -275,11 +278,11 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       if (const CellComplex* cc = asset->map.cells.get())
         std::snprintf(buf, sizeof buf,
                       "relieflab: asset %s: cell complex %d^3, %ld grey cells, %ld domain faces "
-                      "of %dx%d, classified in %.0f ms, sampled in %.0f ms, %.1f%% occluded "
-                      "fragments (Embree truth of the mesh %.0f ms)",
+                      "of %dx%d, classified in %.0f ms, sampled in %.0f ms (%.0f ms with the grid "
+                      "choice), %.1f%% occluded fragments (Embree truth of the mesh %.0f ms)",
                       scene.name.c_str(), cc->grid(), cc->stats().grey_cells,
                       cc->stats().domain_faces, cc->resolution(), cc->resolution(),
-                      cc->stats().classify_ms, cc->stats().sample_ms,
+                      cc->stats().classify_ms, cc->stats().sample_ms, cc->stats().construction_ms,
                       100.0 * cc->stats().occluded_ratio(), asset->truth->build_ms());
       else if (scene.meta.active() && !scene.base.curved())
         std::snprintf(buf, sizeof buf,
@@ -295,6 +298,11 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
                       asset->truth->build_ms(), asset->truth->subdivision(),
                       asset->truth->subdivision(), unit, asset->truth->tessellation_bound());
       log.line(buf);
+      if (const CellComplex* cc = asset->map.cells.get(); cc && cc->stats().ambiguous_regions)
+        log.line("relieflab: warning: scene " + scene.name + ": " +
+                 std::to_string(cc->stats().ambiguous_regions) +
+                 " enclosed region(s) of the cell grid got disagreeing inside/outside votes (an "
+                 "open or non-manifold mesh); each was decided by the majority");
     }
     const Camera camera = make_camera(scene, cell.view, cell.width, cell.height);
     const std::string image_dir = options.out_dir + "/images/" + scene.name;

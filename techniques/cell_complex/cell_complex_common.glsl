@@ -146,14 +146,16 @@ float rl_grid_exit(vec3 o, vec3 d) {
 // Section 3.5.2: linear search from o along the unit direction d (grid units) for the first
 // sample inside the object, stopping where the ray leaves the grey region into a white cell or
 // the grid (another front face of the proxy starts the search there); then binary search.
-// Returns the hit's t, or -1.
-float rl_cell_search(vec3 o, vec3 d) {
+// Returns the hit's t (the last inside sample), or -1; `t_before` is the last outside sample
+// (within the final bisection interval), where the attributes are read.
+float rl_cell_search(vec3 o, vec3 d, out float t_before) {
   const float step = 1.0 / float(RL_STEPS_PER_CELL);
   float t_end = rl_grid_exit(o, d);
   // Bounded: the longest chord of the grid in steps, plus the first sample.
   int max_steps = int(ceil(1.7320508 * float(rl_cell_n) * float(RL_STEPS_PER_CELL))) + 2;
   float t_out = 0.0;
   float t = 1e-4;
+  t_before = 0.0;
   bool found = false;
   for (int i = 0; i < max_steps && t <= t_end; ++i) {
     int inside = rl_cell_inside(o + d * t);
@@ -176,5 +178,6 @@ float rl_cell_search(vec3 o, vec3 d) {
     else
       t_out = mid;
   }
+  t_before = t_out;
   return t_in;
 }

@@ -20,7 +20,8 @@ void main() {
   vec3 direction = texelFetch(rl_probe_direction, px, 0).xyz;
   float n = float(rl_cell_n);
   float scale = length(direction) * n;  // grid units per unit of the probe's t
-  float t = scale > 0.0 ? rl_cell_search(origin * n, direction * n / scale) : -1.0;
+  float t_before;
+  float t = scale > 0.0 ? rl_cell_search(origin * n, direction * n / scale, t_before) : -1.0;
   vec3 hit = origin + direction * (t / scale);
   o_color = vec4(t >= 0.0 ? t / scale : 0.0, hit.xy, float(rl_fetches));
   o_position = vec4(hit.z, 0.0, t >= 0.0 ? 1.0 : 0.0, 0.0);
@@ -53,7 +54,8 @@ void main() {
   float n = float(rl_cell_n);
   vec3 d = normalize(v_tex - rl_eye_texture);
   vec3 o = v_tex * n;
-  float t = rl_cell_search(o, d);
+  float t_before;
+  float t = rl_cell_search(o, d, t_before);
   if (t < 0.0) discard;
   vec3 g = o + d * t;
   vec3 hit_tex = g / n;
@@ -61,11 +63,14 @@ void main() {
   vec4 hit_clip = rl_view_projection * vec4(hit_world, 1.0);
   gl_FragDepth = clamp(0.5 * hit_clip.z / hit_clip.w + 0.5, 0.0, 1.0);
 
-  // Normal and colour at the hit's face point (Section 3.5.2, step 4).
+  // Normal and colour at the hit's face point (Section 3.5.2, step 4), read just outside the
+  // surface: the last inside sample may lie across a cell face in a black cell, which has no
+  // maps (only where that fails, at the inside sample).
   vec3 V = normalize(hit_world - rl_eye);
   vec3 tn = vec3(0.0);
   vec3 albedo = rl_cell_albedo;
-  RlCellPoint p = rl_cell_point(g);
+  RlCellPoint p = rl_cell_point(o + d * t_before);
+  if (p.state != RL_GREY) p = rl_cell_point(g);
   if (p.state == RL_GREY) {
     rl_fetches += 2;
     tn = textureLod(rl_cell_normal, p.coord, 0.0).rgb * 2.0 - 1.0;
