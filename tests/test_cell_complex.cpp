@@ -10,6 +10,7 @@
 #include <set>
 
 #include "relief/cell_complex.h"
+#include "support/test_support.h"
 
 namespace rl {
 namespace {
@@ -125,31 +126,10 @@ TEST(CellConfigurations, EveryPointProjectsOntoADomainFaceAlongOneLine) {
   }
 }
 
-// A UV sphere of radius r about c, counter-clockwise seen from outside.
-TriangleMesh uv_sphere(glm::dvec3 c, double r, int slices, int stacks) {
-  TriangleMesh m;
-  for (int s = 0; s <= stacks; ++s)
-    for (int i = 0; i <= slices; ++i) {
-      const double th = M_PI * s / stacks, ph = 2 * M_PI * i / slices;
-      m.positions.push_back(
-          glm::vec3(c + r * glm::dvec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph),
-                                       std::cos(th))));
-    }
-  auto at = [&](int s, int i) { return unsigned(s * (slices + 1) + i); };
-  for (int s = 0; s < stacks; ++s)
-    for (int i = 0; i < slices; ++i) {
-      if (s > 0) m.triangles.push_back({at(s, i), at(s + 1, i), at(s, i + 1)});
-      if (s < stacks - 1) m.triangles.push_back({at(s, i + 1), at(s + 1, i), at(s + 1, i + 1)});
-    }
-  m.lo = c - r;
-  m.hi = c + r;
-  return m;
-}
-
 TEST(CellComplexBuild, ClassifiesASphereLikeItsDistanceField) {
   const glm::dvec3 centre(0.5, 0.5, 0.5);
   const double r = 0.37;
-  const TriangleMesh sphere = uv_sphere(centre, r, 96, 48);
+  const TriangleMesh sphere = test::uv_sphere(centre, r, 96, 48);
   for (int n : {1, 2, 4, 8}) {
     SCOPED_TRACE("N " + std::to_string(n));
     const CellComplex cc = CellComplex::build(sphere, {.grid = n, .resolution = 16});
@@ -182,7 +162,7 @@ TEST(CellComplexBuild, EncodedSurfaceIsTheSphereAwayFromItsTexels) {
   // N = 1 is one perspective cell (case 0), where the sphere is star-shaped about the centre.
   const glm::dvec3 centre(0.5, 0.5, 0.5);
   const double r = 0.37;
-  const TriangleMesh sphere = uv_sphere(centre, r, 96, 48);
+  const TriangleMesh sphere = test::uv_sphere(centre, r, 96, 48);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   for (int n : {1, 2, 4, 8}) {
@@ -216,8 +196,8 @@ TEST(CellComplexBuild, ANestedSheetIsOccludedAtN1AndSeparatedByAFinerGrid) {
   // Two concentric spheres (a hollow ball): from the centre (case 0) every line crosses both,
   // so half the fragments are occluded at N = 1; the automatic choice (Section 3.3.3) doubles
   // N until the ratio falls below its threshold, and reports each step.
-  TriangleMesh shell = uv_sphere({0.5, 0.5, 0.5}, 0.4, 64, 32);
-  const TriangleMesh inner = uv_sphere({0.5, 0.5, 0.5}, 0.2, 64, 32);
+  TriangleMesh shell = test::uv_sphere({0.5, 0.5, 0.5}, 0.4, 64, 32);
+  const TriangleMesh inner = test::uv_sphere({0.5, 0.5, 0.5}, 0.2, 64, 32);
   const unsigned offset = unsigned(shell.positions.size());
   shell.positions.insert(shell.positions.end(), inner.positions.begin(), inner.positions.end());
   for (glm::uvec3 t : inner.triangles)
@@ -240,7 +220,7 @@ TEST(CellComplexMesh, ReconstructedVerticesLieOnTheSurfaceAndCoverIt) {
   // its tessellation and 16-bit rounding, at every level of detail.
   const glm::dvec3 centre(0.5, 0.5, 0.5);
   const double r = 0.37;
-  const TriangleMesh sphere = uv_sphere(centre, r, 96, 48);
+  const TriangleMesh sphere = test::uv_sphere(centre, r, 96, 48);
   for (int n : {1, 2, 4}) {
     const CellComplex cc = CellComplex::build(sphere, {.grid = n, .resolution = 32});
     for (int lod : {0, 2}) {

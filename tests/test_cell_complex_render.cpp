@@ -19,26 +19,6 @@
 namespace rl {
 namespace {
 
-TriangleMesh uv_sphere(glm::dvec3 c, double r, int slices, int stacks) {
-  TriangleMesh m;
-  for (int s = 0; s <= stacks; ++s)
-    for (int i = 0; i <= slices; ++i) {
-      const double th = M_PI * s / stacks, ph = 2 * M_PI * i / slices;
-      m.positions.push_back(
-          glm::vec3(c + r * glm::dvec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph),
-                                       std::cos(th))));
-    }
-  auto at = [&](int s, int i) { return unsigned(s * (slices + 1) + i); };
-  for (int s = 0; s < stacks; ++s)
-    for (int i = 0; i < slices; ++i) {
-      if (s > 0) m.triangles.push_back({at(s, i), at(s + 1, i), at(s, i + 1)});
-      if (s < stacks - 1) m.triangles.push_back({at(s, i + 1), at(s + 1, i), at(s + 1, i + 1)});
-    }
-  m.lo = c - r;
-  m.hi = c + r;
-  return m;
-}
-
 // An axis-aligned box [lo, hi]^3, counter-clockwise from outside.
 TriangleMesh box(double lo, double hi) {
   TriangleMesh m;
@@ -145,7 +125,7 @@ TEST(CellComplexProbe, TheRayCasterFindsTheEncodedSurfaceAcrossProjectionTypes) 
   // rod one cell thick (axial cells, case 2b) beside a slab one cell thick (planar cells, case
   // 4a): rays cross cells of different projection types. A wrong projection, face index or
   // tile in the shader moves its hits off the CPU's.
-  const TriangleMesh sphere = uv_sphere({0.5, 0.5, 0.5}, 0.37, 96, 48);
+  const TriangleMesh sphere = test::uv_sphere({0.5, 0.5, 0.5}, 0.37, 96, 48);
   TriangleMesh rod_and_slab;
   rod_and_slab.lo = glm::dvec3(1);
   rod_and_slab.hi = glm::dvec3(0);
@@ -188,7 +168,7 @@ TEST(CellComplexProbe, RaysAlongGridPlanesAndAMeshOnThem) {
 }
 
 TEST(CellComplexProbe, OneCellAndTheCapStayBounded) {
-  const TriangleMesh sphere = uv_sphere({0.5, 0.5, 0.5}, 0.37, 48, 24);
+  const TriangleMesh sphere = test::uv_sphere({0.5, 0.5, 0.5}, 0.37, 48, 24);
   const std::vector<ProbeRay> rays = inward_rays(500, 13);
   for (int n : {1, kMaxCellGrid}) {
     SCOPED_TRACE("N " + std::to_string(n));
@@ -198,7 +178,7 @@ TEST(CellComplexProbe, OneCellAndTheCapStayBounded) {
 }
 
 TEST(CellComplexBuildHardCases, DegenerateTrianglesAndHolesGiveDefinedResults) {
-  TriangleMesh sphere = uv_sphere({0.5, 0.5, 0.5}, 0.37, 48, 24);
+  TriangleMesh sphere = test::uv_sphere({0.5, 0.5, 0.5}, 0.37, 48, 24);
   const CellComplex clean = CellComplex::build(sphere, {.grid = 4, .resolution = 16});
   // Zero-area triangles (a repeated vertex, three collinear points) are skipped and counted.
   TriangleMesh degenerate = sphere;
@@ -228,8 +208,8 @@ TEST(CellComplexBuildHardCases, SheetsBehindAFirstCrossingAreLostAndMeasured) {
   // A hollow ball (outer radius 0.4, inner 0.2): on one cell every line from the faces to the
   // centre crosses both spheres, so the hollow is filled (the inner sheet is lost, 50% of the
   // fragments occluded); on 8 cells the sheets fall in different cells and the hollow is kept.
-  TriangleMesh shell = uv_sphere({0.5, 0.5, 0.5}, 0.4, 64, 32);
-  const TriangleMesh inner = uv_sphere({0.5, 0.5, 0.5}, 0.2, 64, 32);
+  TriangleMesh shell = test::uv_sphere({0.5, 0.5, 0.5}, 0.4, 64, 32);
+  const TriangleMesh inner = test::uv_sphere({0.5, 0.5, 0.5}, 0.2, 64, 32);
   const unsigned offset = unsigned(shell.positions.size());
   shell.positions.insert(shell.positions.end(), inner.positions.begin(), inner.positions.end());
   for (glm::uvec3 t : inner.triangles)
@@ -256,7 +236,7 @@ TEST(CellComplexBuildHardCases, SheetsBehindAFirstCrossingAreLostAndMeasured) {
 // A sphere OBJ in a scratch folder, for whole-frame scenes.
 std::string sphere_file(const std::string& dir) {
   std::filesystem::create_directories(dir);
-  const TriangleMesh s = uv_sphere({0, 0, 0}, 1, 64, 32);
+  const TriangleMesh s = test::uv_sphere({0, 0, 0}, 1, 64, 32);
   const std::string path = dir + "/sphere.obj";
   std::ofstream f(path);
   for (const glm::vec3& p : s.positions) f << "v " << p.x << " " << p.y << " " << p.z << "\n";

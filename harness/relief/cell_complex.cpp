@@ -320,17 +320,13 @@ bool triangle_overlaps_box(const glm::dvec3& a, const glm::dvec3& b, const glm::
 }
 
 BakeFrame cell_frame(const TriangleMesh& mesh, int up, double margin) {
-  if (up < 0 || up > 2) throw ConfigError("mesh up axis must be x, y or z");
-  BakeFrame f;
-  f.up = up;
-  f.axis_u = (up + 1) % 3;
-  f.axis_v = (up + 2) % 3;
+  // The bake's frame (axes, footprint), made a cube about the mesh's centre.
+  BakeFrame f = bake_frame(mesh, up, margin);
   const glm::dvec3 extent = mesh.hi - mesh.lo;
-  const double side = std::max({extent.x, extent.y, extent.z, 1e-9}) * (1 + 2 * margin);
-  f.side = f.height = side;
+  f.side = f.height = std::max({extent.x, extent.y, extent.z, 1e-9}) * (1 + 2 * margin);
   const glm::dvec3 centre = 0.5 * (mesh.lo + mesh.hi);
-  f.origin = centre - glm::dvec3(0.5 * side);
-  f.origin[up] = centre[up] + 0.5 * side;
+  f.origin = centre - glm::dvec3(0.5 * f.side);
+  f.origin[up] = centre[up] + 0.5 * f.side;
   return f;
 }
 

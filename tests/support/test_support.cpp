@@ -1,6 +1,7 @@
 #include "support/test_support.h"
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <random>
@@ -96,6 +97,26 @@ ReliefMap map_from_depths(int w, int h, const std::vector<float>& depths) {
     m.relief.push_back(glm::vec4(0.5f, 0.5f, 1.0f, v));
     m.color.push_back(glm::vec4(1));
   }
+  return m;
+}
+
+TriangleMesh uv_sphere(glm::dvec3 c, double r, int slices, int stacks) {
+  TriangleMesh m;
+  for (int s = 0; s <= stacks; ++s)
+    for (int i = 0; i <= slices; ++i) {
+      const double th = M_PI * s / stacks, ph = 2 * M_PI * i / slices;
+      m.positions.push_back(
+          glm::vec3(c + r * glm::dvec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph),
+                                       std::cos(th))));
+    }
+  auto at = [&](int s, int i) { return unsigned(s * (slices + 1) + i); };
+  for (int s = 0; s < stacks; ++s)
+    for (int i = 0; i < slices; ++i) {
+      if (s > 0) m.triangles.push_back({at(s, i), at(s + 1, i), at(s, i + 1)});
+      if (s < stacks - 1) m.triangles.push_back({at(s, i + 1), at(s + 1, i), at(s + 1, i + 1)});
+    }
+  m.lo = c - r;
+  m.hi = c + r;
   return m;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/gbuffer.h"
+#include "core/triangle_mesh.h"
 #include "metrics/metrics.h"
 #include "relief/relief_map.h"
 #include "scene/scene.h"
@@ -49,6 +50,10 @@ std::vector<ProbeRay> as_probe_rays(const std::vector<TangentRay>& rays);
 
 // A w x h map with these depths (row 0 first), flat normals and white colour.
 ReliefMap map_from_depths(int w, int h, const std::vector<float>& depths);
+
+// A UV sphere of radius r about c (slices x stacks quads, poles as fans), counter-clockwise seen
+// from outside.
+TriangleMesh uv_sphere(glm::dvec3 c, double r, int slices, int stacks);
 
 // A fresh, empty folder under the build's temporary directory.
 std::string scratch_dir(const std::string& name);
