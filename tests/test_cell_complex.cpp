@@ -245,3 +245,46 @@ TEST(CellComplexMesh, ReconstructedVerticesLieOnTheSurfaceAndCoverIt) {
 
 }  // namespace
 }  // namespace rl
+
+namespace rl {
+namespace {
+
+TEST(CellComplexBuild, SerialisesExactlyAndRefusesForeignBytes) {
+  // The precompute cache stores a complex as these bytes: read back it is the same complex;
+  // cut short, padded or of another version it is refused (and rebuilt by the caller).
+  const TriangleMesh sphere = test::uv_sphere({0.5, 0.5, 0.5}, 0.37, 48, 24);
+  const CellComplex cc =
+      CellComplex::build(sphere, {.grid = 0, .resolution = 8, .threshold = 0.05, .grid_max = 4});
+  const std::vector<uint8_t> bytes = cc.serialize();
+  CellComplex back;
+  ASSERT_TRUE(CellComplex::deserialize(bytes, sphere, back));
+  EXPECT_TRUE(back.stats().from_cache);
+  EXPECT_EQ(back.grid(), cc.grid());
+  EXPECT_EQ(back.distance(), cc.distance());
+  EXPECT_EQ(back.face_inside(), cc.face_inside());
+  EXPECT_EQ(back.crossings(), cc.crossings());
+  EXPECT_EQ(back.normal(), cc.normal());
+  EXPECT_EQ(back.color(), cc.color());
+  EXPECT_EQ(back.stats().trials.size(), cc.stats().trials.size());
+  EXPECT_EQ(back.stats().cases, cc.stats().cases);
+  EXPECT_EQ(back.stats().construction_ms, cc.stats().construction_ms);
+  EXPECT_EQ(back.mesh().triangles.size(), sphere.triangles.size());
+  for (size_t i = 0; i < cc.cells().size(); ++i) {
+    EXPECT_EQ(back.cells()[i].state, cc.cells()[i].state);
+    EXPECT_EQ(back.cells()[i].config.base_case, cc.cells()[i].config.base_case);
+  }
+  for (int k = 0; k < 200; ++k) {
+    const glm::dvec3 p(0.13 + 0.0037 * k, 0.5, 0.21 + 0.003 * k);
+    EXPECT_EQ(back.encoded_inside(p), cc.encoded_inside(p));
+  }
+  std::vector<uint8_t> cut(bytes.begin(), bytes.end() - 3), padded = bytes, foreign = bytes;
+  padded.push_back(0);
+  foreign[0] ^= 0xff;
+  CellComplex refused;
+  EXPECT_FALSE(CellComplex::deserialize(cut, sphere, refused));
+  EXPECT_FALSE(CellComplex::deserialize(padded, sphere, refused));
+  EXPECT_FALSE(CellComplex::deserialize(foreign, sphere, refused));
+}
+
+}  // namespace
+}  // namespace rl

@@ -12,6 +12,7 @@
 
 #include "gl/context.h"
 #include "relief/cell_complex.h"
+#include "scene/relief_asset.h"
 #include "support/test_support.h"
 #include "technique/gpu_scene.h"
 #include "truth/cell_complex_truth.h"
@@ -243,6 +244,26 @@ std::string sphere_file(const std::string& dir) {
   for (const glm::uvec3& t : s.triangles)
     f << "f " << t.x + 1 << " " << t.y + 1 << " " << t.z + 1 << "\n";
   return path;
+}
+
+SceneDesc cells_scene(const std::string& mesh, int grid, TruthLevel truth);
+
+TEST(CellComplexAsset, ASecondBuildReadsTheCacheAndAnotherOptionDoesNot) {
+  const std::string dir = test::scratch_dir("cell_cache");
+  const std::string mesh = sphere_file(dir + "/mesh");
+  ::setenv("RELIEFLAB_CACHE_DIR", (dir + "/cache").c_str(), 1);
+  SceneDesc scene = cells_scene(mesh, 4, TruthLevel::Mesh);
+  const ReliefMap first = build_relief_asset(scene, 16);
+  const ReliefMap second = build_relief_asset(scene, 16);
+  scene.relief.cells.distance_bits = 8;
+  const ReliefMap other = build_relief_asset(scene, 16);
+  ::unsetenv("RELIEFLAB_CACHE_DIR");
+  EXPECT_FALSE(first.cells->stats().from_cache);
+  EXPECT_TRUE(second.cells->stats().from_cache);
+  EXPECT_FALSE(other.cells->stats().from_cache);
+  EXPECT_EQ(second.cells->distance(), first.cells->distance());
+  EXPECT_EQ(second.cells->stats().sample_ms, first.cells->stats().sample_ms);  // the build's
+  EXPECT_EQ(second.cells->mesh().triangles.size(), first.cells->mesh().triangles.size());
 }
 
 SceneDesc cells_scene(const std::string& mesh, int grid, TruthLevel truth) {

@@ -112,6 +112,7 @@ class CellComplex {
     // included (what choosing N costs); else classify_ms + sample_ms.
     double construction_ms = 0;
     std::vector<GridTrial> trials;  // the automatic grid choice's steps, if any
+    bool from_cache = false;        // read from the precompute cache (times are the build's)
     double occluded_ratio() const {
       return fragments ? double(occluded_fragments) / double(fragments) : 0.0;
     }
@@ -119,6 +120,10 @@ class CellComplex {
 
   // Builds the complex of `mesh` (already in texture space, inside [0, 1]^3).
   static CellComplex build(const TriangleMesh& mesh, const CellComplexOptions& options);
+  // The complex as bytes (everything but the mesh), and back with its mesh; false when the
+  // bytes are not a complex of this version.
+  std::vector<uint8_t> serialize() const;
+  static bool deserialize(const std::vector<uint8_t>& bytes, TriangleMesh mesh, CellComplex& out);
 
   int grid() const { return n_; }
   int resolution() const { return res_; }

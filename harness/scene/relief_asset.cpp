@@ -3,9 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <memory>
 
 #include "core/elapsed.h"
+#include "core/hash.h"
+#include "core/precompute_cache.h"
 #include "relief/cell_complex.h"
 #include "relief/image_io.h"
 #include "relief/layer_bake.h"
@@ -35,11 +40,44 @@ BakeFrame relief_bake_frame(const ReliefSourceDesc& relief, const TriangleMesh& 
 
 namespace {
 
+// The complex of `mesh` (in texture space) with `options`, through the precompute cache, keyed
+// by the mesh file's content and every option that changes the answer: a size entry, then the
+// complex (CellComplex::serialize); a missing, foreign or corrupt entry is rebuilt. Bump the
+// key's version whenever the construction changes its answer.
+CellComplex cached_cell_complex(const ReliefSourceDesc& relief, TriangleMesh mesh,
+                                const CellComplexOptions& o) {
+  std::ifstream in(relief.mesh_path, std::ios::binary);
+  const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const uint64_t hash = fnv1a64(file);
+  char key[256];
+  std::snprintf(key, sizeof key,
+                "cell-complex v1 up=%d subdivide=%d grid=%d res=%d bits=%d threshold=%.17g "
+                "grid_max=%d",
+                relief.mesh_up, relief.cells.subdivide, o.grid, o.resolution, o.distance_bits,
+                o.threshold, o.grid_max);
+  const std::string folder = precompute_cache_dir(), size_key = std::string(key) + " size";
+  uint64_t size = 0;
+  if (read_precompute_cache(folder, size_key, hash, &size, sizeof size) && size < (1ull << 32)) {
+    std::vector<uint8_t> bytes(size);
+    CellComplex cc;
+    if (read_precompute_cache(folder, key, hash, bytes.data(), bytes.size()) &&
+        CellComplex::deserialize(bytes, mesh, cc))
+      return cc;
+  }
+  CellComplex cc = CellComplex::build(mesh, o);
+  const std::vector<uint8_t> bytes = cc.serialize();
+  write_precompute_cache(folder, key, hash, bytes.data(), bytes.size());
+  size = bytes.size();
+  write_precompute_cache(folder, size_key, hash, &size, sizeof size);
+  return cc;
+}
+
 // A cell complex of the relief's mesh, faces `resolution` texels square (0: native). The map
 // itself is a flat placeholder of that size in the neutral albedo (what the truth shades a
 // colourless mesh with); the complex is what the GPU gets (GpuRelief).
 ReliefMap build_cell_complex_asset(const ReliefSourceDesc& relief, int resolution) {
-  const TriangleMesh mesh = subdivide_midpoints(load_mesh(relief.mesh_path), relief.cells.subdivide);
+  const TriangleMesh mesh =
+      subdivide_midpoints(load_mesh(relief.mesh_path), relief.cells.subdivide);
   const int res = resolution > 0 ? resolution : relief.native.width;
   CellComplexOptions options;
   options.grid = relief.cells.grid;
@@ -53,7 +91,7 @@ ReliefMap build_cell_complex_asset(const ReliefSourceDesc& relief, int resolutio
   map.relief.assign(size_t(res) * res, glm::vec4(0.5f, 0.5f, 1.0f, 0.0f));
   map.color.assign(size_t(res) * res, glm::vec4(kCellAlbedo, 1.0f));
   map.cells = std::make_shared<const CellComplex>(
-      CellComplex::build(to_frame(mesh, relief_bake_frame(relief, mesh)), options));
+      cached_cell_complex(relief, to_frame(mesh, relief_bake_frame(relief, mesh)), options));
   return map;
 }
 

@@ -135,7 +135,8 @@ void add_cell_columns(Row& row, const CellComplex& cc, const GBuffer& g, double 
   row["cell_bytes"] = double(cc.gpu_bytes());
   row["cell_classify_ms"] = st.classify_ms;
   row["cell_sample_ms"] = st.sample_ms;
-  row["cell_construction_ms"] = st.construction_ms;
+  row["cell_construction_ms"] = st.construction_ms;  // the build's, also when read from cache
+  row["cell_from_cache"] = st.from_cache;
   row["cell_distance_bytes"] = double(cc.distance_bytes());
   row["cell_ambiguous_regions"] = double(st.ambiguous_regions);
   row["occluded_fragment_pct"] = 100.0 * st.occluded_ratio();
@@ -279,10 +280,11 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
         std::snprintf(buf, sizeof buf,
                       "relieflab: asset %s: cell complex %d^3, %ld grey cells, %ld domain faces "
                       "of %dx%d, classified in %.0f ms, sampled in %.0f ms (%.0f ms with the grid "
-                      "choice), %.1f%% occluded fragments (Embree truth of the mesh %.0f ms)",
+                      "choice%s), %.1f%% occluded fragments (Embree truth of the mesh %.0f ms)",
                       scene.name.c_str(), cc->grid(), cc->stats().grey_cells,
                       cc->stats().domain_faces, cc->resolution(), cc->resolution(),
                       cc->stats().classify_ms, cc->stats().sample_ms, cc->stats().construction_ms,
+                      cc->stats().from_cache ? "; read from the precompute cache" : "",
                       100.0 * cc->stats().occluded_ratio(), asset->truth->build_ms());
       else if (scene.meta.active() && !scene.base.curved())
         std::snprintf(buf, sizeof buf,
