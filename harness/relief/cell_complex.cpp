@@ -560,13 +560,11 @@ CellComplex CellComplex::build(const TriangleMesh& mesh, const CellComplexOption
         if (c.state == CellState::Black) ++st.black_cells;
         if (c.state != CellState::Grey) continue;
         ++st.grey_cells;
-        const int ijk[3] = {i, j, k};
         uint8_t internal = 0;
         for (int f = 0; f < 6; ++f) {
           int nb[3] = {i, j, k};
           nb[f / 2] += f % 2 ? 1 : -1;
           const bool outside = nb[f / 2] < 0 || nb[f / 2] >= n;
-          (void)ijk;
           if (!outside && cc.cells_[cc.index(nb[0], nb[1], nb[2])].state != CellState::White)
             internal |= uint8_t(1u << f);
         }

@@ -13,6 +13,11 @@ CellComplexTruth::CellComplexTruth(std::shared_ptr<const CellComplex> cells)
 TruthHit CellComplexTruth::intersect(const glm::dvec3& o, const glm::dvec3& d, double t_min,
                                      double t_max) const {
   ++primary_rays_;
+  return trace(o, d, t_min, t_max);
+}
+
+TruthHit CellComplexTruth::trace(const glm::dvec3& o, const glm::dvec3& d, double t_min,
+                                 double t_max) const {
   TruthHit h;
   const double speed = glm::length(d);
   if (!(speed > 0)) return h;
@@ -71,8 +76,7 @@ TruthHit CellComplexTruth::intersect(const glm::dvec3& o, const glm::dvec3& d, d
 bool CellComplexTruth::occluded(const glm::dvec3& o, const glm::dvec3& d, double t_min,
                                 double t_max) const {
   ++shadow_rays_;
-  --primary_rays_;  // counted as a shadow ray only
-  return intersect(o, d, t_min, t_max).hit;
+  return trace(o, d, t_min, t_max).hit;
 }
 
 }  // namespace rl

@@ -26,6 +26,8 @@ class CellComplexTruth final : public TruthSurface {
   double build_ms() const override { return 0; }
 
  private:
+  TruthHit trace(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,
+                 double t_max) const;  // intersect() without counting the ray
   std::shared_ptr<const CellComplex> cells_;
   double step_ = 0;  // texture units (cube sides)
 };
