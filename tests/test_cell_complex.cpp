@@ -196,12 +196,7 @@ TEST(CellComplexBuild, ANestedSheetIsOccludedAtN1AndSeparatedByAFinerGrid) {
   // Two concentric spheres (a hollow ball): from the centre (case 0) every line crosses both,
   // so half the fragments are occluded at N = 1; the automatic choice (Section 3.3.3) doubles
   // N until the ratio falls below its threshold, and reports each step.
-  TriangleMesh shell = test::uv_sphere({0.5, 0.5, 0.5}, 0.4, 64, 32);
-  const TriangleMesh inner = test::uv_sphere({0.5, 0.5, 0.5}, 0.2, 64, 32);
-  const unsigned offset = unsigned(shell.positions.size());
-  shell.positions.insert(shell.positions.end(), inner.positions.begin(), inner.positions.end());
-  for (glm::uvec3 t : inner.triangles)
-    shell.triangles.push_back({t.x + offset, t.z + offset, t.y + offset});
+  const TriangleMesh shell = test::hollow_ball();
   const CellComplex one = CellComplex::build(shell, {.grid = 1, .resolution = 16});
   EXPECT_NEAR(one.stats().occluded_ratio(), 0.5, 0.02);
   EXPECT_EQ(one.stats().multi_crossing_texels, 6 * 16 * 16);

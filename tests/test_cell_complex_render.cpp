@@ -209,12 +209,7 @@ TEST(CellComplexBuildHardCases, SheetsBehindAFirstCrossingAreLostAndMeasured) {
   // A hollow ball (outer radius 0.4, inner 0.2): on one cell every line from the faces to the
   // centre crosses both spheres, so the hollow is filled (the inner sheet is lost, 50% of the
   // fragments occluded); on 8 cells the sheets fall in different cells and the hollow is kept.
-  TriangleMesh shell = test::uv_sphere({0.5, 0.5, 0.5}, 0.4, 64, 32);
-  const TriangleMesh inner = test::uv_sphere({0.5, 0.5, 0.5}, 0.2, 64, 32);
-  const unsigned offset = unsigned(shell.positions.size());
-  shell.positions.insert(shell.positions.end(), inner.positions.begin(), inner.positions.end());
-  for (glm::uvec3 t : inner.triangles)
-    shell.triangles.push_back({t.x + offset, t.z + offset, t.y + offset});
+  const TriangleMesh shell = test::hollow_ball();
   std::mt19937 rng(21);
   std::uniform_real_distribution<double> u01(-1.0, 1.0);
   auto hollow_kept_pct = [&](const CellComplex& cc) {

@@ -9,13 +9,7 @@ in vec3 v_albedo;
 uniform vec3 rl_eye;
 uniform vec3 rl_light;
 
-layout(location = 0) out vec4 o_color;
-#ifdef RL_GBUFFER
-layout(location = 1) out vec4 o_position;
-layout(location = 2) out vec4 o_normal;
-layout(location = 3) out vec4 o_hit;
-layout(location = 4) out vec4 o_aux;
-#endif
+#include "harness/glsl/gbuffer_outputs.glsl"
 
 void main() {
   vec3 n = normalize(v_normal);

@@ -44,13 +44,7 @@ vec3 rl_unproject(vec3 t) {
 uniform float rl_shadow_bias;  // depth units (Listing 5.3's shadow_threshold)
 #endif
 
-layout(location = 0) out vec4 o_color;
-#ifdef RL_GBUFFER
-layout(location = 1) out vec4 o_position;
-layout(location = 2) out vec4 o_normal;
-layout(location = 3) out vec4 o_hit;
-layout(location = 4) out vec4 o_aux;
-#endif
+#include "harness/glsl/gbuffer_outputs.glsl"
 
 // A world direction in texture units per world unit: (du, dv, d depth). The floor keeps a
 // collapsed mapping (a sphere's pole) finite.

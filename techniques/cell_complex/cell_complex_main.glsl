@@ -42,13 +42,7 @@ uniform mat4 rl_world_from_texture;
 uniform mat3 rl_normal_from_texture;  // inverse transpose of its linear part
 uniform vec3 rl_cell_albedo;          // a hit in a black cell (the surface on its face)
 
-layout(location = 0) out vec4 o_color;
-#ifdef RL_GBUFFER
-layout(location = 1) out vec4 o_position;
-layout(location = 2) out vec4 o_normal;
-layout(location = 3) out vec4 o_hit;
-layout(location = 4) out vec4 o_aux;
-#endif
+#include "harness/glsl/gbuffer_outputs.glsl"
 
 void main() {
   float n = float(rl_cell_n);

@@ -120,6 +120,16 @@ TriangleMesh uv_sphere(glm::dvec3 c, double r, int slices, int stacks) {
   return m;
 }
 
+TriangleMesh hollow_ball() {
+  TriangleMesh shell = uv_sphere({0.5, 0.5, 0.5}, 0.4, 64, 32);
+  const TriangleMesh inner = uv_sphere({0.5, 0.5, 0.5}, 0.2, 64, 32);
+  const unsigned offset = unsigned(shell.positions.size());
+  shell.positions.insert(shell.positions.end(), inner.positions.begin(), inner.positions.end());
+  for (glm::uvec3 t : inner.triangles)
+    shell.triangles.push_back({t.x + offset, t.z + offset, t.y + offset});
+  return shell;
+}
+
 std::string scratch_dir(const std::string& name) {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::filesystem::path dir =

@@ -55,6 +55,10 @@ ReliefMap map_from_depths(int w, int h, const std::vector<float>& depths);
 // from outside.
 TriangleMesh uv_sphere(glm::dvec3 c, double r, int slices, int stacks);
 
+// Two concentric UV spheres about (0.5, 0.5, 0.5), radii 0.4 and 0.2, the inner one turned
+// inside out: a hollow ball, whose every line from the centre crosses two sheets.
+TriangleMesh hollow_ball();
+
 // A fresh, empty folder under the build's temporary directory.
 std::string scratch_dir(const std::string& name);
 
