@@ -242,14 +242,15 @@ TEST(Sweep, DefaultConfigParsesAndExpands) {
   const std::vector<Cell> cells = expand_cells(c);
   // 4 scenes x (normal + parallax + 4 relief) x 4 elevations, + the shadowed, the AO and the
   // meta-relief scene x 4 relief x 4, + the sphere x 4 relief x 4 and the silhouette sphere x 4
-  // relief_silhouette x 4, + the weave x (4 relief + 4 multilayer + 4 double_depth) x 4.
-  EXPECT_EQ(cells.size(), 4u * 6u * 4u + 5u * 4u * 4u + 12u * 4u);
+  // relief_silhouette x 4, + the weave x (4 relief + 4 multilayer + 4 double_depth) x 4, + the
+  // cell-complex bunny x 4 cell_complex x 4.
+  EXPECT_EQ(cells.size(), 4u * 6u * 4u + 5u * 4u * 4u + 12u * 4u + 4u * 4u);
   std::set<std::string> truths, keys;
   for (const Cell& cell : cells) {
     truths.insert(cell.truth_key);
     keys.insert(cell.key);
   }
-  EXPECT_EQ(truths.size(), 10u * 4u);
+  EXPECT_EQ(truths.size(), 11u * 4u);
   EXPECT_EQ(keys.size(), cells.size());
 }
 
