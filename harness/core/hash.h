@@ -3,6 +3,8 @@
 // the same key on every machine and run, so shards merge and sweeps resume.
 #include <cstdint>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 namespace rl {
@@ -18,6 +20,13 @@ inline uint64_t fnv1a64(const void* data, size_t size, uint64_t h = 146959810393
 
 inline uint64_t fnv1a64(const std::string& s) {
   return fnv1a64(s.data(), s.size());
+}
+
+// The content hash of a file (of nothing, when it cannot be read).
+inline uint64_t file_content_hash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return fnv1a64(bytes);
 }
 
 inline std::string hex64(uint64_t v) {

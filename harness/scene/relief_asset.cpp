@@ -4,8 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 #include <memory>
 
 #include "core/elapsed.h"
@@ -46,9 +44,7 @@ namespace {
 // key's version whenever the construction changes its answer.
 CellComplex cached_cell_complex(const ReliefSourceDesc& relief, TriangleMesh mesh,
                                 const CellComplexOptions& o) {
-  std::ifstream in(relief.mesh_path, std::ios::binary);
-  const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const uint64_t hash = fnv1a64(file);
+  const uint64_t hash = file_content_hash(relief.mesh_path);
   char key[256];
   std::snprintf(key, sizeof key,
                 "cell-complex v1 up=%d subdivide=%d grid=%d res=%d bits=%d threshold=%.17g "

@@ -17,9 +17,7 @@ namespace fs = std::filesystem;
 
 // A file's content hash, hex.
 std::string content_hash(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return hex64(fnv1a64(bytes));
+  return hex64(file_content_hash(path));
 }
 
 std::string file_name(const std::string& path) {

@@ -122,6 +122,10 @@ void set_cell_complex_uniforms(GLuint p, const SceneDesc& scene, const Camera& c
                             glm::value_ptr(nm));
   set_uniform(p, "rl_eye_texture", base.texture_from_world(camera.eye));
   set_uniform(p, "rl_cell_albedo", glm::dvec3(kCellAlbedo));
+  set_cell_table_uniforms(p, cells, gpu);
+}
+
+void set_cell_table_uniforms(GLuint p, const CellComplex& cells, const GpuCellComplex& gpu) {
   glProgramUniform1i(p, glGetUniformLocation(p, "rl_cell_n"), cells.grid());
   glProgramUniform1i(p, glGetUniformLocation(p, "rl_cell_res"), cells.resolution());
   glProgramUniform1i(p, glGetUniformLocation(p, "rl_cell_tiles"), gpu.tiles());

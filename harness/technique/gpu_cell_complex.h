@@ -33,8 +33,10 @@ class GpuCellComplex {
 
 // The uniforms both cell-complex techniques read: rl_world_from_texture (the cube's texture
 // space placed by the scene's planar base), rl_normal_from_texture, rl_eye_texture,
-// rl_cell_albedo, and the table's rl_cell_n / rl_cell_res / rl_cell_tiles.
+// rl_cell_albedo, and the table's (set_cell_table_uniforms).
 void set_cell_complex_uniforms(GLuint program, const SceneDesc& scene, const Camera& camera,
                                const CellComplex& cells, const GpuCellComplex& gpu);
+// rl_cell_n, rl_cell_res, rl_cell_tiles: what cell_complex_common.glsl decodes the table with.
+void set_cell_table_uniforms(GLuint program, const CellComplex& cells, const GpuCellComplex& gpu);
 
 }  // namespace rl

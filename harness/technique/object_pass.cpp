@@ -8,31 +8,7 @@ namespace rl {
 
 ObjectPass::ObjectPass(const std::vector<SceneObject>& objects) {
   const ObjectMesh mesh = make_object_mesh(objects);
-  if (mesh.empty()) return;
-  GlContext::shared();
-  std::vector<glm::vec3> interleaved;
-  for (size_t i = 0; i < mesh.position.size(); ++i)
-    interleaved.insert(interleaved.end(), {mesh.position[i], mesh.normal[i], mesh.albedo[i]});
-  glCreateVertexArrays(1, &vao_);
-  glCreateBuffers(1, &vbo_);
-  glCreateBuffers(1, &ibo_);
-  glNamedBufferStorage(vbo_, interleaved.size() * sizeof(glm::vec3), interleaved.data(), 0);
-  glNamedBufferStorage(ibo_, mesh.triangles.size() * sizeof(glm::uvec3), mesh.triangles.data(), 0);
-  glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, 3 * sizeof(glm::vec3));
-  glVertexArrayElementBuffer(vao_, ibo_);
-  for (GLuint a = 0; a < 3; ++a) {
-    glEnableVertexArrayAttrib(vao_, a);
-    glVertexArrayAttribFormat(vao_, a, 3, GL_FLOAT, GL_FALSE, a * sizeof(glm::vec3));
-    glVertexArrayAttribBinding(vao_, a, 0);
-  }
-  index_count_ = GLsizei(3 * mesh.triangles.size());
-}
-
-ObjectPass::~ObjectPass() {
-  if (!vao_) return;
-  glDeleteVertexArrays(1, &vao_);
-  glDeleteBuffers(1, &vbo_);
-  glDeleteBuffers(1, &ibo_);
+  buffers_ = TriangleBuffers(mesh.position, mesh.normal, mesh.albedo, mesh.triangles);
 }
 
 void ObjectPass::draw(const SceneDesc& scene, const Camera& camera,
@@ -50,8 +26,7 @@ void ObjectPass::draw(const SceneDesc& scene, const Camera& camera,
   glDepthFunc(GL_LESS);
   // Both sides, as the truth traces them: a mesh file's winding is not known.
   glDisable(GL_CULL_FACE);
-  glBindVertexArray(vao_);
-  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  buffers_.draw();
 }
 
 }  // namespace rl

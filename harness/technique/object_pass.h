@@ -7,22 +7,21 @@
 #include "gl/render_target.h"
 #include "scene/scene.h"
 #include "scene/scene_objects.h"
+#include "technique/triangle_buffers.h"
 
 namespace rl {
 
 class ObjectPass {
  public:
   explicit ObjectPass(const std::vector<SceneObject>& objects);
-  ~ObjectPass();
   ObjectPass(const ObjectPass&) = delete;
   ObjectPass& operator=(const ObjectPass&) = delete;
 
-  bool empty() const { return index_count_ == 0; }
+  bool empty() const { return buffers_.empty(); }
   void draw(const SceneDesc& scene, const Camera& camera, RenderTarget::Kind target) const;
 
  private:
-  GLuint vao_ = 0, vbo_ = 0, ibo_ = 0;
-  GLsizei index_count_ = 0;
+  TriangleBuffers buffers_;
 };
 
 }  // namespace rl

@@ -121,9 +121,7 @@ class CellComplexRaycast final : public Described<CellComplexRaycast, Technique>
     d.vertex_file = "harness/glsl/fullscreen.vert";
     d.defines["RL_PROBE"] = "1";
     const GLuint p = ShaderLibrary::shared().program(d);
-    glProgramUniform1i(p, glGetUniformLocation(p, "rl_cell_n"), map.cells->grid());
-    glProgramUniform1i(p, glGetUniformLocation(p, "rl_cell_res"), map.cells->resolution());
-    glProgramUniform1i(p, glGetUniformLocation(p, "rl_cell_tiles"), relief.cells()->tiles());
+    set_cell_table_uniforms(p, *map.cells, *relief.cells());
     const GBuffer out = run_probe_pass(p, rays, [&] { relief.bind(); });
     for (size_t i = 0; i < rays.size(); ++i) {
       hits[i].t = out.color[i].x;

@@ -8,6 +8,7 @@
 #include "technique/gpu_cell_complex.h"
 #include "technique/scene_uniforms.h"
 #include "technique/technique.h"
+#include "technique/triangle_buffers.h"
 
 namespace rl {
 
@@ -16,7 +17,6 @@ namespace rl {
 class CellTriangles : public Technique {
  public:
   using Technique::Technique;
-  ~CellTriangles() override { release(); }
 
   void render(const FrameInput& frame, RenderTarget::Kind target) override {
     if (!frame.relief.cells() || !frame.map.cells)
@@ -34,8 +34,7 @@ class CellTriangles : public Technique {
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDisable(GL_CULL_FACE);  // windings are the texel order's or the file's, not outward
-    glBindVertexArray(vao_);
-    glDrawElements(GL_TRIANGLES, indices_, GL_UNSIGNED_INT, nullptr);
+    buffers_.draw();
   }
 
   // No search to probe: the surface is rasterised.
@@ -44,45 +43,15 @@ class CellTriangles : public Technique {
     throw std::logic_error(info().name + " rasterises its surface; it has no ray search to probe");
   }
 
-  size_t memory_bytes() const override { return bytes_; }
+  size_t memory_bytes() const override { return buffers_.bytes(); }
 
  protected:
   void upload(const CellMesh& mesh) {
-    std::vector<glm::vec3> interleaved;
-    interleaved.reserve(3 * mesh.position.size());
-    for (size_t i = 0; i < mesh.position.size(); ++i)
-      interleaved.insert(interleaved.end(), {mesh.position[i], mesh.normal[i], mesh.color[i]});
-    release();
-    glCreateVertexArrays(1, &vao_);
-    glCreateBuffers(1, &vbo_);
-    glCreateBuffers(1, &ibo_);
-    glNamedBufferStorage(vbo_,
-                         GLsizeiptr(std::max<size_t>(1, interleaved.size()) * sizeof(glm::vec3)),
-                         interleaved.empty() ? nullptr : interleaved.data(), 0);
-    glNamedBufferStorage(
-        ibo_, GLsizeiptr(std::max<size_t>(1, mesh.triangles.size()) * sizeof(glm::uvec3)),
-        mesh.triangles.empty() ? nullptr : mesh.triangles.data(), 0);
-    glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, 3 * sizeof(glm::vec3));
-    glVertexArrayElementBuffer(vao_, ibo_);
-    for (GLuint a = 0; a < 3; ++a) {
-      glEnableVertexArrayAttrib(vao_, a);
-      glVertexArrayAttribFormat(vao_, a, 3, GL_FLOAT, GL_FALSE, a * sizeof(glm::vec3));
-      glVertexArrayAttribBinding(vao_, a, 0);
-    }
-    indices_ = GLsizei(3 * mesh.triangles.size());
-    bytes_ = interleaved.size() * sizeof(glm::vec3) + mesh.triangles.size() * sizeof(glm::uvec3);
+    buffers_ = TriangleBuffers(mesh.position, mesh.normal, mesh.color, mesh.triangles);
   }
 
  private:
-  void release() {
-    if (vao_) glDeleteVertexArrays(1, &vao_);
-    if (vbo_) glDeleteBuffers(1, &vbo_);
-    if (ibo_) glDeleteBuffers(1, &ibo_);
-    vao_ = vbo_ = ibo_ = 0;
-  }
-  GLuint vao_ = 0, vbo_ = 0, ibo_ = 0;
-  GLsizei indices_ = 0;
-  size_t bytes_ = 0;
+  TriangleBuffers buffers_;
 };
 
 class CellComplexMesh final : public Described<CellComplexMesh, CellTriangles> {
