@@ -48,7 +48,9 @@ BakeFrame bake_frame(const TriangleMesh& mesh, int up, double margin, double dep
 }
 
 ReliefMap bake_mesh(const TriangleMesh& mesh, const BakeFrame& frame, int resolution,
-                    const ReverseProjection& projection) {
+                    const ReverseProjection& projection, const glm::dmat3& face_from_box) {
+  const glm::dmat3 box_from_face = glm::transpose(face_from_box);  // a rotation
+  auto box_point = [&](const glm::dvec3& a) { return box_from_face * (a - 0.5) + 0.5; };
   RTCDevice device = rtcNewDevice(nullptr);
   RTCScene scene = embree_triangle_scene(device, mesh);
 
@@ -69,15 +71,18 @@ ReliefMap bake_mesh(const TriangleMesh& mesh, const BakeFrame& frame, int resolu
       const glm::dvec3 da =
           projection.active() ? glm::dvec3(0.5 - a0.x, 0.5 - a0.y, projection.cop) / projection.cop
                               : glm::dvec3(0, 0, 1);
-      const glm::dvec3 o = frame.mesh_from_texture(a0);
-      const glm::dvec3 d = frame.mesh_from_texture(a0 + da) - o;
+      const glm::dvec3 o = frame.mesh_from_texture(box_point(a0));
+      const glm::dvec3 d = frame.mesh_from_texture(box_point(a0 + da)) - o;
       RTCRayHit rh = embree_ray(o, d, 0, 1.0 + 2e-6);
       rtcIntersect1(scene, &ctx, &rh);
       glm::vec4 texel(0.5f, 0.5f, 1.0f, 1.0f);  // floor, facing up
       if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-        glm::dvec3 n = glm::normalize(glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
-        if (n[frame.up] < 0) n = -n;  // face the viewer above
-        const glm::dvec3 tn(n[frame.axis_u], n[frame.axis_v], n[frame.up]);
+        const glm::dvec3 n = glm::normalize(glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
+        // (u, v, up) of the box, then of the face (the identity for the top); facing the
+        // viewer above.
+        glm::dvec3 tn = face_from_box * glm::dvec3(n[frame.axis_u], n[frame.axis_v], -n[frame.up]);
+        tn = glm::dvec3(tn.x, tn.y, -tn.z);
+        if (tn.z < 0) tn = -tn;
         // Texture-space depth of the hit (t counts box depths along the affine ray).
         const glm::dvec3 hit = projection.texture_from_affine(a0 + da * double(rh.ray.tfar));
         const double depth = std::clamp(hit.z, 0.0, 1.0);

@@ -36,7 +36,12 @@ BakeFrame bake_frame(const TriangleMesh& mesh, int up, double margin = 0.04,
 // reverse projection towards its centre of projection (Section 4); the texture-space depth
 // of the first hit (1 where the ray misses), its geometric normal (facing up) in the frame
 // (u, v, up), and a neutral albedo.
+// `face_from_box` bakes from another face of a cube-shaped frame (side == height): a rotation
+// of the box's affine space about its centre that takes that face to the top, so the face's
+// (u, v, depth) is face_from_box * (a - 0.5) + 0.5 for a box point a (relief/heightfield_faces.h);
+// the normal is then in that face's (u, v, up).
 ReliefMap bake_mesh(const TriangleMesh& mesh, const BakeFrame& frame, int resolution,
-                    const ReverseProjection& projection = {});
+                    const ReverseProjection& projection = {},
+                    const glm::dmat3& face_from_box = glm::dmat3(1.0));
 
 }  // namespace rl

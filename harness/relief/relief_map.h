@@ -12,8 +12,9 @@
 
 namespace rl {
 
-class MetaRelief;   // relief/meta_relief.h
-class CellComplex;  // relief/cell_complex.h
+class MetaRelief;         // relief/meta_relief.h
+class CellComplex;        // relief/cell_complex.h
+struct HeightfieldFaces;  // relief/heightfield_faces.h
 
 // Several depth layers per texel (Policarpo & Oliveira 2006, Section 3): every crossing of
 // a vertical bake ray with a closed surface, sorted top to bottom, so a point at depth d is
@@ -69,6 +70,9 @@ struct ReliefMap {
   // A mesh encoded as a cubic cell complex (relief/cell_complex.h): the GPU gets the complex;
   // `relief` and `color` are a flat placeholder.
   std::shared_ptr<const CellComplex> cells;
+  // An object from several heightfields (relief/heightfield_faces.h): one map per cube face;
+  // `relief` and `color` are the top face's.
+  std::shared_ptr<const HeightfieldFaces> faces;
 
   size_t index(int x, int y) const;  // wraps like GL_REPEAT
   float depth_texel(int x, int y) const { return relief[index(x, y)].a; }

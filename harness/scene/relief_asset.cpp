@@ -10,6 +10,7 @@
 #include "core/hash.h"
 #include "core/precompute_cache.h"
 #include "relief/cell_complex.h"
+#include "relief/heightfield_faces.h"
 #include "relief/image_io.h"
 #include "relief/layer_bake.h"
 #include "relief/mesh_bake.h"
@@ -31,8 +32,9 @@ ReliefImageSource image_source(const ReliefSourceDesc& relief) {
 }
 
 BakeFrame relief_bake_frame(const ReliefSourceDesc& relief, const TriangleMesh& mesh) {
-  // A cell complex lives in the mesh's bounding cube: one scale on all three axes.
-  if (relief.cells.active) return cell_frame(mesh, relief.mesh_up);
+  // A cell complex and a heightfield object live in the mesh's bounding cube: one scale on all
+  // three axes.
+  if (relief.cells.active || relief.faces > 0) return cell_frame(mesh, relief.mesh_up);
   return bake_frame(mesh, relief.mesh_up, 0.04, relief.layers > 0 ? 0.02 : 0.0);
 }
 
@@ -102,7 +104,15 @@ ReliefMap build_map(const SceneDesc& scene, const ReliefSourceDesc& relief, int 
   if (!relief.mesh_path.empty()) {
     const TriangleMesh mesh = load_mesh(relief.mesh_path);
     const BakeFrame frame = relief_bake_frame(relief, mesh);
-    if (relief.layers > 0)
+    if (relief.faces > 0) {
+      // An object from several heightfields: the top face's map stands in as `relief`.
+      auto faces = std::make_shared<HeightfieldFaces>(bake_heightfield_faces(
+          mesh, frame, resolution, relief.faces, ReverseProjection{relief.reverse_cop}));
+      if (scene.quantize)
+        for (ReliefMap& m : faces->maps) quantize_8bit(m);
+      map = faces->maps[0];
+      map.faces = std::move(faces);
+    } else if (relief.layers > 0)
       map = bake_layers(mesh, frame, resolution, resolution, relief.layers,
                         {glm::length(base.dpdu()), glm::length(base.dpdv()), scene.depth}, true);
     else

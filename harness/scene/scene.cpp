@@ -49,8 +49,8 @@ MapSize ReliefSourceDesc::size_at(int texture_res) const {
 double scene_radius(const SceneDesc& scene) {
   // A curved base is fitted into the sphere of diameter `size`; its relief lies inside.
   if (scene.base.curved()) return 0.5 * scene.size;
-  // A cell complex's cube, seen about its centre.
-  if (scene.cell_complex()) return std::sqrt(0.75) * scene.size;
+  // An object in its cube, seen about its centre.
+  if (scene.in_cube()) return std::sqrt(0.75) * scene.size;
   const PlanarBase base = planar_base(scene);
   return std::sqrt(0.25 * base.size * base.size + 0.25 * base.size_v() * base.size_v() +
                    scene.depth * scene.depth);
@@ -191,8 +191,8 @@ Camera make_camera(const SceneDesc& scene, const View& view, int width, int heig
   // Aim at the top of the relief: at grazing elevations a target inside the relief would put
   // the eye below the top plane.
   cam.target = glm::dvec3(0, 0, 0);
-  if (scene.impostor()) cam.target.z = -0.5 * scene.depth;      // the quad through its middle
-  if (scene.cell_complex()) cam.target.z = -0.5 * scene.depth;  // the cube's centre
+  if (scene.impostor()) cam.target.z = -0.5 * scene.depth;  // the quad through its middle
+  if (scene.in_cube()) cam.target.z = -0.5 * scene.depth;   // the cube's centre
   const glm::dvec3 dir(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
   cam.eye = cam.target + dir * distance;
   // d(dir)/d(elevation): perpendicular to the view direction at every elevation, so the

@@ -37,7 +37,11 @@ struct ReliefSourceDesc {
   std::string mesh_path;   // a mesh baked into the map (Baboud & Decoret)
   int mesh_up = 1;         // its up axis: 0, 1, 2 = x, y, z
   double reverse_cop = 0;  // reverse perspective: centre of projection depth (> 1), or 0
-  int layers = 0;          // > 0: baked into that many depth layers (a mesh or a pattern)
+  // > 0: the mesh is an object from that many heightfields (1, 2, 3 or 6 faces of its bounding
+  // cube: relief/heightfield_faces.h), each with reverse_cop; 0: one bake from the top of its
+  // footprint box.
+  int faces = 0;
+  int layers = 0;  // > 0: baked into that many depth layers (a mesh or a pattern)
   // The mesh encoded as a cubic cell complex instead of baked into a map (Apaza & Andujar,
   // relief/cell_complex.h): `native` is each domain face's map size.
   struct Cells {
@@ -190,6 +194,12 @@ struct SceneDesc {
   // A closed mesh as a cubic cell complex (relief = { cells = "mesh.obj" }): drawn by the
   // techniques that read it, in its bounding cube (the box proxy, depth = size).
   bool cell_complex() const { return relief.cells.active; }
+  // A mesh as an object from several heightfields (relief = { mesh = ..., faces = N }): drawn
+  // by the techniques that read them, in its bounding cube like a cell complex.
+  bool heightfield_object() const { return relief.faces > 0; }
+  // A closed object in its bounding cube (box proxy, depth = size, empty floor), seen from
+  // any side.
+  bool in_cube() const { return cell_complex() || heightfield_object(); }
 };
 
 // Position errors of a cell complex are in 1/256 of its cube's side (what a 64^2 face map on a

@@ -54,7 +54,11 @@ const std::vector<std::string>& measured_columns() {
                           "cell_ambiguous_regions",
                           "occluded_fragment_pct",
                           "multi_crossing_pct",
-                          "intersections_per_s"})
+                          "intersections_per_s",
+                          "slice_passes",
+                          "fragments_per_pixel",
+                          "fragments_max",
+                          "face_count"})
       n.push_back(c);
     return n;
   }();

@@ -141,12 +141,12 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
                             " layers exceeds 67,108,864 (e.g. 2048^2 x 8 or 4096^2 x 4)");
     }
     for (const View& v : c.views)
-      if (v.elevation_deg < 0 && !scene.impostor() && !scene.cell_complex())
+      if (v.elevation_deg < 0 && !scene.impostor() && !scene.in_cube())
         fail(src.at(n),
              "scene '" + scene.name + "' is seen from below (elevation " +
                  std::to_string(v.elevation_deg) +
-                 "), which only relief impostors (a mesh with 'layers') and cell complexes can be; "
-                 "give it a sweep of its own");
+                 "), which only relief impostors (a mesh with 'layers'), cell complexes and "
+                 "heightfield objects (a mesh with 'faces') can be; give it a sweep of its own");
     if (scene.framing == Framing::Fill) {
       // Lengthen the quad (whole tiles more) for the grazing-est view of the sweep.
       double min_el = 90, max_aspect = 0;

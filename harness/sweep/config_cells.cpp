@@ -57,20 +57,4 @@ void parse_cells_relief(const toml::table& t, const Src& src, const std::string&
   }
 }
 
-void apply_cells_scene(const toml::table& t, const Src& src, const toml::node& node, SceneDesc& s) {
-  if (!s.cell_complex()) return;
-  const std::string no = "scene '" + s.name + "': a cell-complex relief ";
-  for (const char* key : {"base", "proxy", "floor", "framing", "truth_resolution", "meta_relief",
-                          "ambient_occlusion"})
-    if (auto* n = t.get(key))
-      fail(src.at(*n), no + "is drawn in its bounding cube; '" + key + "' does not apply");
-  if (s.truth != TruthLevel::Mesh && s.truth != TruthLevel::Cells)
-    fail(src.at(t.get("truth") ? *t.get("truth") : node),
-         no + "is measured against its mesh (truth = \"mesh\") or the surface its distance maps "
-              "encode (truth = \"cells\")");
-  s.proxy = Proxy::Box;
-  s.empty_floor = true;
-  s.framing = Framing::Fit;
-}
-
 }  // namespace rl

@@ -37,7 +37,7 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
   }
   check_keys(*t,
              {"procedural", "resolution", "options", "normal", "depth", "color", "convention",
-              "flip_green", "normalize", "mesh", "up", "reverse_perspective", "layers"},
+              "flip_green", "normalize", "mesh", "up", "reverse_perspective", "layers", "faces"},
              src, "relief");
   const bool procedural = t->contains("procedural");
   const bool images = t->contains("normal") || t->contains("depth");
@@ -76,10 +76,22 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
     parse_layers(*t, src, r, canon);
     if (r.layers > 0 && r.reverse_cop > 1)
       fail(src.at(node), "'layers' and 'reverse_perspective' cannot be combined yet");
+    if (auto* n = t->get("faces")) {
+      // An object from several heightfields (Baboud & Decoret, Section 4.2).
+      r.faces = positive_int(*n, src, "faces", 1, 6);
+      if (r.faces != 1 && r.faces != 2 && r.faces != 3 && r.faces != 6)
+        fail(src.at(*n),
+             "'faces' must be 1 (top), 2 (top, bottom), 3 (top, +u, +v) or 6 (the "
+             "whole cube), got " +
+                 std::to_string(r.faces));
+      if (r.layers > 0) fail(src.at(*n), "'faces' and 'layers' cannot be combined");
+      canon["faces"] = r.faces;
+    }
     return r;
   }
-  if (t->contains("up") || t->contains("reverse_perspective"))
-    fail(src.at(node), "'up' and 'reverse_perspective' apply to mesh reliefs only");
+  for (const char* k : {"up", "reverse_perspective", "faces"})
+    if (t->contains(k))
+      fail(src.at(node), "'up', 'reverse_perspective' and 'faces' apply to mesh reliefs only");
   if (procedural) {
     r.procedural = string_of(*t->get("procedural"), src, "procedural");
     const bool pattern = is_pattern_mesh(r.procedural);

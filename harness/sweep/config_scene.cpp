@@ -5,7 +5,7 @@
 #include <set>
 
 #include "core/error.h"
-#include "sweep/config_cells.h"
+#include "sweep/config_cube.h"
 #include "sweep/config_effects.h"
 #include "sweep/config_meta.h"
 #include "sweep/config_relief.h"
@@ -158,7 +158,7 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
       fail(src.at(*n),
            "a multilayer relief has no single heightfield to sample; its truths are "
            "\"mesh\" (what it was baked from) and \"layers\" (its own layers)");
-  } else if (s.relief.layers > 0 || s.cell_complex()) {
+  } else if (s.relief.layers > 0 || s.in_cube()) {
     s.truth = TruthLevel::Mesh;  // measured against the geometry it stands for
   }
   if (auto* n = t.get("truth_resolution")) {
@@ -203,12 +203,13 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
   parse_objects(t, src, base_dir, s, canon);
   parse_effect_options(t, src, node, s, canon);
   parse_meta_relief(t, src, base_dir, node, s, canon);
-  apply_cells_scene(t, src, node, s);
+  apply_in_cube_scene(t, src, node, s);
   canon["name"] = s.name;
   canon["proxy"] = s.proxy == Proxy::Box ? "box" : "base";
   canon["truth"] = truth_level_name(s.truth);
   canon["floor"] = s.empty_floor ? "empty" : "solid";
-  s.projection.cop = s.relief.reverse_cop;
+  // A heightfield object's faces carry their own reverse perspective; its cube is affine.
+  if (!s.heightfield_object()) s.projection.cop = s.relief.reverse_cop;
   if (s.projection.active() && s.proxy != Proxy::Box)
     fail(src.at(node), "scene '" + s.name +
                            "': reverse_perspective needs proxy = \"box\" (the frustum is drawn)");

@@ -18,6 +18,7 @@
 #include "gl/render_target.h"
 #include "metrics/metrics.h"
 #include "relief/cell_complex.h"
+#include "relief/heightfield_faces.h"
 #include "relief/image_io.h"
 #include "relief/meta_relief.h"
 #include "scene/base_mesh.h"
@@ -366,6 +367,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       render_frame(technique, frame, RenderTarget::Kind::GBuffer);
       target.read_back(g);
     }
+    const std::vector<std::pair<std::string, double>> frame_columns = technique.frame_columns();
     const bool ambient_occlusion = scene.effects.has(Effect::AmbientOcclusion);
     const ImageMetrics m =
         compare_gbuffers(g, truth, scene.depth, asset->metric_texel, ambient_occlusion);
@@ -412,6 +414,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     row["timing"] = timing.method;
     row["precompute_ms"] = slot.second;
     row["precompute_cached"] = technique.prepared_from_cache();
+    for (const auto& [name, value] : frame_columns) row[name] = value;
     row["memory_bytes"] = double(asset->relief->bytes() + technique.memory_bytes());
     row["truth_subdivision"] = asset->truth->subdivision();
     row["truth_bound"] = asset->truth->tessellation_bound();
@@ -441,6 +444,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     row["depth_complexity"] =
         layers.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(layers.max_crossings);
     if (asset->map.cells) add_cell_columns(row, *asset->map.cells, g, timing.median_ms);
+    if (asset->map.faces) row["face_count"] = asset->map.faces->count();
     // "sampled@1024": the truth of the map at another resolution (truth_resolution).
     row["truth"] = std::string(truth_level_name(scene.truth)) +
                    (asset->truth_map ? "@" + std::to_string(scene.truth_texture_res) : "");

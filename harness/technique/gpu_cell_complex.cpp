@@ -110,17 +110,7 @@ void GpuCellComplex::bind() const {
 
 void set_cell_complex_uniforms(GLuint p, const SceneDesc& scene, const Camera& camera,
                                const CellComplex& cells, const GpuCellComplex& gpu) {
-  const PlanarBase base = planar_base(scene);
-  const glm::dmat4 world_from_texture(glm::dvec4(base.dpdu(), 0), glm::dvec4(base.dpdv(), 0),
-                                      glm::dvec4(0, 0, -base.depth, 0),
-                                      glm::dvec4(base.world_from_texture({0, 0, 0}), 1));
-  const glm::mat4 m(world_from_texture);
-  glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "rl_world_from_texture"), 1, GL_FALSE,
-                            glm::value_ptr(m));
-  const glm::mat3 nm(glm::inverseTranspose(glm::dmat3(world_from_texture)));
-  glProgramUniformMatrix3fv(p, glGetUniformLocation(p, "rl_normal_from_texture"), 1, GL_FALSE,
-                            glm::value_ptr(nm));
-  set_uniform(p, "rl_eye_texture", base.texture_from_world(camera.eye));
+  set_texture_space_uniforms(p, scene, camera);
   set_uniform(p, "rl_cell_albedo", glm::dvec3(kCellAlbedo));
   set_cell_table_uniforms(p, cells, gpu);
 }

@@ -52,6 +52,11 @@ GpuRelief::GpuRelief(const ReliefMap& map, bool meta_layers) {
     cells_ = std::make_unique<GpuCellComplex>(*map.cells);
     bytes_ = cells_->bytes();
   }
+  if (map.faces) {
+    // Every face is the representation (the top face's map is one of them).
+    faces_ = std::make_unique<GpuHeightfieldFaces>(*map.faces);
+    bytes_ = faces_->bytes();
+  }
 }
 
 GpuRelief::~GpuRelief() {
@@ -71,6 +76,7 @@ void GpuRelief::bind(GLuint relief_unit, GLuint color_unit) const {
   for (size_t i = 0; i < meta_ambient_.size(); ++i)
     glBindTextureUnit(GLuint(18 + i), meta_ambient_[i]);
   if (cells_) cells_->bind();
+  if (faces_) faces_->bind();
 }
 
 GpuBase::GpuBase(const BaseGeometry& g) {

@@ -9,6 +9,7 @@
 #include "relief/relief_map.h"
 #include "scene/scene.h"
 #include "technique/gpu_cell_complex.h"
+#include "technique/gpu_heightfield_faces.h"
 
 namespace rl {
 
@@ -22,16 +23,20 @@ class GpuRelief {
   GpuRelief(const GpuRelief&) = delete;
   GpuRelief& operator=(const GpuRelief&) = delete;
   // Also binds the AO map, where the map has one, to unit 8 (harness/glsl/ambient_occlusion.glsl),
-  // and a cell complex's textures to units 4-7 (GpuCellComplex::bind).
+  // a cell complex's textures to units 4-7 (GpuCellComplex::bind), and a heightfield object's
+  // faces to units 4-5 (GpuHeightfieldFaces::bind).
   void bind(GLuint relief_unit = 0, GLuint color_unit = 1) const;
   size_t bytes() const { return bytes_; }
   // A cell complex's textures (the map's `cells`), else null.
   const GpuCellComplex* cells() const { return cells_.get(); }
+  // A heightfield object's faces (the map's `faces`), else null.
+  const GpuHeightfieldFaces* faces() const { return faces_.get(); }
 
  private:
   GLuint relief_ = 0, color_ = 0, ambient_ = 0;
   std::vector<GLuint> meta_layers_, meta_ambient_;
   std::unique_ptr<GpuCellComplex> cells_;
+  std::unique_ptr<GpuHeightfieldFaces> faces_;
   size_t bytes_ = 0;
 };
 

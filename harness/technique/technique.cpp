@@ -139,6 +139,16 @@ std::string cannot_render(const TechniqueInfo& info, const SceneDesc& s) {
                              : "the scene is a cell complex (relief = { cells = ... }), which "
                                "only the cell-complex techniques read";
   if (s.cell_complex()) return "";
+  if (s.heightfield_object() && !info.heightfield_object)
+    return "the scene is an object from several heightfields (relief = { mesh = ..., faces = N "
+           "}), which only techniques that read every face's map draw";
+  if (s.heightfield_object()) return "";
+  if (info.heightfield_object_only)
+    return "it renders objects from several heightfields (relief = { mesh = ..., faces = N }) "
+           "only";
+  if (info.planar_only && (s.base.curved() || s.relief.layers > 0 || s.projection.active()))
+    return "it slices a single heightfield in its box on the planar base (no curved base, "
+           "multilayer map or reverse perspective)";
   if (s.impostor() && !info.impostor)
     return "it is a relief impostor (a mesh baked into layers, seen from both sides)";
   if (s.meta.runtime() && !info.meta_relief)

@@ -44,6 +44,14 @@ struct TechniqueInfo {
   // Renders a mesh encoded as a cubic cell complex (SceneDesc::cell_complex(), Apaza & Andujar)
   // -- and only that: the other techniques search a heightfield map.
   bool cell_complex = false;
+  // Renders a mesh as an object from several heightfields (SceneDesc::heightfield_object(),
+  // relief/heightfield_faces.h), reading every face's map.
+  bool heightfield_object = false;
+  // ... and nothing else: not a heightfield on a base (the multi-heightfield ray caster).
+  bool heightfield_object_only = false;
+  // Draws a single-layer heightfield on the planar base only (no curved base, multilayer map or
+  // reverse-perspective box): depth slicing, whose slices are planes across the relief's box.
+  bool planar_only = false;
 };
 
 // Why a technique cannot render `scene` ("" when it can): effects it does not simulate, a
@@ -105,6 +113,9 @@ class Technique {
   virtual size_t memory_bytes() const { return 0; }
   // True when prepare() loaded its precomputation from a cache instead of computing it.
   virtual bool prepared_from_cache() const { return false; }
+  // Columns the technique measured during its last G-buffer render, beyond the harness's (a
+  // multi-pass technique's passes and fragments shaded per pixel); named in rows.csv as given.
+  virtual std::vector<std::pair<std::string, double>> frame_columns() const { return {}; }
 
   const ParamValues& params() const { return params_; }
   double param(const std::string& name) const { return params_.at(name); }

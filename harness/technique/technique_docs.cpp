@@ -31,12 +31,15 @@ std::string techniques_markdown() {
   const auto& registry = TechniqueRegistry::instance();
   for (const std::string& name : registry.names()) {
     const TechniqueInfo& info = registry.find(name)->info;
-    const std::string proxies = info.cell_complex
-                                    ? "cell complex"
+    const std::string proxies = info.cell_complex ? "cell complex"
+                                : info.heightfield_object_only
+                                    ? "heightfield object"
                                     : std::string("base") + (info.box_proxy ? ", box" : "") +
-                                          (info.impostor ? ", impostor" : "");
-    const std::string meta =
-        info.cell_complex ? "-" : (info.meta_relief ? "runtime or baked" : "baked");
+                                          (info.impostor ? ", impostor" : "") +
+                                          (info.heightfield_object ? ", heightfield object" : "");
+    const std::string meta = info.cell_complex || info.heightfield_object_only
+                                 ? "-"
+                                 : (info.meta_relief ? "runtime or baked" : "baked");
     out += "| [`" + name + "`](techniques/" + name + "/README.md) | " + cell(info.title) + " | " +
            cell(info.citation) + " | " + effects_cell(info.effects) + " | " + proxies + " | " +
            meta + " |\n";
@@ -45,14 +48,24 @@ std::string techniques_markdown() {
 }
 
 std::string interface_markdown(const TechniqueInfo& info) {
+  const std::string objects =
+      info.heightfield_object
+          ? "objects from several heightfields (relief = { mesh = \"mesh.obj\", faces = N }), "
+            "in their bounding cube"
+          : "";
   std::string out =
       info.cell_complex
           ? "Effects it can simulate: " + effects_cell(info.effects) +
                 ". Draws: cell-complex reliefs only (relief = { cells = \"mesh.obj\" }), in "
                 "their bounding cube.\n\n"
-          : "Effects it can simulate: " + effects_cell(info.effects) + ". Draws: the base" +
+      : info.heightfield_object_only
+          ? "Effects it can simulate: " + effects_cell(info.effects) + ". Draws: " + objects +
+                " only.\n\n"
+          : "Effects it can simulate: " + effects_cell(info.effects) + ". Draws: the " +
+                (info.planar_only ? "planar base (single-layer heightfields)" : "base") +
                 (info.box_proxy ? " or the relief's box proxy" : "") +
-                (info.impostor ? "; relief impostors, from both sides" : "") + ". Meta-reliefs: " +
+                (info.impostor ? "; relief impostors, from both sides" : "") +
+                (objects.empty() ? "" : "; " + objects) + ". Meta-reliefs: " +
                 (info.meta_relief ? "its layers combined per fetch, or their bake"
                                   : "their bake (its search needs one map)") +
                 ".\n\n";

@@ -56,7 +56,7 @@ bool trace_primary(const TruthSurface& truth, const ReliefMap& map, const SceneD
     h = truth.intersect(o + d * t_start, d, 0.0, std::max(t0, t1) - t_start);
     return h.hit;
   }
-  if (scene.cell_complex()) {
+  if (scene.in_cube()) {
     // A closed mesh in its cube, seen from anywhere: the first surface inside the cube.
     double t_in = 0, t_out = 0;
     if (!clip_to_box(o, d, 1.0, t_in, t_out)) return false;

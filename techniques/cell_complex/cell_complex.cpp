@@ -5,6 +5,7 @@
 #include "technique/gpu_cell_complex.h"
 #include "technique/scene_uniforms.h"
 #include "technique/shader_technique.h"
+#include "technique/texture_space_geometry.h"
 
 namespace rl {
 namespace {
@@ -19,27 +20,12 @@ std::vector<glm::vec3> proxy_triangles(const CellComplex& cc) {
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
         if (cc.cell(i, j, k).state != CellState::Grey) continue;
-        const int ijk[3] = {i, j, k};
         for (int f = 0; f < 6; ++f) {
           int nb[3] = {i, j, k};
           nb[f / 2] += f % 2 ? 1 : -1;
           const bool border = nb[f / 2] < 0 || nb[f / 2] >= n ||
                               cc.cell(nb[0], nb[1], nb[2]).state == CellState::White;
-          if (!border) continue;
-          const int a = f / 2, b = (a + 1) % 3, c = (a + 2) % 3;
-          auto corner = [&](int sb, int sc) {
-            glm::vec3 p{float(ijk[0]), float(ijk[1]), float(ijk[2])};
-            p[a] += float(f % 2);
-            p[b] += float(sb);
-            p[c] += float(sc);
-            return p / float(n);
-          };
-          glm::vec3 q[4] = {corner(0, 0), corner(1, 0), corner(1, 1), corner(0, 1)};
-          // (b, c, a) is right-handed, so this order is counter-clockwise seen from +a in
-          // texture space: from outside for side 1. The world mirrors depth, which flips the
-          // winding: counter-clockwise from outside in the world for side 0 only.
-          if (f % 2 == 1) std::swap(q[1], q[3]);
-          tris.insert(tris.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
+          if (border) append_cube_face(tris, {i, j, k}, f, n);
         }
       }
   return tris;
@@ -73,26 +59,14 @@ class CellComplexRaycast final : public Described<CellComplexRaycast, Technique>
 
   void prepare(const ReliefMap& map) override {
     if (!map.cells) throw std::logic_error("cell_complex prepared without a cell complex");
-    const std::vector<glm::vec3> tris = proxy_triangles(*map.cells);
-    release();
-    glCreateVertexArrays(1, &vao_);
-    glCreateBuffers(1, &vbo_);
-    glNamedBufferStorage(vbo_, GLsizeiptr(std::max<size_t>(1, tris.size()) * sizeof(glm::vec3)),
-                         tris.empty() ? nullptr : tris.data(), 0);
-    glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, sizeof(glm::vec3));
-    glEnableVertexArrayAttrib(vao_, 0);
-    glVertexArrayAttribFormat(vao_, 0, 3, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(vao_, 0, 0);
-    vertices_ = GLsizei(tris.size());
-    bytes_ = tris.size() * sizeof(glm::vec3);
+    proxy_.set(proxy_triangles(*map.cells));
   }
-  ~CellComplexRaycast() override { release(); }
 
   void render(const FrameInput& frame, RenderTarget::Kind target) override {
     if (!frame.relief.cells() || !frame.map.cells)
       throw std::logic_error("cell_complex rendered on a scene without a cell complex");
     ProgramDesc d = program();
-    d.vertex_file = "techniques/cell_complex/cell_proxy_vert.glsl";
+    d.vertex_file = "harness/glsl/texture_space.vert";
     if (target == RenderTarget::Kind::GBuffer) d.defines["RL_GBUFFER"] = "1";
     const GLuint p = ShaderLibrary::shared().program(d);
     glUseProgram(p);
@@ -104,8 +78,7 @@ class CellComplexRaycast final : public Described<CellComplexRaycast, Technique>
     glDepthFunc(GL_LESS);
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
-    glBindVertexArray(vao_);
-    glDrawArrays(GL_TRIANGLES, 0, vertices_);
+    proxy_.draw_triangles();
     glDisable(GL_CULL_FACE);
   }
 
@@ -133,7 +106,7 @@ class CellComplexRaycast final : public Described<CellComplexRaycast, Technique>
     return hits;
   }
 
-  size_t memory_bytes() const override { return bytes_; }
+  size_t memory_bytes() const override { return proxy_.bytes(); }
 
  private:
   ProgramDesc program() const {
@@ -144,14 +117,7 @@ class CellComplexRaycast final : public Described<CellComplexRaycast, Technique>
     d.defines["RL_BINARY_STEPS"] = std::to_string(int(param("binary_steps")));
     return d;
   }
-  void release() {
-    if (vao_) glDeleteVertexArrays(1, &vao_);
-    if (vbo_) glDeleteBuffers(1, &vbo_);
-    vao_ = vbo_ = 0;
-  }
-  GLuint vao_ = 0, vbo_ = 0;
-  GLsizei vertices_ = 0;
-  size_t bytes_ = 0;
+  PositionBuffer proxy_;
 };
 
 RL_REGISTER_TECHNIQUE(CellComplexRaycast);

@@ -1,0 +1,121 @@
+#include "relief/heightfield_faces.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace rl {
+
+std::vector<int> face_set(int count) {
+  switch (count) {
+    case 1:
+      return {kTopFace};
+    case 2:
+      return {kTopFace, 5};
+    case 3:
+      return {kTopFace, 1, 3};
+    case 6:
+      return {kTopFace, 5, 0, 1, 2, 3};
+  }
+  throw std::invalid_argument("a heightfield object has 1, 2, 3 or 6 faces, not " +
+                              std::to_string(count));
+}
+
+glm::dmat3 face_from_cube(int face) {
+  if (face < 0 || face >= kCubeFaces)
+    throw std::invalid_argument("no cube face " + std::to_string(face));
+  const int axis = face / 2;
+  glm::dvec3 inward(0);
+  inward[axis] = face % 2 ? -1.0 : 1.0;  // side 1 lies at coordinate 1: look towards 0
+  // The face's u: the next axis in cyclic order (u for the top), v completes a right-handed
+  // frame (u, v, inward): the face's image is not mirrored.
+  glm::dvec3 u(0);
+  u[axis == 2 ? 0 : (axis + 1) % 3] = 1;
+  if (axis == 2 && face % 2) u = -u;  // the bottom: a rotation about v, not a mirror
+  const glm::dvec3 v = glm::cross(inward, u);
+  // glm is column-major: the rows u, v, inward are the columns of the transpose.
+  return glm::transpose(glm::dmat3(u, v, inward));
+}
+
+glm::dvec3 HeightfieldFaces::face_texture(int k, const glm::dvec3& cube) const {
+  const glm::dvec3 a = face_from_cube(faces[size_t(k)]) * (cube - 0.5) + 0.5;
+  return projection.texture_from_affine(a);
+}
+
+namespace {
+
+// Bilinear like GL_LINEAR with GL_CLAMP_TO_EDGE: the coordinate clamped to the edge texels'
+// centres (ReliefMap's own samplers repeat).
+glm::dvec4 sample_clamped(const ReliefMap& m, const std::vector<glm::vec4>& texels, double u,
+                          double v) {
+  const double x = std::clamp(u * m.width - 0.5, 0.0, double(m.width - 1));
+  const double y = std::clamp(v * m.height - 0.5, 0.0, double(m.height - 1));
+  const int x0 = std::min(int(x), m.width - 2 < 0 ? 0 : m.width - 2);
+  const int y0 = std::min(int(y), m.height - 2 < 0 ? 0 : m.height - 2);
+  const int x1 = std::min(x0 + 1, m.width - 1), y1 = std::min(y0 + 1, m.height - 1);
+  const double fx = x - x0, fy = y - y0;
+  auto at = [&](int xx, int yy) { return glm::dvec4(texels[size_t(yy) * m.width + xx]); };
+  return (at(x0, y0) * (1 - fx) + at(x1, y0) * fx) * (1 - fy) +
+         (at(x0, y1) * (1 - fx) + at(x1, y1) * fx) * fy;
+}
+
+}  // namespace
+
+double HeightfieldFaces::behind(int k, const glm::dvec3& cube) const {
+  const glm::dvec3 t = face_texture(k, cube);
+  if (t.x < 0 || t.x > 1 || t.y < 0 || t.y > 1) return std::numeric_limits<double>::infinity();
+  const ReliefMap& m = maps[size_t(k)];
+  const double d = sample_clamped(m, m.relief, t.x, t.y).a;
+  if (d >= kEmptyFaceDepth) return -std::numeric_limits<double>::infinity();
+  return t.z - d;
+}
+
+bool HeightfieldFaces::inside(const glm::dvec3& cube, double tolerance) const {
+  for (int k = 0; k < count(); ++k)
+    if (behind(k, cube) < -tolerance) return false;
+  return true;
+}
+
+int HeightfieldFaces::surface_face(const glm::dvec3& cube) const {
+  int best = 0;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < count(); ++k) {
+    const double b = std::abs(behind(k, cube));
+    if (b < nearest) nearest = b, best = k;
+  }
+  return best;
+}
+
+glm::dvec3 HeightfieldFaces::cube_normal(int k, const glm::dvec3& cube) const {
+  const glm::dvec3 t = face_texture(k, cube);
+  const ReliefMap& m = maps[size_t(k)];
+  const glm::dvec3 s = glm::dvec3(sample_clamped(m, m.relief, t.x, t.y)) * 2.0 - 1.0;
+  // Stored in the face's (u, v, up); its texture space points depth down.
+  const glm::dvec3 n =
+      glm::transpose(face_from_cube(faces[size_t(k)])) * glm::dvec3(s.x, s.y, -s.z);
+  const double len = glm::length(n);
+  return len > 0 ? n / len : glm::dvec3(0, 0, -1);
+}
+
+size_t HeightfieldFaces::bytes() const {
+  size_t b = 0;
+  for (const ReliefMap& m : maps) b += m.gpu_bytes();
+  return b;
+}
+
+HeightfieldFaces bake_heightfield_faces(const TriangleMesh& mesh, const BakeFrame& cube,
+                                        int resolution, int count,
+                                        const ReverseProjection& projection) {
+  if (std::abs(cube.side - cube.height) > 1e-9 * cube.side)
+    throw std::invalid_argument("heightfield faces need a cube-shaped frame (cell_frame)");
+  HeightfieldFaces hf;
+  hf.faces = face_set(count);
+  hf.projection = projection;
+  for (int face : hf.faces)
+    hf.maps.push_back(bake_mesh(mesh, cube, resolution, projection, face_from_cube(face)));
+  return hf;
+}
+
+}  // namespace rl

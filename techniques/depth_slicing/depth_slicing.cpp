@@ -1,0 +1,339 @@
+// Relief texture mapping by multi-pass depth slicing (chapter 5, Listing 5.2).
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "relief/heightfield_faces.h"
+#include "technique/gpu_heightfield_faces.h"
+#include "technique/scene_uniforms.h"
+#include "technique/shader_technique.h"
+#include "technique/texture_space_geometry.h"
+
+namespace rl {
+namespace {
+
+// Slice depths in the map's texture space, nearest the face first. Over a solid floor the
+// slices run from the top (0) to the floor (1) inclusive, so both plateaus are exact and every
+// column is drawn at least at the floor (one slice: the floor alone, texture mapping without
+// parallax). Over an empty floor or in an object, they are the midpoints of equal slabs.
+std::vector<double> slice_depths(int slices, bool solid_floor) {
+  std::vector<double> d(static_cast<size_t>(slices));
+  for (int s = 0; s < slices; ++s)
+    d[size_t(s)] =
+        solid_floor ? (slices == 1 ? 1.0 : double(s) / (slices - 1)) : (s + 0.5) / slices;
+  return d;
+}
+
+// The convex polygon where the plane {x : dot(n, x) = k} cuts the box [lo, hi], as a triangle
+// fan's triangles (empty where it misses).
+std::vector<glm::dvec3> plane_box_triangles(const glm::dvec3& n, double k, const glm::dvec3& lo,
+                                            const glm::dvec3& hi) {
+  std::vector<glm::dvec3> points;
+  for (int a = 0; a < 3; ++a)
+    for (int i = 0; i < 4; ++i) {
+      // The box edge along axis a at corner (i & 1, i & 2) of the two other axes.
+      glm::dvec3 p0, p1;
+      const int b = (a + 1) % 3, c = (a + 2) % 3;
+      p0[b] = p1[b] = (i & 1) ? hi[b] : lo[b];
+      p0[c] = p1[c] = (i & 2) ? hi[c] : lo[c];
+      p0[a] = lo[a];
+      p1[a] = hi[a];
+      const double s0 = glm::dot(n, p0) - k, s1 = glm::dot(n, p1) - k;
+      if ((s0 < 0) == (s1 < 0) || s0 == s1) continue;
+      points.push_back(p0 + (p1 - p0) * (s0 / (s0 - s1)));
+    }
+  std::vector<glm::dvec3> tris;
+  if (points.size() < 3) return tris;
+  glm::dvec3 centre(0);
+  for (const glm::dvec3& p : points) centre += p;
+  centre /= double(points.size());
+  const glm::dvec3 e1 = glm::normalize(points[0] - centre);
+  const glm::dvec3 e2 = glm::cross(glm::normalize(n), e1);
+  std::sort(points.begin(), points.end(), [&](const glm::dvec3& p, const glm::dvec3& q) {
+    return std::atan2(glm::dot(p - centre, e2), glm::dot(p - centre, e1)) <
+           std::atan2(glm::dot(q - centre, e2), glm::dot(q - centre, e1));
+  });
+  for (size_t i = 1; i + 1 < points.size(); ++i)
+    tris.insert(tris.end(), {points[0], points[i], points[i + 1]});
+  return tris;
+}
+
+// Slab test of o + t d against the box [lo, hi].
+bool clip_ray(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& lo, const glm::dvec3& hi,
+              double& t_in, double& t_out) {
+  t_in = 0;
+  t_out = 1e300;
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] == 0) {
+      if (o[a] < lo[a] || o[a] > hi[a]) return false;
+      continue;
+    }
+    double t0 = (lo[a] - o[a]) / d[a], t1 = (hi[a] - o[a]) / d[a];
+    if (t0 > t1) std::swap(t0, t1);
+    t_in = std::max(t_in, t0);
+    t_out = std::min(t_out, t1);
+  }
+  return t_in < t_out;
+}
+
+// The range of dot(forward, x) over the part of the box [lo, hi] the camera sees: its corners in
+// the view, and where rays along the viewport's border enter and leave it. View-aligned slices
+// spread over this range only: a planar base lengthened for a grazing view reaches far outside
+// the viewport, where slices would be wasted.
+std::pair<double, double> visible_range(const Camera& camera, const glm::dvec3& forward,
+                                        const glm::dvec3& lo, const glm::dvec3& hi) {
+  double near = 1e300, far = -1e300;
+  auto add = [&](const glm::dvec3& p) {
+    near = std::min(near, glm::dot(forward, p));
+    far = std::max(far, glm::dot(forward, p));
+  };
+  const glm::dmat4 view_proj = camera.projection_matrix() * camera.view_matrix();
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec3 corner((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+    const glm::dvec4 clip = view_proj * glm::dvec4(corner, 1.0);
+    if (clip.w > 0 && std::abs(clip.x) <= clip.w && std::abs(clip.y) <= clip.w) add(corner);
+  }
+  const int steps = 64;
+  for (int i = 0; i <= steps; ++i)
+    for (int side = 0; side < 4; ++side) {
+      const int x = side < 2 ? (camera.width - 1) * i / steps : (side == 2 ? 0 : camera.width - 1);
+      const int y =
+          side < 2 ? (side == 0 ? 0 : camera.height - 1) : (camera.height - 1) * i / steps;
+      glm::dvec3 o, d;
+      camera.pixel_ray(x, y, o, d);
+      double t_in, t_out;
+      if (!clip_ray(o, d, lo, hi, t_in, t_out)) continue;
+      add(o + d * t_in);
+      add(o + d * t_out);
+    }
+  return {near, far};
+}
+
+}  // namespace
+
+class DepthSlicing final : public Described<DepthSlicing, Technique> {
+ public:
+  using Described::Described;
+  static TechniqueInfo describe() {
+    return {.name = "depth_slicing",
+            .title = "Relief texture mapping by multi-pass depth slicing",
+            .citation =
+                "Chapter 5, 'RTM - Multi pass for planar objects', Listing 5.2, "
+                "Figures 5.6-5.8",
+            .effects = {Effect::DepthCorrect},
+            .params = {{.name = "slices",
+                        .kind = ParamKind::Int,
+                        .default_value = 32,
+                        .min_value = 1,
+                        .max_value = 256,
+                        .doc = "slice planes (passes per relief texture): the level of detail "
+                               "of Figure 5.7"},
+                       {.name = "view_aligned",
+                        .kind = ParamKind::Bool,
+                        .default_value = 0,
+                        .min_value = 0,
+                        .max_value = 1,
+                        .doc = "slices normal to the view direction across the volume (one set "
+                               "for all faces) instead of parallel to each relief texture "
+                               "(Figure 5.8)"}},
+            .box_proxy = true,
+            .heightfield_object = true,
+            .planar_only = true};
+  }
+  ~DepthSlicing() override {
+    if (fragment_count_) glDeleteTextures(1, &fragment_count_);
+    if (fetch_count_) glDeleteTextures(1, &fetch_count_);
+    if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
+  }
+
+  void render(const FrameInput& frame, RenderTarget::Kind target) override {
+    const SceneDesc& s = frame.scene;
+    const bool counting = target == RenderTarget::Kind::GBuffer;
+    const int slices = int(param("slices"));
+    ProgramDesc d = program(s, slices);
+    d.vertex_file = "harness/glsl/texture_space.vert";
+    if (counting) {
+      d.defines["RL_GBUFFER"] = "1";
+      d.defines["RL_COUNT_FRAGMENTS"] = "1";
+    }
+    const GLuint p = ShaderLibrary::shared().program(d);
+    glUseProgram(p);
+    set_scene_uniforms(p, s, frame.camera);
+    set_texture_space_uniforms(p, s, frame.camera);
+    if (frame.map.faces) set_heightfield_faces_uniforms(p, *frame.map.faces);
+    frame.relief.bind();
+
+    GLint viewport[4];
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    if (counting) prepare_counters(viewport[2], viewport[3]);
+
+    const std::vector<std::vector<glm::vec3>> passes = slice_passes(frame, slices);
+    std::vector<glm::vec3> all;
+    std::vector<std::pair<GLint, GLsizei>> ranges;
+    for (const auto& pass : passes) {
+      ranges.push_back({GLint(all.size()), GLsizei(pass.size())});
+      all.insert(all.end(), pass.begin(), pass.end());
+    }
+    slices_.set(all);
+    // Slices are seen from either side; the depth test keeps the nearest kept fragment.
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    for (const auto& [first, count] : ranges) slices_.draw(GL_TRIANGLES, first, count);
+    passes_ = int(ranges.size());
+    if (counting) resolve(viewport[2], viewport[3]);
+  }
+
+  std::vector<std::pair<std::string, double>> frame_columns() const override {
+    return {{"slice_passes", double(passes_)},
+            {"fragments_per_pixel", fragments_per_pixel_},
+            {"fragments_max", double(fragments_max_)}};
+  }
+
+  // The slicing rule along probe rays: tangent-space rays (direction.z = 1) on a plain map, or
+  // cube-space rays from inside the cube on heightfield faces; the nearest kept slice point.
+  std::vector<ProbeHit> probe(const ReliefMap& map, const GpuRelief& relief,
+                              const std::vector<ProbeRay>& rays, glm::dvec2) override {
+    std::vector<ProbeHit> hits(rays.size());
+    if (rays.empty()) return hits;
+    const int slices = int(param("slices"));
+    // A probe has no scene: a plain map has a solid floor, faces make an object.
+    SceneDesc probe_scene;
+    probe_scene.relief.faces = map.faces ? map.faces->count() : 0;
+    ProgramDesc d = program(probe_scene, slices);
+    d.vertex_file = "harness/glsl/fullscreen.vert";
+    d.defines["RL_PROBE"] = "1";
+    const GLuint p = ShaderLibrary::shared().program(d);
+    const std::vector<double> depths = slice_depths(slices, !map.faces);
+    std::vector<float> f(depths.begin(), depths.end());
+    glProgramUniform1fv(p, glGetUniformLocation(p, "rl_slice_depth"), GLsizei(f.size()), f.data());
+    if (map.faces) set_heightfield_faces_uniforms(p, *map.faces);
+    const GBuffer out = run_probe_pass(p, rays, [&] { relief.bind(); });
+    for (size_t i = 0; i < rays.size(); ++i) {
+      hits[i].t = out.color[i].x;
+      hits[i].uv = glm::vec2(out.color[i].y, out.color[i].z);
+      hits[i].fetches = int(out.color[i].w);
+      hits[i].depth = out.position[i].x;
+      hits[i].layer = int(out.position[i].y);
+      hits[i].hit = out.position[i].z > 0.5f;
+    }
+    return hits;
+  }
+
+ private:
+  ProgramDesc program(const SceneDesc& s, int slices) const {
+    ProgramDesc d;
+    d.owner = info().name;
+    d.fragment_files = {"techniques/depth_slicing/depth_slicing.glsl"};
+    d.defines["RL_SLICES"] = std::to_string(slices);
+    if (param("view_aligned") != 0) d.defines["RL_VIEW_ALIGNED"] = "1";
+    if (s.heightfield_object()) d.defines["RL_FACES"] = "1";
+    if (s.empty_floor && !s.heightfield_object()) d.defines["RL_EMPTY_FLOOR"] = "1";
+    return d;
+  }
+
+  // One triangle list per pass, in texture space: per relief texture (face) and slice, the slice
+  // plane across the volume; or view-aligned, per slice one plane normal to the camera's forward
+  // axis, clipped to the volume.
+  std::vector<std::vector<glm::vec3>> slice_passes(const FrameInput& frame, int slices) const {
+    const SceneDesc& s = frame.scene;
+    const HeightfieldFaces* faces = frame.map.faces.get();
+    const double tile = faces ? 1.0 : s.tile;
+    std::vector<std::vector<glm::vec3>> passes;
+    if (param("view_aligned") != 0) {
+      const PlanarBase base = planar_base(s);
+      const glm::dvec3 a = base.world_from_texture({0, 0, 0}),
+                       b = base.world_from_texture({tile, tile, 1});
+      const glm::dvec3 lo = glm::min(a, b), hi = glm::max(a, b);
+      const glm::dvec3 forward = glm::normalize(frame.camera.target - frame.camera.eye);
+      const auto [near, far] = visible_range(frame.camera, forward, lo, hi);
+      for (int i = 0; i < slices; ++i) {
+        const double k = near + (far - near) * (i + 0.5) / slices;
+        std::vector<glm::vec3> pass;
+        for (const glm::dvec3& w : plane_box_triangles(forward, k, lo, hi))
+          pass.push_back(glm::vec3(base.texture_from_world(w)));
+        passes.push_back(pass);
+      }
+      return passes;
+    }
+    const std::vector<double> depths = slice_depths(slices, !s.empty_floor && !faces);
+    const int face_count = faces ? faces->count() : 1;
+    for (int k = 0; k < face_count; ++k) {
+      const glm::dmat3 cube_from_face =
+          faces ? glm::transpose(face_from_cube(faces->faces[size_t(k)])) : glm::dmat3(1.0);
+      for (double depth : depths) {
+        // The slice in the face's affine space (a plane of constant texture depth there too).
+        const double z = faces ? faces->projection.affine_from_texture({0.5, 0.5, depth}).z : depth;
+        const glm::dvec3 q[4] = {{0, 0, z}, {tile, 0, z}, {tile, tile, z}, {0, tile, z}};
+        glm::vec3 c[4];
+        for (int i = 0; i < 4; ++i)
+          c[i] = glm::vec3(faces ? cube_from_face * (q[i] - 0.5) + 0.5 : q[i]);
+        passes.push_back({c[0], c[1], c[2], c[0], c[2], c[3]});
+      }
+    }
+    return passes;
+  }
+
+  void prepare_counters(int width, int height) {
+    if (width != count_width_ || height != count_height_) {
+      if (fragment_count_) glDeleteTextures(1, &fragment_count_);
+      if (fetch_count_) glDeleteTextures(1, &fetch_count_);
+      for (GLuint* t : {&fragment_count_, &fetch_count_}) {
+        glCreateTextures(GL_TEXTURE_2D, 1, t);
+        glTextureStorage2D(*t, 1, GL_R32UI, width, height);
+      }
+      count_width_ = width;
+      count_height_ = height;
+    }
+    const GLuint zero = 0;
+    glClearTexImage(fragment_count_, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearTexImage(fetch_count_, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glBindImageTexture(0, fragment_count_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(1, fetch_count_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+  }
+
+  // The per-pixel sums into the G-buffer's fetch channel, and the fragment statistics.
+  void resolve(int width, int height) {
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    ProgramDesc d;
+    d.owner = info().name;
+    d.vertex_file = "harness/glsl/fullscreen.vert";
+    d.fragment_files = {"techniques/depth_slicing/depth_slicing_resolve.glsl"};
+    const GLuint p = ShaderLibrary::shared().program(d);
+    glUseProgram(p);
+    for (GLuint i = 0; i < 5; ++i) glColorMaski(i, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glColorMaski(3, GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
+    glDisable(GL_DEPTH_TEST);
+    if (!empty_vao_) glCreateVertexArrays(1, &empty_vao_);
+    glBindVertexArray(empty_vao_);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    for (GLuint i = 0; i < 5; ++i) glColorMaski(i, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glEnable(GL_DEPTH_TEST);
+    std::vector<GLuint> counts(size_t(width) * height);
+    glGetTextureImage(fragment_count_, 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                      GLsizei(counts.size() * sizeof(GLuint)), counts.data());
+    double total = 0;
+    long touched = 0;
+    fragments_max_ = 0;
+    for (GLuint c : counts) {
+      if (!c) continue;
+      total += c;
+      ++touched;
+      fragments_max_ = std::max(fragments_max_, long(c));
+    }
+    fragments_per_pixel_ = touched ? total / double(touched) : 0.0;
+  }
+
+  PositionBuffer slices_;
+  GLuint fragment_count_ = 0, fetch_count_ = 0, empty_vao_ = 0;
+  int count_width_ = 0, count_height_ = 0;
+  int passes_ = 0;
+  double fragments_per_pixel_ = 0;
+  long fragments_max_ = 0;
+};
+
+RL_REGISTER_TECHNIQUE(DepthSlicing);
+
+}  // namespace rl

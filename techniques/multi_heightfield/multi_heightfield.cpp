@@ -1,0 +1,105 @@
+// Objects from several heightfields, ray cast (Baboud & Decoret 2006, Section 4.2).
+#include <stdexcept>
+
+#include "relief/heightfield_faces.h"
+#include "technique/gpu_heightfield_faces.h"
+#include "technique/scene_uniforms.h"
+#include "technique/shader_technique.h"
+#include "technique/texture_space_geometry.h"
+
+namespace rl {
+
+class MultiHeightfield final : public Described<MultiHeightfield, Technique> {
+ public:
+  using Described::Described;
+  static TechniqueInfo describe() {
+    return {.name = "multi_heightfield",
+            .title = "Object from several heightfields (linear + binary search)",
+            .citation =
+                "Baboud & Decoret, 'Rendering geometry with relief textures', "
+                "Section 4.2 (and Oliveira et al.'s six relief textures on a box)",
+            .effects = {Effect::DepthCorrect},
+            .params = {{.name = "linear_steps",
+                        .kind = ParamKind::Int,
+                        .default_value = 64,
+                        .min_value = 1,
+                        .max_value = 4096,
+                        .doc = "linear search samples along the ray's chord through the cube; "
+                               "each asks the faces in turn until one says outside"},
+                       {.name = "binary_steps",
+                        .kind = ParamKind::Int,
+                        .default_value = 6,
+                        .min_value = 0,
+                        .max_value = 32,
+                        .doc = "binary search refinements after the linear search"}},
+            .heightfield_object = true,
+            .heightfield_object_only = true};
+  }
+
+  void prepare(const ReliefMap& map) override {
+    if (!map.faces) throw std::logic_error("multi_heightfield prepared without heightfield faces");
+    std::vector<glm::vec3> tris;
+    for (int f = 0; f < kCubeFaces; ++f) append_cube_face(tris, {0, 0, 0}, f, 1);
+    cube_.set(tris);
+  }
+
+  void render(const FrameInput& frame, RenderTarget::Kind target) override {
+    if (!frame.map.faces || !frame.relief.faces())
+      throw std::logic_error("multi_heightfield rendered on a scene without heightfield faces");
+    ProgramDesc d = program();
+    d.vertex_file = "harness/glsl/texture_space.vert";
+    if (target == RenderTarget::Kind::GBuffer) d.defines["RL_GBUFFER"] = "1";
+    const GLuint p = ShaderLibrary::shared().program(d);
+    glUseProgram(p);
+    set_scene_uniforms(p, frame.scene, frame.camera);
+    set_texture_space_uniforms(p, frame.scene, frame.camera);
+    set_heightfield_faces_uniforms(p, *frame.map.faces);
+    frame.relief.bind();
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    cube_.draw_triangles();
+    glDisable(GL_CULL_FACE);
+  }
+
+  // Probe rays are in the cube's texture space, any direction, starting inside the cube; t
+  // counts multiples of the direction. The search runs to the ray's exit from the cube.
+  std::vector<ProbeHit> probe(const ReliefMap& map, const GpuRelief& relief,
+                              const std::vector<ProbeRay>& rays, glm::dvec2) override {
+    std::vector<ProbeHit> hits(rays.size());
+    if (rays.empty()) return hits;
+    if (!map.faces || !relief.faces())
+      throw std::logic_error("multi_heightfield probed without heightfield faces");
+    ProgramDesc d = program();
+    d.vertex_file = "harness/glsl/fullscreen.vert";
+    d.defines["RL_PROBE"] = "1";
+    const GLuint p = ShaderLibrary::shared().program(d);
+    set_heightfield_faces_uniforms(p, *map.faces);
+    const GBuffer out = run_probe_pass(p, rays, [&] { relief.bind(); });
+    for (size_t i = 0; i < rays.size(); ++i) {
+      hits[i].t = out.color[i].x;
+      hits[i].uv = glm::vec2(out.color[i].y, out.color[i].z);
+      hits[i].fetches = int(out.color[i].w);
+      hits[i].depth = out.position[i].x;
+      hits[i].layer = int(out.position[i].y);
+      hits[i].hit = out.position[i].z > 0.5f;
+    }
+    return hits;
+  }
+
+ private:
+  ProgramDesc program() const {
+    ProgramDesc d;
+    d.owner = info().name;
+    d.fragment_files = {"techniques/multi_heightfield/multi_heightfield.glsl"};
+    d.defines["RL_LINEAR_STEPS"] = std::to_string(int(param("linear_steps")));
+    d.defines["RL_BINARY_STEPS"] = std::to_string(int(param("binary_steps")));
+    return d;
+  }
+  PositionBuffer cube_;
+};
+
+RL_REGISTER_TECHNIQUE(MultiHeightfield);
+
+}  // namespace rl
