@@ -231,14 +231,7 @@ TEST(CellComplexBuildHardCases, SheetsBehindAFirstCrossingAreLostAndMeasured) {
 
 // A sphere OBJ in a scratch folder, for whole-frame scenes.
 std::string sphere_file(const std::string& dir) {
-  std::filesystem::create_directories(dir);
-  const TriangleMesh s = test::uv_sphere({0, 0, 0}, 1, 64, 32);
-  const std::string path = dir + "/sphere.obj";
-  std::ofstream f(path);
-  for (const glm::vec3& p : s.positions) f << "v " << p.x << " " << p.y << " " << p.z << "\n";
-  for (const glm::uvec3& t : s.triangles)
-    f << "f " << t.x + 1 << " " << t.y + 1 << " " << t.z + 1 << "\n";
-  return path;
+  return test::write_obj(test::uv_sphere({0, 0, 0}, 1, 64, 32), dir + "/sphere.obj");
 }
 
 SceneDesc cells_scene(const std::string& mesh, int grid, TruthLevel truth);

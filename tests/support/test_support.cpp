@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -67,6 +68,15 @@ Measured measure(const SceneDesc& scene, const std::string& technique, const Par
   m.metrics = compare_gbuffers(m.technique, m.truth, scene.depth, texel_world(scene, res),
                                scene.effects.has(Effect::AmbientOcclusion));
   return m;
+}
+
+std::string write_obj(const TriangleMesh& mesh, const std::string& path) {
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  std::ofstream f(path);
+  for (const glm::vec3& p : mesh.positions) f << "v " << p.x << " " << p.y << " " << p.z << "\n";
+  for (const glm::uvec3& t : mesh.triangles)
+    f << "f " << t.x + 1 << " " << t.y + 1 << " " << t.z + 1 << "\n";
+  return path;
 }
 
 std::vector<TangentRay> random_tangent_rays(int n, double min_el, double max_el, double aspect,

@@ -59,6 +59,8 @@ TriangleMesh uv_sphere(glm::dvec3 c, double r, int slices, int stacks);
 // inside out: a hollow ball, whose every line from the centre crosses two sheets.
 TriangleMesh hollow_ball();
 
+// Writes `mesh` as an OBJ file at `path` (its folder created); returns the path.
+std::string write_obj(const TriangleMesh& mesh, const std::string& path);
 // A fresh, empty folder under the build's temporary directory.
 std::string scratch_dir(const std::string& name);
 
