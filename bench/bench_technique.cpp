@@ -25,7 +25,7 @@ void BM_Technique(benchmark::State& state, std::string technique, ParamValues pa
   GpuBase base(make_base_geometry(scene));
   const Camera cam = make_camera(scene, View{45, 30}, 512, 512);
   auto t = TechniqueRegistry::instance().create(technique, params, "bench");
-  t->prepare(map);
+  t->prepare_scene(scene, map);
   FrameInput frame{scene, map, relief, base, cam, scene.effects};
   // Fetches per covered pixel, from the G-buffer variant.
   GBuffer g;

@@ -177,7 +177,13 @@ depth = 0.05
       EXPECT_LT(wrong, 1.0);
   }
   EXPECT_GT(rows, 0);
-  for (const auto& [cell, wrong] : by_azimuth) EXPECT_NEAR(wrong.at(0), wrong.at(90), 0.5) << cell;
+  // Every technique but odd treats u and v alike. odd's stored directions are a grid over the
+  // chapter's angles (a, b), whose pole lies along the binormal: a view along v at 20 degrees
+  // sits near that pole (b = 160 degrees), where the grid's directions crowd, and its super
+  // pixels are X x X per tile, three times longer along u on this 3:1 strip (measured: 12.4%
+  // against 8.6% of the pixels wrong at 96x32). So it is held to the same rows, not the symmetry.
+  for (const auto& [cell, wrong] : by_azimuth)
+    if (cell.rfind("odd ", 0) != 0) EXPECT_NEAR(wrong.at(0), wrong.at(90), 0.5) << cell;
 }
 
 }  // namespace

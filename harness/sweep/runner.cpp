@@ -352,7 +352,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     if (!slot.first) {
       slot.first = TechniqueRegistry::instance().create(cell.technique, cell.params, config.source);
       const auto t0 = Clock::now();
-      slot.first->prepare(asset->map);
+      slot.first->prepare_scene(scene, asset->map);
       glFinish();
       slot.second = ms_since(t0);
     }

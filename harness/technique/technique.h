@@ -101,6 +101,12 @@ class Technique {
 
   // Offline work on the asset (safety radii, cone maps, curvature...). Timed by the harness.
   virtual void prepare(const ReliefMap& map) { (void)map; }
+  // The same, for work that depends on the scene's proportions too (a map of world-space
+  // directions); the harness calls this one. By default, prepare(map).
+  virtual void prepare_scene(const SceneDesc& scene, const ReliefMap& map) {
+    (void)scene;
+    prepare(map);
+  }
   // Draws the base (or the technique's own proxy geometry) into the bound render target.
   // A ColorOnly target is the timing variant: no G-buffer outputs are compiled in.
   virtual void render(const FrameInput& frame, RenderTarget::Kind target) = 0;

@@ -59,7 +59,7 @@ Measured measure(const SceneDesc& scene, const std::string& technique, const Par
   Measured m;
   m.truth = truth.render(map, scene, camera, scene.effects, &m.truth_stats);
   auto t = TechniqueRegistry::instance().create(technique, params, "test");
-  t->prepare(map);
+  t->prepare_scene(scene, map);
   FrameInput frame{scene, map, relief, base, camera, scene.effects, &objects};
   RenderTarget target(size, size, RenderTarget::Kind::GBuffer);
   target.bind_and_clear();
