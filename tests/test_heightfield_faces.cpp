@@ -81,6 +81,15 @@ TEST(HeightfieldFaces, ASphereIsExactFromTwoFacesAndExtrudedFromOne) {
   EXPECT_GT(one, 5.0);  // the column under the equator: 2/3 r^3 pi r^2 ... of the cube
   EXPECT_LT(two, 0.05);
   EXPECT_LT(six, 0.05);
+  // Each pole of the sphere is shaded by the face that sees it head-on (faces 4, 5, 0, 1, 2, 3
+  // are maps 0 to 5 of the six).
+  const HeightfieldFaces all = sphere_faces(6, res);
+  const double r = kRadius - 0.2 / res;
+  EXPECT_EQ(all.surface_face({0.5, 0.5, 0.5 - r}), 0);
+  EXPECT_EQ(all.surface_face({0.5, 0.5, 0.5 + r}), 1);
+  EXPECT_EQ(all.surface_face({0.5 - r, 0.5, 0.5}), 2);
+  EXPECT_EQ(all.surface_face({0.5 + r, 0.5, 0.5}), 3);
+  EXPECT_EQ(all.surface_face({0.5, 0.5 + r, 0.5}), 5);
   // The top face's depth at its centre is the sphere's top, exactly up to 8 bits.
   const HeightfieldFaces hf = sphere_faces(1, res);
   EXPECT_NEAR(hf.behind(0, {0.5, 0.5, 0.5 - kRadius}), 0.0, 1.5 / 255);

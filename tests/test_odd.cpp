@@ -71,11 +71,11 @@ double mean_depth_error(OddProbe& p, int spatial, int directions, double spatial
           const glm::dvec3 r = OddMap::direction(M_PI * (ka + 0.5 + direction_offset) / directions,
                                                  M_PI * (kb + 0.5 + direction_offset) / directions);
           const glm::dvec3 o((x + 0.5 + spatial_offset) / spatial,
-                             (y + 0.5 + spatial_offset) / spatial, 0);
+                             (y + 0.5 + spatial_offset) / spatial, kOddStartDepth);
           const glm::dvec3 d(r.x * aspect.x / r.z, r.y * aspect.y / r.z, 1);
-          const TruthHit h = truth.intersect(o, d, 0, 1 + 1e-6);
+          const TruthHit h = truth.intersect(o, d, 0, 1 - kOddStartDepth + 1e-6);
           if (!h.hit) continue;
-          rays.push_back({glm::vec3(o), glm::vec3(d)});
+          rays.push_back({glm::vec3(o.x, o.y, 0.0), glm::vec3(d)});
           expected.push_back(h.point.z);
         }
   const std::vector<ProbeHit> hits = p.technique->probe(p.map, *p.gpu, rays, aspect);
@@ -101,6 +101,24 @@ TEST(Odd, ExactOnStoredRaysAndWorseBetweenThem) {
       "mean depth error: on stored rays %.4f, half a direction off %.4f, half a super "
       "pixel off %.4f\n",
       on, between_directions, between_points);
+}
+
+TEST(Odd, APlateauAtTheTopIsHitWhereTheRaysStart) {
+  // A relief whose top is a plateau at depth 0 with a pit: rays from super pixels on the
+  // plateau hit it at once (kOddStartDepth: a ray starting exactly on it used to slip into the
+  // solid and come back from deep inside, so a brick wall drew as a flat, wrongly lit plane).
+  GlContext::shared();
+  std::vector<float> depths(32 * 32, 0.0f);
+  for (int y = 12; y < 20; ++y)
+    for (int x = 12; x < 20; ++x) depths[size_t(y) * 32 + x] = 1.0f;
+  ReliefMap map = test::map_from_depths(32, 32, depths);
+  const OddMap odd = build_odd_map(map, {8, 4}, true, glm::dvec2(0.2));
+  for (int ka = 0; ka < 4; ++ka)
+    for (int kb = 0; kb < 4; ++kb) {
+      EXPECT_NEAR(odd.texels[odd.index(0, 0, ka, kb)].a, 0.0, 1e-6);  // on the plateau
+      EXPECT_GT(odd.texels[odd.index(4, 4, ka, kb)].a, 0.05);         // over the pit
+    }
+  EXPECT_EQ(odd.missed_rays, 0);
 }
 
 TEST(Odd, FiniteFromStraightDownToLevelAndAtTheAcosEnds) {

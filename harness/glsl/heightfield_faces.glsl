@@ -8,6 +8,7 @@ layout(binding = 5) uniform sampler2DArray rl_face_color;
 uniform int rl_face_count;
 uniform mat3 rl_face_from_cube[6];  // rows: a face's u, v and inward axes in the cube
 uniform float rl_face_cop;          // reverse perspective's centre of projection (> 1), or 0
+uniform float rl_face_texel;        // one texel of the faces' maps (1 / resolution)
 
 // As deep as an empty column (a bake ray that missed stores 1): kEmptyFaceDepth.
 const float RL_FACE_EMPTY = 1.0 - 0.5 / 255.0;
@@ -26,29 +27,37 @@ vec3 rl_face_texture(int k, vec3 c) {
 }
 
 // How far c lies behind face k's surface (>= 0: inside that face's solid); a large positive
-// value where the face does not see c, a negative one over an empty column.
-float rl_face_behind(int k, vec3 c) {
+// value where the face does not see c, a negative one over an empty column. `facing`: the
+// stored normal's component towards the face (1 where the face sees the surface head-on).
+float rl_face_behind(int k, vec3 c, out float facing) {
+  facing = -1.0;
   vec3 t = rl_face_texture(k, c);
   if (any(lessThan(t.xy, vec2(0.0))) || any(greaterThan(t.xy, vec2(1.0)))) return 1e9;
   ++rl_fetches;
-  float d = textureLod(rl_face_relief, vec3(t.xy, float(k)), 0.0).a;
-  return d >= RL_FACE_EMPTY ? -1.0 : t.z - d;
+  vec4 r = textureLod(rl_face_relief, vec3(t.xy, float(k)), 0.0);
+  facing = r.b * 2.0 - 1.0;
+  return r.a >= RL_FACE_EMPTY ? -1.0 : t.z - r.a;
 }
 
 // Inside every face's solid? Faces are asked in order and the first that says no ends the test
-// (its fetch is the last); when inside, `surface` is the face c lies nearest behind (the one
-// whose surface a hit is on, which shades it).
+// (its fetch is the last). When inside, `surface` is the face that shades the point: of the
+// faces it lies within a texel of (the surface is there), the one that sees the surface most
+// head-on -- a face seeing it at a grazing angle has a steep, bilinear-blurred normal there.
 bool rl_faces_inside(vec3 c, out int surface) {
+  float behind[6], facing[6];
   float nearest = 1e30;
   surface = 0;
   for (int k = 0; k < rl_face_count; ++k) {
-    float b = rl_face_behind(k, c);
-    if (b < -RL_FACE_SLACK) return false;
-    if (b < nearest) {
-      nearest = b;
+    behind[k] = rl_face_behind(k, c, facing[k]);
+    if (behind[k] < -RL_FACE_SLACK) return false;
+    nearest = min(nearest, behind[k]);
+  }
+  float best = -2.0;
+  for (int k = 0; k < rl_face_count; ++k)
+    if (behind[k] <= nearest + rl_face_texel && facing[k] > best) {
+      best = facing[k];
       surface = k;
     }
-  }
   return true;
 }
 

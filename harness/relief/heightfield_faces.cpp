@@ -79,11 +79,17 @@ bool HeightfieldFaces::inside(const glm::dvec3& cube, double tolerance) const {
 }
 
 int HeightfieldFaces::surface_face(const glm::dvec3& cube) const {
-  int best = 0;
+  std::vector<double> b(static_cast<size_t>(count()));
   double nearest = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < count(); ++k) nearest = std::min(nearest, b[size_t(k)] = behind(k, cube));
+  int best = 0;
+  double best_facing = -2;
   for (int k = 0; k < count(); ++k) {
-    const double b = std::abs(behind(k, cube));
-    if (b < nearest) nearest = b, best = k;
+    if (!(b[size_t(k)] <= nearest + 1.0 / resolution())) continue;
+    const glm::dvec3 t = face_texture(k, cube);
+    const ReliefMap& m = maps[size_t(k)];
+    const double facing = sample_clamped(m, m.relief, t.x, t.y).b * 2 - 1;
+    if (facing > best_facing) best_facing = facing, best = k;
   }
   return best;
 }

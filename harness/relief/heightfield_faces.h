@@ -57,7 +57,8 @@ struct HeightfieldFaces {
   // Inside every face's solid (the object the faces stand for), with `tolerance` depth units of
   // slack for equality (the GPU's 8-bit depths).
   bool inside(const glm::dvec3& cube, double tolerance = 0) const;
-  // The face whose surface `cube` lies on, or nearest behind (the one that shades a hit).
+  // The face that shades a hit at `cube` (the shaders' rule): of the faces it lies within a
+  // texel of, the one whose stored normal faces it most.
   int surface_face(const glm::dvec3& cube) const;
   // A face's normal at `cube` in the cube's texture space (u, v, depth), unit length.
   glm::dvec3 cube_normal(int k, const glm::dvec3& cube) const;

@@ -55,6 +55,7 @@ void set_heightfield_faces_uniforms(GLuint p, const HeightfieldFaces& faces) {
     glProgramUniformMatrix3fv(p, glGetUniformLocation(p, name.c_str()), 1, GL_FALSE,
                               glm::value_ptr(m));
   }
+  glProgramUniform1f(p, glGetUniformLocation(p, "rl_face_texel"), 1.0f / float(faces.resolution()));
   glProgramUniform1f(p, glGetUniformLocation(p, "rl_face_cop"),
                      float(faces.projection.active() ? faces.projection.cop : 0.0));
 }

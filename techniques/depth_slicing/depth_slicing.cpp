@@ -1,6 +1,8 @@
 // Relief texture mapping by multi-pass depth slicing (chapter 5, Listing 5.2).
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -26,20 +28,18 @@ std::vector<double> slice_depths(int slices, bool solid_floor) {
   return d;
 }
 
-// The convex polygon where the plane {x : dot(n, x) = k} cuts the box [lo, hi], as a triangle
+// The volume the slices cut, as a hexahedron of 8 world corners, corner i at (i & 1, i & 2) on
+// the relief's top (i & 4 = 0) or bottom (i & 4 != 0) in u and v.
+using Hexahedron = std::array<glm::dvec3, 8>;
+
+// The convex polygon where the plane {x : dot(n, x) = k} cuts the hexahedron, as a triangle
 // fan's triangles (empty where it misses).
-std::vector<glm::dvec3> plane_box_triangles(const glm::dvec3& n, double k, const glm::dvec3& lo,
-                                            const glm::dvec3& hi) {
+std::vector<glm::dvec3> plane_cut_triangles(const glm::dvec3& n, double k, const Hexahedron& h) {
   std::vector<glm::dvec3> points;
-  for (int a = 0; a < 3; ++a)
-    for (int i = 0; i < 4; ++i) {
-      // The box edge along axis a at corner (i & 1, i & 2) of the two other axes.
-      glm::dvec3 p0, p1;
-      const int b = (a + 1) % 3, c = (a + 2) % 3;
-      p0[b] = p1[b] = (i & 1) ? hi[b] : lo[b];
-      p0[c] = p1[c] = (i & 2) ? hi[c] : lo[c];
-      p0[a] = lo[a];
-      p1[a] = hi[a];
+  for (int bit : {1, 2, 4})
+    for (int i = 0; i < 8; ++i) {
+      if (i & bit) continue;
+      const glm::dvec3 &p0 = h[size_t(i)], &p1 = h[size_t(i | bit)];
       const double s0 = glm::dot(n, p0) - k, s1 = glm::dot(n, p1) - k;
       if ((s0 < 0) == (s1 < 0) || s0 == s1) continue;
       points.push_back(p0 + (p1 - p0) * (s0 / (s0 - s1)));
@@ -60,6 +60,23 @@ std::vector<glm::dvec3> plane_box_triangles(const glm::dvec3& n, double k, const
   return tris;
 }
 
+// The relief's volume in the world. A box (an object's cube, a box proxy) is its texture-space
+// box. A relief drawn on its base is seen only through the base quad: its volume is the quad
+// and, below it, the quad scaled away from the eye to the floor, so slices reach what the rays
+// entering through the quad reach (and no further). Empty when the eye is not above the base.
+std::optional<Hexahedron> relief_volume(const SceneDesc& s, double tile, const Camera& camera) {
+  const PlanarBase base = planar_base(s);
+  Hexahedron h;
+  for (int i = 0; i < 8; ++i)
+    h[size_t(i)] = base.world_from_texture({i & 1 ? tile : 0, i & 2 ? tile : 0, i & 4 ? 1 : 0});
+  if (s.proxy == Proxy::Box || s.in_cube()) return h;
+  const double above = camera.eye.z;  // the base plane is z = 0
+  if (above <= 0) return std::nullopt;
+  for (int i = 4; i < 8; ++i)
+    h[size_t(i)] = camera.eye + (h[size_t(i - 4)] - camera.eye) * ((above + s.depth) / above);
+  return h;
+}
+
 // Slab test of o + t d against the box [lo, hi].
 bool clip_ray(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& lo, const glm::dvec3& hi,
               double& t_in, double& t_out) {
@@ -78,20 +95,24 @@ bool clip_ray(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& lo, co
   return t_in < t_out;
 }
 
-// The range of dot(forward, x) over the part of the box [lo, hi] the camera sees: its corners in
+// The range of dot(forward, x) over the part of the volume the camera sees: its corners in
 // the view, and where rays along the viewport's border enter and leave it. View-aligned slices
 // spread over this range only: a planar base lengthened for a grazing view reaches far outside
 // the viewport, where slices would be wasted.
 std::pair<double, double> visible_range(const Camera& camera, const glm::dvec3& forward,
-                                        const glm::dvec3& lo, const glm::dvec3& hi) {
+                                        const Hexahedron& volume) {
+  glm::dvec3 lo(1e300), hi(-1e300);  // rays are clipped to the volume's bounding box
+  for (const glm::dvec3& c : volume) {
+    lo = glm::min(lo, c);
+    hi = glm::max(hi, c);
+  }
   double near = 1e300, far = -1e300;
   auto add = [&](const glm::dvec3& p) {
     near = std::min(near, glm::dot(forward, p));
     far = std::max(far, glm::dot(forward, p));
   };
   const glm::dmat4 view_proj = camera.projection_matrix() * camera.view_matrix();
-  for (int c = 0; c < 8; ++c) {
-    const glm::dvec3 corner((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+  for (const glm::dvec3& corner : volume) {
     const glm::dvec4 clip = view_proj * glm::dvec4(corner, 1.0);
     if (clip.w > 0 && std::abs(clip.x) <= clip.w && std::abs(clip.y) <= clip.w) add(corner);
   }
@@ -242,34 +263,41 @@ class DepthSlicing final : public Described<DepthSlicing, Technique> {
     const HeightfieldFaces* faces = frame.map.faces.get();
     const double tile = faces ? 1.0 : s.tile;
     std::vector<std::vector<glm::vec3>> passes;
+    const std::optional<Hexahedron> volume = relief_volume(s, tile, frame.camera);
+    if (!volume) return passes;  // the base is seen from below or edge-on: nothing to slice
+    const PlanarBase base = planar_base(s);
     if (param("view_aligned") != 0) {
-      const PlanarBase base = planar_base(s);
-      const glm::dvec3 a = base.world_from_texture({0, 0, 0}),
-                       b = base.world_from_texture({tile, tile, 1});
-      const glm::dvec3 lo = glm::min(a, b), hi = glm::max(a, b);
       const glm::dvec3 forward = glm::normalize(frame.camera.target - frame.camera.eye);
-      const auto [near, far] = visible_range(frame.camera, forward, lo, hi);
+      const auto [near, far] = visible_range(frame.camera, forward, *volume);
       for (int i = 0; i < slices; ++i) {
         const double k = near + (far - near) * (i + 0.5) / slices;
         std::vector<glm::vec3> pass;
-        for (const glm::dvec3& w : plane_box_triangles(forward, k, lo, hi))
+        for (const glm::dvec3& w : plane_cut_triangles(forward, k, *volume))
           pass.push_back(glm::vec3(base.texture_from_world(w)));
         passes.push_back(pass);
       }
       return passes;
     }
     const std::vector<double> depths = slice_depths(slices, !s.empty_floor && !faces);
-    const int face_count = faces ? faces->count() : 1;
-    for (int k = 0; k < face_count; ++k) {
-      const glm::dmat3 cube_from_face =
-          faces ? glm::transpose(face_from_cube(faces->faces[size_t(k)])) : glm::dmat3(1.0);
+    if (!faces) {
+      // Planes of constant depth across the volume: its side edges at that depth.
       for (double depth : depths) {
-        // The slice in the face's affine space (a plane of constant texture depth there too).
-        const double z = faces ? faces->projection.affine_from_texture({0.5, 0.5, depth}).z : depth;
-        const glm::dvec3 q[4] = {{0, 0, z}, {tile, 0, z}, {tile, tile, z}, {0, tile, z}};
         glm::vec3 c[4];
         for (int i = 0; i < 4; ++i)
-          c[i] = glm::vec3(faces ? cube_from_face * (q[i] - 0.5) + 0.5 : q[i]);
+          c[i] = glm::vec3(base.texture_from_world(
+              glm::mix((*volume)[size_t(i)], (*volume)[size_t(i + 4)], depth)));
+        passes.push_back({c[0], c[1], c[3], c[0], c[3], c[2]});
+      }
+      return passes;
+    }
+    for (int k = 0; k < faces->count(); ++k) {
+      const glm::dmat3 cube_from_face = glm::transpose(face_from_cube(faces->faces[size_t(k)]));
+      for (double depth : depths) {
+        // The slice in the face's affine space (a plane of constant texture depth there too).
+        const double z = faces->projection.affine_from_texture({0.5, 0.5, depth}).z;
+        const glm::dvec3 q[4] = {{0, 0, z}, {1, 0, z}, {1, 1, z}, {0, 1, z}};
+        glm::vec3 c[4];
+        for (int i = 0; i < 4; ++i) c[i] = glm::vec3(cube_from_face * (q[i] - 0.5) + 0.5);
         passes.push_back({c[0], c[1], c[2], c[0], c[2], c[3]});
       }
     }

@@ -46,13 +46,13 @@ OddMap build_odd_map(const ReliefMap& map, OddSize size, bool direction_major,
   parallel_for(size_t(X) * X, [&](size_t begin, size_t end) {
     for (size_t s = begin; s < end; ++s) {
       const int x = int(s % X), y = int(s / X);
-      const glm::dvec3 origin((x + 0.5) / X, (y + 0.5) / X, 0.0);
+      const glm::dvec3 origin((x + 0.5) / X, (y + 0.5) / X, kOddStartDepth);
       for (int kb = 0; kb < N; ++kb)
         for (int ka = 0; ka < N; ++ka) {
           const glm::dvec3 r = odd.stored_direction(ka, kb);
           // World direction -> texture direction (u, v, depth), t counting depth units.
           const glm::dvec3 d(r.x * depth_aspect.x / r.z, r.y * depth_aspect.y / r.z, 1.0);
-          const TruthHit h = surface.intersect(origin, d, 0.0, 1.0 + 1e-6);
+          const TruthHit h = surface.intersect(origin, d, 0.0, 1.0 - kOddStartDepth + 1e-6);
           glm::vec4 texel(0.5f, 0.5f, 1.0f, 1.0f);
           if (h.hit) {
             const glm::dvec4 rel = map.sample_relief(h.point.x, h.point.y);

@@ -19,6 +19,11 @@
 
 namespace rl {
 
+// Where the stored rays start: just above the top (depth 0) -- a ray starting exactly on a
+// plateau at depth 0 would slip into the solid past the coincident triangle (Embree reports no
+// hit at t = 0), so a brick wall drew as noise.
+inline constexpr double kOddStartDepth = -1e-3;
+
 struct OddSize {
   int spatial = 32;     // super pixels per tile side (X = Y)
   int directions = 16;  // directions per angle (A = B)
