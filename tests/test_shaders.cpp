@@ -1,4 +1,6 @@
 // GLSL composition, error messages and the program cache.
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "core/error.h"
@@ -19,9 +21,11 @@ TEST(Compose, ExpandsIncludesOnceWithLineDirectives) {
                                   {{"RL_LINEAR_STEPS", "8"}, {"RL_BINARY_STEPS", "3"}});
   EXPECT_EQ(s.text.rfind("#version 450 core\n", 0), 0u);
   EXPECT_NE(s.text.find("#define RL_LINEAR_STEPS 8"), std::string::npos);
-  // relief_common.glsl is included by both files but appears once.
-  ASSERT_EQ(s.files.size(), 3u);
+  // relief_common.glsl is included by both files but appears once; probe_main.glsl brings the
+  // probe pass's inputs and outputs (probe_io.glsl).
+  ASSERT_EQ(s.files.size(), 4u);
   EXPECT_EQ(s.files[1], "harness/glsl/relief_common.glsl");
+  EXPECT_NE(std::find(s.files.begin(), s.files.end(), "harness/glsl/probe_io.glsl"), s.files.end());
   const std::string marker = "int rl_fetches = 0;";
   EXPECT_EQ(s.text.find(marker), s.text.rfind(marker));
   EXPECT_NE(s.text.find("#line 1 1\n"), std::string::npos);

@@ -165,15 +165,19 @@ std::vector<ProbeHit> ShaderTechnique::probe(const ReliefMap& map, const GpuReli
                                              const std::vector<ProbeRay>& rays,
                                              glm::dvec2 depth_aspect) {
   (void)map;
-  std::vector<ProbeHit> hits(rays.size());
-  if (rays.empty()) return hits;
+  if (rays.empty()) return {};
   const GLuint p = ShaderLibrary::shared().program(probe_program());
   set_uniform(p, "rl_probe_depth_aspect", depth_aspect);
   const GBuffer out = run_probe_pass(p, rays, [&] {
     relief.bind();
     bind_resources(p);
   });
-  for (size_t i = 0; i < rays.size(); ++i) {
+  return decode_probe_hits(out, rays.size());
+}
+
+std::vector<ProbeHit> decode_probe_hits(const GBuffer& out, size_t count) {
+  std::vector<ProbeHit> hits(count);
+  for (size_t i = 0; i < count; ++i) {
     const glm::vec4 a = out.color[i], b = out.position[i];
     hits[i].t = a.x;
     hits[i].uv = glm::vec2(a.y, a.z);

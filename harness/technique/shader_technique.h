@@ -24,6 +24,9 @@ void set_meta_relief_uniforms(GLuint program, const ReliefMap& map);
 // `bind` has bound its textures; returns the pass's G-buffer (ray i at texel i).
 GBuffer run_probe_pass(GLuint program, const std::vector<ProbeRay>& rays,
                        const std::function<void()>& bind);
+// The hits of `count` rays from a probe pass's G-buffer, as harness/glsl/probe_io.glsl writes
+// them: (t, u, v, fetches) in colour, (depth, layer, hit) in position.
+std::vector<ProbeHit> decode_probe_hits(const GBuffer& out, size_t count);
 
 // How a scene's relief is drawn, as far as the surface shader is concerned.
 struct SurfaceVariant {

@@ -86,8 +86,7 @@ class CellComplexRaycast final : public Described<CellComplexRaycast, Technique>
   // multiples of the direction. The search runs along the whole chord of the grid.
   std::vector<ProbeHit> probe(const ReliefMap& map, const GpuRelief& relief,
                               const std::vector<ProbeRay>& rays, glm::dvec2) override {
-    std::vector<ProbeHit> hits(rays.size());
-    if (rays.empty()) return hits;
+    if (rays.empty()) return {};
     if (!map.cells || !relief.cells())
       throw std::logic_error("cell_complex probed without a cell complex");
     ProgramDesc d = program();
@@ -96,14 +95,7 @@ class CellComplexRaycast final : public Described<CellComplexRaycast, Technique>
     const GLuint p = ShaderLibrary::shared().program(d);
     set_cell_table_uniforms(p, *map.cells, *relief.cells());
     const GBuffer out = run_probe_pass(p, rays, [&] { relief.bind(); });
-    for (size_t i = 0; i < rays.size(); ++i) {
-      hits[i].t = out.color[i].x;
-      hits[i].uv = glm::vec2(out.color[i].y, out.color[i].z);
-      hits[i].fetches = int(out.color[i].w);
-      hits[i].depth = out.position[i].x;
-      hits[i].hit = out.position[i].z > 0.5f;
-    }
-    return hits;
+    return decode_probe_hits(out, rays.size());
   }
 
   size_t memory_bytes() const override { return proxy_.bytes(); }

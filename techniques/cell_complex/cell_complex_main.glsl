@@ -6,28 +6,18 @@
 #include "techniques/cell_complex/cell_complex_common.glsl"
 
 #ifdef RL_PROBE
-layout(binding = 2) uniform sampler2D rl_probe_origin;
-layout(binding = 3) uniform sampler2D rl_probe_direction;
-layout(location = 0) out vec4 o_color;     // t, u, v, fetches
-layout(location = 1) out vec4 o_position;  // depth, 0, hit, 0
-layout(location = 2) out vec4 o_normal;
-layout(location = 3) out vec4 o_hit;
-layout(location = 4) out vec4 o_aux;
+#include "harness/glsl/probe_io.glsl"
 
 void main() {
-  ivec2 px = ivec2(gl_FragCoord.xy);
-  vec3 origin = texelFetch(rl_probe_origin, px, 0).xyz;
-  vec3 direction = texelFetch(rl_probe_direction, px, 0).xyz;
+  vec4 origin_q, direction_q;
+  rl_probe_ray(origin_q, direction_q);
+  vec3 origin = origin_q.xyz, direction = direction_q.xyz;
   float n = float(rl_cell_n);
   float scale = length(direction) * n;  // grid units per unit of the probe's t
   float t_before;
   float t = scale > 0.0 ? rl_cell_search(origin * n, direction * n / scale, t_before) : -1.0;
   vec3 hit = origin + direction * (t / scale);
-  o_color = vec4(t >= 0.0 ? t / scale : 0.0, hit.xy, float(rl_fetches));
-  o_position = vec4(hit.z, 0.0, t >= 0.0 ? 1.0 : 0.0, 0.0);
-  o_normal = vec4(0.0);
-  o_hit = vec4(0.0);
-  o_aux = vec4(0.0);
+  rl_probe_write(t >= 0.0 ? t / scale : 0.0, hit.xy, hit.z, 0.0, t >= 0.0, rl_fetches);
 }
 #else
 #include "harness/glsl/shading.glsl"

@@ -217,8 +217,7 @@ class DepthSlicing final : public Described<DepthSlicing, Technique> {
   // cube-space rays from inside the cube on heightfield faces; the nearest kept slice point.
   std::vector<ProbeHit> probe(const ReliefMap& map, const GpuRelief& relief,
                               const std::vector<ProbeRay>& rays, glm::dvec2) override {
-    std::vector<ProbeHit> hits(rays.size());
-    if (rays.empty()) return hits;
+    if (rays.empty()) return {};
     const int slices = int(param("slices"));
     // A probe has no scene: a plain map has a solid floor, faces make an object.
     SceneDesc probe_scene;
@@ -232,15 +231,7 @@ class DepthSlicing final : public Described<DepthSlicing, Technique> {
     glProgramUniform1fv(p, glGetUniformLocation(p, "rl_slice_depth"), GLsizei(f.size()), f.data());
     if (map.faces) set_heightfield_faces_uniforms(p, *map.faces);
     const GBuffer out = run_probe_pass(p, rays, [&] { relief.bind(); });
-    for (size_t i = 0; i < rays.size(); ++i) {
-      hits[i].t = out.color[i].x;
-      hits[i].uv = glm::vec2(out.color[i].y, out.color[i].z);
-      hits[i].fetches = int(out.color[i].w);
-      hits[i].depth = out.position[i].x;
-      hits[i].layer = int(out.position[i].y);
-      hits[i].hit = out.position[i].z > 0.5f;
-    }
-    return hits;
+    return decode_probe_hits(out, rays.size());
   }
 
  private:

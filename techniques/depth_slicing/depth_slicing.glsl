@@ -24,8 +24,7 @@ const float RL_SLICE_SLACK = 0.5 / 255.0;
 #include "harness/glsl/shading.glsl"
 
 #ifdef RL_PROBE
-layout(binding = 2) uniform sampler2D rl_probe_origin;
-layout(binding = 3) uniform sampler2D rl_probe_direction;
+#include "harness/glsl/probe_io.glsl"
 // The slices' depths in the map's (or each face's) texture space, nearest the face first.
 uniform float rl_slice_depth[RL_SLICES];
 #endif
@@ -44,13 +43,7 @@ uniform vec3 rl_light;
 uniform mat4 rl_world_from_texture;
 uniform mat3 rl_normal_from_texture;
 
-#ifdef RL_PROBE
-layout(location = 0) out vec4 o_color;     // t, u, v, fetches
-layout(location = 1) out vec4 o_position;  // depth, layer, hit, 0
-layout(location = 2) out vec4 o_normal;
-layout(location = 3) out vec4 o_hit;
-layout(location = 4) out vec4 o_aux;
-#else
+#ifndef RL_PROBE
 #include "harness/glsl/gbuffer_outputs.glsl"
 #endif
 
@@ -90,9 +83,9 @@ bool rl_slice_keeps(vec3 p, out vec3 normal, out vec3 albedo, out float layer) {
 // ones are planes across the ray, so along it they are RL_SLICES evenly spaced points over its
 // chord through the volume (a linear search without refinement).
 void main() {
-  ivec2 px = ivec2(gl_FragCoord.xy);
-  vec3 o = texelFetch(rl_probe_origin, px, 0).xyz;
-  vec3 d = texelFetch(rl_probe_direction, px, 0).xyz;
+  vec4 origin, direction;
+  rl_probe_ray(origin, direction);
+  vec3 o = origin.xyz, d = direction.xyz;
   float best = 1e30;
   float best_layer = 0.0;
   vec3 nw, albedo;
@@ -139,11 +132,7 @@ void main() {
 #endif
   bool hit = best < 1e29;
   vec3 p = o + d * (hit ? best : 0.0);
-  o_color = vec4(hit ? best : 0.0, p.xy, float(rl_fetches));
-  o_position = vec4(p.z, best_layer, hit ? 1.0 : 0.0, 0.0);
-  o_normal = vec4(0.0);
-  o_hit = vec4(0.0);
-  o_aux = vec4(0.0);
+  rl_probe_write(hit ? best : 0.0, p.xy, p.z, best_layer, hit, rl_fetches);
 }
 #else
 void main() {

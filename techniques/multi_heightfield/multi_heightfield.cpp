@@ -67,8 +67,7 @@ class MultiHeightfield final : public Described<MultiHeightfield, Technique> {
   // counts multiples of the direction. The search runs to the ray's exit from the cube.
   std::vector<ProbeHit> probe(const ReliefMap& map, const GpuRelief& relief,
                               const std::vector<ProbeRay>& rays, glm::dvec2) override {
-    std::vector<ProbeHit> hits(rays.size());
-    if (rays.empty()) return hits;
+    if (rays.empty()) return {};
     if (!map.faces || !relief.faces())
       throw std::logic_error("multi_heightfield probed without heightfield faces");
     ProgramDesc d = program();
@@ -77,15 +76,7 @@ class MultiHeightfield final : public Described<MultiHeightfield, Technique> {
     const GLuint p = ShaderLibrary::shared().program(d);
     set_heightfield_faces_uniforms(p, *map.faces);
     const GBuffer out = run_probe_pass(p, rays, [&] { relief.bind(); });
-    for (size_t i = 0; i < rays.size(); ++i) {
-      hits[i].t = out.color[i].x;
-      hits[i].uv = glm::vec2(out.color[i].y, out.color[i].z);
-      hits[i].fetches = int(out.color[i].w);
-      hits[i].depth = out.position[i].x;
-      hits[i].layer = int(out.position[i].y);
-      hits[i].hit = out.position[i].z > 0.5f;
-    }
-    return hits;
+    return decode_probe_hits(out, rays.size());
   }
 
  private:

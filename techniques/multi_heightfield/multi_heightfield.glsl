@@ -48,30 +48,21 @@ bool rl_object_search(vec3 o, vec3 d, float t_end, out float t, out int surface)
 }
 
 #ifdef RL_PROBE
-layout(binding = 2) uniform sampler2D rl_probe_origin;
-layout(binding = 3) uniform sampler2D rl_probe_direction;
-layout(location = 0) out vec4 o_color;     // t, u, v, fetches
-layout(location = 1) out vec4 o_position;  // depth, face, hit, 0
-layout(location = 2) out vec4 o_normal;
-layout(location = 3) out vec4 o_hit;
-layout(location = 4) out vec4 o_aux;
+#include "harness/glsl/probe_io.glsl"
 
-// A probe ray starts inside the cube (or on it) and runs to its exit; t in its own units.
+// A probe ray starts inside the cube (or on it) and runs to its exit; t in its own units. The
+// layer reported is the face that shades the hit.
 void main() {
-  ivec2 px = ivec2(gl_FragCoord.xy);
-  vec3 origin = texelFetch(rl_probe_origin, px, 0).xyz;
-  vec3 direction = texelFetch(rl_probe_direction, px, 0).xyz;
+  vec4 origin_q, direction_q;
+  rl_probe_ray(origin_q, direction_q);
+  vec3 origin = origin_q.xyz, direction = direction_q.xyz;
   float len = length(direction);
   vec3 d = direction / max(len, 1e-20);
   float t;
   int surface;
   bool hit = len > 0.0 && rl_object_search(origin, d, rl_cube_exit(origin, d), t, surface);
   vec3 p = origin + d * t;
-  o_color = vec4(hit ? t / len : 0.0, p.xy, float(rl_fetches));
-  o_position = vec4(p.z, float(surface), hit ? 1.0 : 0.0, 0.0);
-  o_normal = vec4(0.0);
-  o_hit = vec4(0.0);
-  o_aux = vec4(0.0);
+  rl_probe_write(hit ? t / len : 0.0, p.xy, p.z, float(surface), hit, rl_fetches);
 }
 #else
 #include "harness/glsl/shading.glsl"

@@ -89,8 +89,7 @@ class OmniDirectionalDisplacement final : public Described<OmniDirectionalDispla
 
   std::vector<ProbeHit> probe(const ReliefMap& map, const GpuRelief& relief,
                               const std::vector<ProbeRay>& rays, glm::dvec2 depth_aspect) override {
-    std::vector<ProbeHit> hits(rays.size());
-    if (rays.empty()) return hits;
+    if (rays.empty()) return {};
     if (!texture_ || odd_.depth_aspect != depth_aspect) build(map, depth_aspect);
     ProgramDesc d = program();
     d.vertex_file = "harness/glsl/fullscreen.vert";
@@ -102,14 +101,7 @@ class OmniDirectionalDisplacement final : public Described<OmniDirectionalDispla
       relief.bind();
       glBindTextureUnit(4, texture_);
     });
-    for (size_t i = 0; i < rays.size(); ++i) {
-      hits[i].t = out.color[i].x;
-      hits[i].uv = glm::vec2(out.color[i].y, out.color[i].z);
-      hits[i].fetches = int(out.color[i].w);
-      hits[i].depth = out.position[i].x;
-      hits[i].hit = out.position[i].z > 0.5f;
-    }
-    return hits;
+    return decode_probe_hits(out, rays.size());
   }
 
   size_t memory_bytes() const override { return odd_.bytes(); }

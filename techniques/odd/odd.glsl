@@ -73,29 +73,19 @@ vec4 rl_odd_lookup(vec2 sp, vec2 dc) {
 vec2 rl_odd_spatial_coord(vec2 uv) { return fract(uv) * float(rl_odd_spatial); }
 
 #ifdef RL_PROBE
-layout(binding = 2) uniform sampler2D rl_probe_origin;
-layout(binding = 3) uniform sampler2D rl_probe_direction;
+#include "harness/glsl/probe_io.glsl"
 uniform vec2 rl_depth_aspect;  // world depth / world length of u, of v
-layout(location = 0) out vec4 o_color;     // t, u, v, fetches
-layout(location = 1) out vec4 o_position;  // depth, 0, hit, 0
-layout(location = 2) out vec4 o_normal;
-layout(location = 3) out vec4 o_hit;
-layout(location = 4) out vec4 o_aux;
 
 void main() {
-  ivec2 px = ivec2(gl_FragCoord.xy);
-  vec3 o = texelFetch(rl_probe_origin, px, 0).xyz;
-  vec3 d = texelFetch(rl_probe_direction, px, 0).xyz;  // d.z = 1: t counts depth units
+  vec4 origin, direction;
+  rl_probe_ray(origin, direction);
+  vec3 o = origin.xyz, d = direction.xyz;  // d.z = 1: t counts depth units
   vec3 v = normalize(vec3(d.x / rl_depth_aspect.x, d.y / rl_depth_aspect.y, 1.0));
   vec4 texel =
       rl_odd_lookup(rl_odd_spatial_coord(o.xy), rl_odd_angles(v) * float(rl_odd_directions));
   float t = max(texel.a - o.z, 0.0);
   vec3 p = o + d * t;
-  o_color = vec4(t, p.xy, float(rl_fetches));
-  o_position = vec4(p.z, 0.0, 1.0, 0.0);
-  o_normal = vec4(0.0);
-  o_hit = vec4(0.0);
-  o_aux = vec4(0.0);
+  rl_probe_write(t, p.xy, p.z, 0.0, true, rl_fetches);
 }
 #else
 #include "harness/glsl/shading.glsl"

@@ -1,0 +1,20 @@
+// The ray-probe pass's inputs and outputs (run_probe_pass and decode_probe_hits on the CPU):
+// one fragment per ray, origin and direction read from two RGBA32F textures (w: the base's
+// quadric A, B for ray-bending techniques); (t, u, v, fetches) written at location 0 and
+// (depth, layer, hit) at location 1.
+layout(binding = 2) uniform sampler2D rl_probe_origin;
+layout(binding = 3) uniform sampler2D rl_probe_direction;
+
+layout(location = 0) out vec4 o_probe_hit;
+layout(location = 1) out vec4 o_probe_extra;
+
+void rl_probe_ray(out vec4 origin, out vec4 direction) {
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  origin = texelFetch(rl_probe_origin, px, 0);
+  direction = texelFetch(rl_probe_direction, px, 0);
+}
+
+void rl_probe_write(float t, vec2 uv, float depth, float layer, bool hit, int fetches) {
+  o_probe_hit = vec4(t, uv, float(fetches));
+  o_probe_extra = vec4(depth, layer, hit ? 1.0 : 0.0, 0.0);
+}
