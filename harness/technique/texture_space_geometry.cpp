@@ -52,6 +52,15 @@ void PositionBuffer::set(const std::vector<glm::vec3>& positions) {
   vertices_ = GLsizei(positions.size());
 }
 
+void PositionBuffer::draw_front_faces() const {
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  draw_triangles();
+  glDisable(GL_CULL_FACE);
+}
+
 void PositionBuffer::draw(GLenum mode, GLint first, GLsizei count) const {
   if (!vao_ || count <= 0) return;
   glBindVertexArray(vao_);

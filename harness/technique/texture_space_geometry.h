@@ -25,6 +25,9 @@ class PositionBuffer {
   // glDrawArrays(mode, first, count) on the buffer's vertices.
   void draw(GLenum mode, GLint first, GLsizei count) const;
   void draw_triangles() const { draw(GL_TRIANGLES, 0, vertices_); }
+  // A closed proxy's front faces only, depth-tested (GL_LESS): each pixel's ray enters once and
+  // the shader's written depth resolves the rest.
+  void draw_front_faces() const;
   GLsizei vertices() const { return vertices_; }
   size_t bytes() const { return size_t(vertices_) * sizeof(glm::vec3); }
 

@@ -8,6 +8,7 @@
 #include "core/elapsed.h"
 #include "core/hash.h"
 #include "core/parallel.h"
+#include "core/ray_box.h"
 #include "truth/displaced_truth.h"
 #include "truth/objects_truth.h"
 #include "truth/pattern_base_truth.h"
@@ -19,23 +20,10 @@ namespace {
 constexpr double kAboveTop = 1e-6;  // depth units above the top plane where truth rays start
 constexpr double kFloor = 1e-4;     // depth units within which a hit counts as on the floor
 
-// Slab test of the ray o + t d against the texture-space box [0, tile]^2 x [0, 1].
+// The ray o + t d against the texture-space box [0, tile]^2 x [0, 1].
 bool clip_to_box(const glm::dvec3& o, const glm::dvec3& d, double tile, double& t_in,
                  double& t_out) {
-  t_in = 0;
-  t_out = std::numeric_limits<double>::infinity();
-  const double lo[3] = {0, 0, 0}, hi[3] = {tile, tile, 1};
-  for (int a = 0; a < 3; ++a) {
-    if (d[a] == 0) {
-      if (o[a] < lo[a] || o[a] > hi[a]) return false;
-      continue;
-    }
-    double t0 = (lo[a] - o[a]) / d[a], t1 = (hi[a] - o[a]) / d[a];
-    if (t0 > t1) std::swap(t0, t1);
-    t_in = std::max(t_in, t0);
-    t_out = std::min(t_out, t1);
-  }
-  return t_in < t_out;
+  return clip_ray_to_box(o, d, glm::dvec3(0), glm::dvec3(tile, tile, 1), t_in, t_out);
 }
 
 // The first surface point along the camera ray o + t d (texture space, t = world distance)

@@ -74,12 +74,7 @@ class CellComplexRaycast final : public Described<CellComplexRaycast, Technique>
     set_cell_complex_uniforms(p, frame.scene, frame.camera, *frame.map.cells,
                               *frame.relief.cells());
     frame.relief.bind();
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glEnable(GL_CULL_FACE);
-    glCullFace(GL_BACK);
-    proxy_.draw_triangles();
-    glDisable(GL_CULL_FACE);
+    proxy_.draw_front_faces();
   }
 
   // Probe rays are in the cube's texture space (u, v, depth), any direction; t counts

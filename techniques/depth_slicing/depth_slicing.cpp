@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/ray_box.h"
 #include "relief/heightfield_faces.h"
 #include "technique/gpu_heightfield_faces.h"
 #include "technique/scene_uniforms.h"
@@ -77,24 +78,6 @@ std::optional<Hexahedron> relief_volume(const SceneDesc& s, double tile, const C
   return h;
 }
 
-// Slab test of o + t d against the box [lo, hi].
-bool clip_ray(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& lo, const glm::dvec3& hi,
-              double& t_in, double& t_out) {
-  t_in = 0;
-  t_out = 1e300;
-  for (int a = 0; a < 3; ++a) {
-    if (d[a] == 0) {
-      if (o[a] < lo[a] || o[a] > hi[a]) return false;
-      continue;
-    }
-    double t0 = (lo[a] - o[a]) / d[a], t1 = (hi[a] - o[a]) / d[a];
-    if (t0 > t1) std::swap(t0, t1);
-    t_in = std::max(t_in, t0);
-    t_out = std::min(t_out, t1);
-  }
-  return t_in < t_out;
-}
-
 // The range of dot(forward, x) over the part of the volume the camera sees: its corners in
 // the view, and where rays along the viewport's border enter and leave it. View-aligned slices
 // spread over this range only: a planar base lengthened for a grazing view reaches far outside
@@ -125,7 +108,7 @@ std::pair<double, double> visible_range(const Camera& camera, const glm::dvec3& 
       glm::dvec3 o, d;
       camera.pixel_ray(x, y, o, d);
       double t_in, t_out;
-      if (!clip_ray(o, d, lo, hi, t_in, t_out)) continue;
+      if (!clip_ray_to_box(o, d, lo, hi, t_in, t_out)) continue;
       add(o + d * t_in);
       add(o + d * t_out);
     }

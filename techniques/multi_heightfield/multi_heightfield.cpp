@@ -55,12 +55,7 @@ class MultiHeightfield final : public Described<MultiHeightfield, Technique> {
     set_texture_space_uniforms(p, frame.scene, frame.camera);
     set_heightfield_faces_uniforms(p, *frame.map.faces);
     frame.relief.bind();
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glEnable(GL_CULL_FACE);
-    glCullFace(GL_BACK);
-    cube_.draw_triangles();
-    glDisable(GL_CULL_FACE);
+    cube_.draw_front_faces();
   }
 
   // Probe rays are in the cube's texture space, any direction, starting inside the cube; t
