@@ -31,9 +31,14 @@ void print_list() {
                 info.citation.c_str(), rl::join_effects(info.effects).c_str());
     if (info.cell_complex) {
       std::printf("  draws:    cell-complex reliefs only (relief = { cells = \"mesh.obj\" })\n");
+    } else if (info.heightfield_object_only) {
+      std::printf(
+          "  draws:    objects from several heightfields only (relief = { mesh = "
+          "\"mesh.obj\", faces = N })\n");
     } else {
-      std::printf("  proxies:  base%s%s\n", info.box_proxy ? ", box" : "",
-                  info.impostor ? ", impostor" : "");
+      std::printf("  proxies:  %s%s%s%s\n", info.planar_only ? "planar base" : "base",
+                  info.box_proxy ? ", box" : "", info.impostor ? ", impostor" : "",
+                  info.heightfield_object ? ", heightfield object" : "");
       std::printf("  meta-relief: %s\n", info.meta_relief ? "runtime or baked" : "baked");
     }
     if (info.params.empty()) std::printf("  parameters: none\n");
