@@ -3,6 +3,9 @@
 //   relieflab list [--markdown]          techniques with citation, effects and parameters
 //   relieflab docs --update [--root DIR] rewrite the generated tables in README.md and
 //                                        techniques/*/README.md (technique/technique_docs.h)
+//   relieflab compare BASE NEW [--tolerances FILE]
+//                                        cells that got worse from one run to another; exit
+//                                        status 1 when any did (sweep/compare.h)
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +19,7 @@
 #include "core/error.h"
 #include "relief/pattern_mesh.h"
 #include "relief/procedural.h"
+#include "sweep/compare.h"
 #include "sweep/config.h"
 #include "sweep/runner.h"
 #include "technique/technique.h"
@@ -125,12 +129,30 @@ int main(int argc, char** argv) {
   docs->add_flag("--update", docs_update, "Rewrite the files (required)")->required();
   docs->add_option("--root", docs_root, "Repository root (default: the current folder)");
 
+  std::string base_dir, new_dir, tolerance_file;
+  CLI::App* compare = app.add_subcommand(
+      "compare",
+      "Compare two runs' results cell by cell; exit status 1 when any cell got worse beyond "
+      "tolerance (a CI regression check)");
+  compare->add_option("base", base_dir, "Output folder of the reference run")->required();
+  compare->add_option("new", new_dir, "Output folder of the run to check")->required();
+  compare->add_option("--tolerances", tolerance_file,
+                      "TOML file: [tolerances] metric = { abs = ..., rel = ..., "
+                      "lower_is_better = ... } overriding or adding to the defaults");
+
   CLI11_PARSE(app, argc, argv);
 
   try {
     if (app.got_subcommand("list")) {
       markdown ? print_markdown() : print_list();
       return 0;
+    }
+    if (app.got_subcommand("compare")) {
+      auto tolerances = rl::default_tolerances();
+      if (!tolerance_file.empty()) rl::read_tolerances(tolerance_file, tolerances);
+      const rl::Comparison c = rl::compare_runs(base_dir, new_dir, tolerances);
+      std::fputs(rl::format_comparison(c).c_str(), stdout);
+      return c.regressed() ? 1 : 0;
     }
     if (app.got_subcommand("docs")) {
       std::printf("%d file(s) updated\n", update_docs(docs_root));
