@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates one committed reproduction: runs CONFIG from an empty folder and copies its
-# tables, rows.csv, Pareto fronts and plots into results/<sweep name>/ (images stay in the
+# tables (Markdown and LaTeX), rows.csv, Pareto fronts and plots into results/<sweep name>/ (images stay in the
 # scratch run folder, out/<sweep name>-reproduction/images).
 # With --images the run's images come along too (for figure reproductions with few cells).
 #   scripts/reproduce.sh                                        # the built-in default sweep
@@ -24,6 +24,8 @@ dest="results/$name"
 mkdir -p "$dest"
 rm -rf "$dest/plots"
 cp "$run"/*.md "$run"/rows.csv "$dest/"
+# LaTeX tables (format = "latex"), where the config asks for them.
+for tex in "$run"/*.tex; do [ -e "$tex" ] && cp "$tex" "$dest/"; done
 cp -r "$run"/plots "$dest/"
 cp "$run"/run.log "$dest/run.log"
 if $images; then rm -rf "$dest/images" && cp -r "$run"/images "$dest/"; fi

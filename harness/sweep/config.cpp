@@ -187,7 +187,8 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
     for (const toml::node& tn : *tables) {
       const toml::table* t = tn.as_table();
       if (!t) fail(src.at(tn), "[[table]] must be a table");
-      check_keys(*t, {"file", "title", "rows", "columns", "values", "aggregate"}, src, "[[table]]");
+      check_keys(*t, {"file", "title", "rows", "columns", "values", "aggregate", "format"}, src,
+                 "[[table]]");
       TableSpec spec;
       spec.file =
           c.tables.empty() ? "table.md" : "table-" + std::to_string(c.tables.size() + 1) + ".md";
@@ -202,6 +203,15 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
         spec.aggregate = string_of(*v, src, "aggregate");
         if (spec.aggregate != "mean" && spec.aggregate != "max")
           fail(src.at(*v), "[[table]] aggregate '" + spec.aggregate + "': use \"mean\" or \"max\"");
+      }
+      if (auto* v = t->get("format")) {
+        spec.format = string_of(*v, src, "format");
+        if (spec.format != "markdown" && spec.format != "latex")
+          fail(src.at(*v),
+               "[[table]] format '" + spec.format + "': use \"markdown\" (default) or \"latex\"");
+        // A LaTeX table without a file name gets a .tex one.
+        if (spec.format == "latex" && !t->get("file"))
+          spec.file = spec.file.substr(0, spec.file.size() - 3) + ".tex";
       }
       if (spec.values.empty()) fail(src.at(tn), "[[table]] needs 'values' (metric names)");
       for (const std::string& v : spec.values)

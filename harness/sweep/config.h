@@ -32,6 +32,8 @@ struct TableSpec {
   // How rows that share a table cell combine: "" (the first is shown and the table says how
   // many were hidden), "mean" or "max" of each value over them (e.g. over scenes and azimuths).
   std::string aggregate;
+  // "markdown" (default) or "latex" (booktabs, best value per column in bold).
+  std::string format = "markdown";
 };
 
 struct SweepConfig {

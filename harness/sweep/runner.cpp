@@ -498,7 +498,9 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   for (const auto& p : parameter_columns(config)) leading.push_back(p);
   write_text_atomic(options.out_dir + "/rows.csv", format_csv(rows, csv_columns(rows, leading)));
   for (const TableSpec& t : config.tables)
-    write_text_atomic(options.out_dir + "/" + t.file, format_markdown_table(rows, t));
+    write_text_atomic(options.out_dir + "/" + t.file, t.format == "latex"
+                                                          ? format_latex_table(rows, t)
+                                                          : format_markdown_table(rows, t));
   std::string fronts;
   for (const PlotSpec& p : config.plots)
     fronts += write_pareto_plots(rows, p, parameter_columns(config), options.out_dir) + "\n";
