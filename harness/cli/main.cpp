@@ -1,5 +1,8 @@
 // relieflab: run config-driven sweeps of relief-mapping techniques against Embree truth.
-//   relieflab run [CONFIG] [--out DIR]   run a sweep (the built-in default without CONFIG)
+//   relieflab run [CONFIG] [--out DIR] [--shard I/N]
+//                                        run a sweep (the built-in default without CONFIG),
+//                                        or one deterministic slice of it (sweep/shard.h)
+//   relieflab merge OUT SHARD_DIRS...    merge shards' results and write the tables
 //   relieflab list [--markdown]          techniques with citation, effects and parameters
 //   relieflab docs --update [--root DIR] rewrite the generated tables in README.md and
 //                                        techniques/*/README.md (technique/technique_docs.h)
@@ -22,6 +25,7 @@
 #include "sweep/compare.h"
 #include "sweep/config.h"
 #include "sweep/runner.h"
+#include "sweep/shard.h"
 #include "technique/technique.h"
 #include "technique/technique_docs.h"
 
@@ -116,6 +120,16 @@ int main(int argc, char** argv) {
   run->add_option("-o,--out", out_dir,
                   "Output folder (default: out/<sweep name>); re-running into it resumes");
   run->add_flag("-q,--quiet", quiet, "No per-cell progress lines");
+  std::string shard_text;
+  run->add_option("--shard", shard_text,
+                  "Run only shard I of N (0-based), e.g. 2/8: cells sharing a truth trace stay "
+                  "together, shards balanced by estimated cost; merge them with 'merge'");
+  std::string merge_out;
+  std::vector<std::string> merge_shards;
+  CLI::App* merge = app.add_subcommand(
+      "merge", "Merge the results of a sweep's shards into OUT and write its tables");
+  merge->add_option("out", merge_out, "Output folder of the merged sweep")->required();
+  merge->add_option("shards", merge_shards, "The shards' output folders")->required();
 
   bool markdown = false;
   CLI::App* list = app.add_subcommand(
@@ -147,6 +161,15 @@ int main(int argc, char** argv) {
       markdown ? print_markdown() : print_list();
       return 0;
     }
+    if (app.got_subcommand("merge")) {
+      const rl::MergeSummary m = rl::merge_shards(merge_out, merge_shards);
+      std::printf(
+          "relieflab: merged %zu shard(s) into %s: %zu new rows; %zu of %zu cells "
+          "present%s\n",
+          m.shards, merge_out.c_str(), m.rows_added, m.cells - m.missing, m.cells,
+          m.missing ? " (run the missing shards, or re-run into a shard's folder)" : "");
+      return m.missing ? 3 : 0;
+    }
     if (app.got_subcommand("compare")) {
       auto tolerances = rl::default_tolerances();
       if (!tolerance_file.empty()) rl::read_tolerances(tolerance_file, tolerances);
@@ -163,6 +186,13 @@ int main(int argc, char** argv) {
     rl::RunOptions options;
     options.out_dir = out_dir.empty() ? "out/" + config.name : out_dir;
     options.progress = !quiet;
+    if (!shard_text.empty()) {
+      options.shard = rl::parse_shard(shard_text);
+      // Shards run at once must not share a store: one folder each unless told otherwise.
+      if (out_dir.empty() && options.shard.active())
+        options.out_dir += "-shard-" + std::to_string(options.shard.index) + "-of-" +
+                           std::to_string(options.shard.count);
+    }
     rl::run_sweep(config, options);
     return 0;
   } catch (const rl::ConfigError& e) {

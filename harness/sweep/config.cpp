@@ -39,6 +39,8 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
   check_keys(root, {"sweep", "scene", "technique", "table", "plot"}, src, "the top level");
   SweepConfig c;
   c.source = source_name;
+  c.text = text;
+  c.base_dir = base_dir;
   json canon;
 
   // [sweep]

@@ -57,6 +57,9 @@ struct SweepConfig {
   // that fails to load later is reported where the config asked for it.
   std::map<std::string, std::pair<std::string, std::string>> scene_sites;
   std::string canonical;  // canonical text of everything that affects results
+  // The config's own text and the folder its relative paths resolve from: what a shard writes
+  // down so that `relieflab merge` can rebuild the tables (sweep/shard.h).
+  std::string text, base_dir;
 };
 
 // Parses and validates a config file. Relative paths resolve against the config's folder,

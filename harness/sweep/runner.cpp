@@ -162,12 +162,14 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   const auto start = Clock::now();
   SweepSummary summary;
   size_t duplicates = 0;
-  const std::vector<Cell> cells = expand_cells(config, &duplicates);
+  const std::vector<Cell> all_cells = expand_cells(config, &duplicates);
+  const std::vector<Cell> cells = shard_cells(config, all_cells, options.shard);
   summary.cells = cells.size();
   // Every image decoded and every mesh loaded before the output folder is touched.
   check_sweep_assets(config);
 
   fs::create_directories(options.out_dir);
+  write_sweep_record(config, options.shard, options.out_dir);
   Log log(options.out_dir + "/run.log");
   ResultStore store(options.out_dir + "/results.sqlite");
   std::set<std::string> done = store.keys();
@@ -189,8 +191,13 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   GlContext& gl = GlContext::shared();
   summary.renderer = gl.renderer();
   log.line("relieflab: sweep '" + config.name + "' from " + config.source + ": " +
-           std::to_string(cells.size()) + " cells, " + std::to_string(summary.already_done) +
-           " already in " + options.out_dir + "/results.sqlite");
+           std::to_string(cells.size()) + " cells" +
+           (options.shard.active() ? " (shard " + std::to_string(options.shard.index) + "/" +
+                                         std::to_string(options.shard.count) + " of " +
+                                         std::to_string(all_cells.size()) + ")"
+                                   : std::string()) +
+           ", " + std::to_string(summary.already_done) + " already in " + options.out_dir +
+           "/results.sqlite");
   if (duplicates)
     log.line("relieflab: " + std::to_string(duplicates) +
              " repeated cell(s) dropped (the same view, setting and scene given twice: a repeated "
@@ -489,22 +496,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     }
   }
 
-  // Outputs from the store, in the config's cell order: the rows of this sweep only.
-  std::vector<Row> rows;
-  for (const Cell& c : cells)
-    if (auto r = store.row(c.key)) rows.push_back(*r);
-  std::vector<std::string> leading = {"technique",   "scene",       "elevation_deg",
-                                      "azimuth_deg", "texture_res", "viewport"};
-  for (const auto& p : parameter_columns(config)) leading.push_back(p);
-  write_text_atomic(options.out_dir + "/rows.csv", format_csv(rows, csv_columns(rows, leading)));
-  for (const TableSpec& t : config.tables)
-    write_text_atomic(options.out_dir + "/" + t.file, t.format == "latex"
-                                                          ? format_latex_table(rows, t)
-                                                          : format_markdown_table(rows, t));
-  std::string fronts;
-  for (const PlotSpec& p : config.plots)
-    fronts += write_pareto_plots(rows, p, parameter_columns(config), options.out_dir) + "\n";
-  write_text_atomic(options.out_dir + "/pareto.md", fronts);
+  write_sweep_outputs(config, cells, store, options.out_dir);
 
   summary.elapsed_s = ms_since(start) / 1000.0;
   char buf[512];
@@ -516,6 +508,25 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       summary.truth_traces, summary.asset_builds, options.out_dir.c_str(), config.tables.size());
   log.line(buf);
   return summary;
+}
+
+void write_sweep_outputs(const SweepConfig& config, const std::vector<Cell>& cells,
+                         const ResultStore& store, const std::string& out_dir) {
+  // Outputs from the store, in the config's cell order: the rows of these cells only.
+  std::vector<Row> rows;
+  for (const Cell& c : cells)
+    if (auto r = store.row(c.key)) rows.push_back(*r);
+  std::vector<std::string> leading = {"technique",   "scene",       "elevation_deg",
+                                      "azimuth_deg", "texture_res", "viewport"};
+  for (const auto& p : parameter_columns(config)) leading.push_back(p);
+  write_text_atomic(out_dir + "/rows.csv", format_csv(rows, csv_columns(rows, leading)));
+  for (const TableSpec& t : config.tables)
+    write_text_atomic(out_dir + "/" + t.file, t.format == "latex" ? format_latex_table(rows, t)
+                                                                  : format_markdown_table(rows, t));
+  std::string fronts;
+  for (const PlotSpec& p : config.plots)
+    fronts += write_pareto_plots(rows, p, parameter_columns(config), out_dir) + "\n";
+  write_text_atomic(out_dir + "/pareto.md", fronts);
 }
 
 }  // namespace rl

@@ -6,13 +6,17 @@
 #include <ostream>
 #include <string>
 
+#include "sweep/cells.h"
 #include "sweep/config.h"
+#include "sweep/result_store.h"
+#include "sweep/shard.h"
 
 namespace rl {
 
 struct RunOptions {
   std::string out_dir = "out/default";
   bool progress = true;  // one progress line per cell on stderr
+  ShardSpec shard;       // only this slice of the cells (sweep/shard.h)
 };
 
 struct SweepSummary {
@@ -26,5 +30,9 @@ struct SweepSummary {
 };
 
 SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options);
+
+// rows.csv, the tables and the Pareto fronts of `cells` from the rows `store` has of them.
+void write_sweep_outputs(const SweepConfig& config, const std::vector<Cell>& cells,
+                         const ResultStore& store, const std::string& out_dir);
 
 }  // namespace rl

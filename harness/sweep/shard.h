@@ -1,0 +1,48 @@
+#pragma once
+// Sweeps split over machines: `relieflab run CONFIG --shard I/N` measures a deterministic slice
+// of the cells, and `relieflab merge OUT_DIR SHARD_DIRS...` merges the shards' stores and writes
+// the tables as one run would (a Slurm job array runs the shards: scripts/slurm/).
+//
+// Cells that share a truth trace (scene, texture resolution, viewport, view) stay in one shard,
+// so no truth is traced twice; the groups are dealt out by estimated cost, largest first, each
+// to the shard with the least so far (ties by index), so every shard gets the same groups on
+// every machine.
+#include <string>
+#include <vector>
+
+#include "sweep/cells.h"
+#include "sweep/config.h"
+
+namespace rl {
+
+struct ShardSpec {
+  int index = 0, count = 1;  // shard `index` of `count`, 0-based
+  bool active() const { return count > 1; }
+};
+
+// "I/N" with 0 <= I < N <= 10000; throws ConfigError otherwise.
+ShardSpec parse_shard(const std::string& text);
+
+// The estimated cost of a cell group sharing one truth: the truth's rays (primary, and the
+// hemisphere rays of ambient occlusion) and each cell's frames, in pixels.
+double truth_group_cost(const SweepConfig& config, const std::vector<const Cell*>& group);
+
+// The cells of one shard, in the config's order.
+std::vector<Cell> shard_cells(const SweepConfig& config, const std::vector<Cell>& cells,
+                              const ShardSpec& shard);
+
+// What a run writes next to its store (OUT/sweep.json): the config's text, folder and hash,
+// and the shard it ran; merge checks that every shard ran the same config.
+void write_sweep_record(const SweepConfig& config, const ShardSpec& shard,
+                        const std::string& out_dir);
+
+struct MergeSummary {
+  size_t shards = 0, rows_added = 0, cells = 0, missing = 0;
+};
+
+// Merges the stores of `shard_dirs` into out_dir's (rows already there are kept: merging twice
+// changes nothing) and writes rows.csv, the tables and the Pareto fronts for the whole sweep.
+// Throws ConfigError naming the folder when one has no run, or ran another config.
+MergeSummary merge_shards(const std::string& out_dir, const std::vector<std::string>& shard_dirs);
+
+}  // namespace rl

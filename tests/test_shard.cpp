@@ -1,0 +1,162 @@
+// Sweeps split into shards (sweep/shard.h): the shards partition the cells, keep every truth
+// trace's cells together and are dealt out by cost deterministically; merging their stores gives
+// the rows of a single-process run exactly (renders on llvmpipe are deterministic), merging twice
+// changes nothing, and a shard of another config is refused.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "core/error.h"
+#include "support/test_support.h"
+#include "sweep/compare.h"
+#include "sweep/runner.h"
+#include "sweep/shard.h"
+
+namespace rl {
+namespace {
+
+// The default sweep's procedural scenes (normal and relief, the shadowed bricks) at 64^2, one
+// frame, as config text (merge rebuilds the config from the text the shards recorded): truth
+// groups of different costs.
+std::string small_default_text(const std::string& elevations = "[90, 45, 20, 5]") {
+  return R"([sweep]
+name = "shard_test"
+elevations = )" +
+         elevations + R"(
+azimuths = [30]
+viewports = [64]
+frames = 1
+warmup = 0
+images = false
+
+[[scene]]
+name = "bricks"
+relief = { procedural = "bricks", resolution = 256 }
+depth = 0.08
+
+[[scene]]
+name = "pyramids"
+relief = { procedural = "pyramids", resolution = 256, options = { count = 8 } }
+depth = 0.08
+
+[[scene]]
+name = "bricks_shadowed"
+relief = { procedural = "bricks", resolution = 256 }
+depth = 0.08
+effects = ["self_shadow"]
+
+[[technique]]
+name = "normal"
+scenes = ["bricks", "pyramids"]
+
+[[technique]]
+name = "relief"
+linear_steps = [8, 16, 32, 64]
+binary_steps = [6]
+)";
+}
+
+SweepConfig small_default(const std::string& dir = "") {
+  return parse_sweep_config(small_default_text(), "shard_test.toml", dir.empty() ? "." : dir);
+}
+
+std::map<std::string, nlohmann::ordered_json> rows_of(const std::string& dir) {
+  ResultStore store(dir + "/results.sqlite");
+  std::map<std::string, nlohmann::ordered_json> rows;
+  for (const std::string& k : store.keys()) rows[k] = *store.row(k);
+  return rows;
+}
+
+TEST(Shard, ShardsPartitionTheCellsAndKeepTruthsTogether) {
+  const SweepConfig c = small_default();
+  const std::vector<Cell> cells = expand_cells(c);
+  for (int n : {1, 2, 3, 7}) {
+    SCOPED_TRACE(n);
+    std::map<std::string, int> shard_of_cell, shard_of_truth;
+    std::vector<double> load(size_t(n), 0);
+    for (int i = 0; i < n; ++i) {
+      const std::vector<Cell> mine = shard_cells(c, cells, {i, n});
+      EXPECT_EQ(mine.size(), shard_cells(c, cells, {i, n}).size());  // deterministic
+      std::map<std::string, std::vector<const Cell*>> groups;
+      for (const Cell& cell : mine) {
+        EXPECT_TRUE(shard_of_cell.emplace(cell.key, i).second);  // in one shard only
+        auto [it, fresh] = shard_of_truth.emplace(cell.truth_key, i);
+        EXPECT_EQ(it->second, i);  // a truth's cells in one shard
+        groups[cell.truth_key].push_back(&cell);
+      }
+      for (const auto& [k, g] : groups) load[size_t(i)] += truth_group_cost(c, g);
+    }
+    EXPECT_EQ(shard_of_cell.size(), cells.size());  // and every cell in one
+    // Greedy by cost: no shard exceeds another by more than the largest group.
+    std::map<std::string, std::vector<const Cell*>> all;
+    for (const Cell& cell : cells) all[cell.truth_key].push_back(&cell);
+    double largest = 0;
+    for (const auto& [k, g] : all) largest = std::max(largest, truth_group_cost(c, g));
+    EXPECT_LE(
+        *std::max_element(load.begin(), load.end()) - *std::min_element(load.begin(), load.end()),
+        largest + 1e-9);
+  }
+  EXPECT_THROW(parse_shard("3/3"), ConfigError);
+  EXPECT_THROW(parse_shard("1"), ConfigError);
+  EXPECT_THROW(parse_shard("a/2"), ConfigError);
+  EXPECT_THROW(parse_shard("1/2x"), ConfigError);
+  EXPECT_EQ(parse_shard("2/8").index, 2);
+}
+
+TEST(Shard, MergedShardsEqualASingleProcessRun) {
+  const std::string dir = test::scratch_dir("shards");
+  const SweepConfig c = small_default();
+  RunOptions single;
+  single.out_dir = dir + "/single";
+  single.progress = false;
+  run_sweep(c, single);
+  std::vector<std::string> shard_dirs;
+  for (int i = 0; i < 3; ++i) {
+    RunOptions o;
+    o.out_dir = dir + "/shard" + std::to_string(i);
+    o.progress = false;
+    o.shard = {i, 3};
+    run_sweep(c, o);
+    shard_dirs.push_back(o.out_dir);
+  }
+  const MergeSummary m = merge_shards(dir + "/merged", shard_dirs);
+  EXPECT_EQ(m.shards, 3u);
+  EXPECT_EQ(m.missing, 0u);
+  EXPECT_EQ(m.rows_added, m.cells);
+  // Every error column identical: compare with zero tolerance on every default metric.
+  auto exact = default_tolerances();
+  for (auto& [k, t] : exact) t.abs = t.rel = 0;
+  const Comparison cmp = compare_rows(rows_of(dir + "/single"), rows_of(dir + "/merged"), exact);
+  EXPECT_EQ(cmp.matched_by_key, m.cells);
+  EXPECT_TRUE(cmp.worse.empty() && cmp.better.empty()) << format_comparison(cmp);
+  EXPECT_TRUE(cmp.only_base.empty() && cmp.only_new.empty());
+  EXPECT_TRUE(std::filesystem::exists(dir + "/merged/rows.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/merged/table.md"));
+  // Idempotent.
+  EXPECT_EQ(merge_shards(dir + "/merged", shard_dirs).rows_added, 0u);
+  // A shard of another config is refused, naming it.
+  RunOptions o;
+  o.out_dir = dir + "/foreign";
+  o.progress = false;
+  run_sweep(parse_sweep_config(small_default_text("[90, 45]"), "other.toml", "."), o);
+  try {
+    merge_shards(dir + "/merged2", {shard_dirs[0], dir + "/foreign"});
+    ADD_FAILURE() << "merged a shard of another config";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(dir + "/foreign: ran another config"), std::string::npos)
+        << e.what();
+  }
+  std::string out;
+  EXPECT_EQ(test::run_cli("merge " + dir + "/merged3 " + shard_dirs[0] + " " + shard_dirs[1] + " " +
+                              shard_dirs[2],
+                          out),
+            0)
+      << out;
+  EXPECT_EQ(test::run_cli("merge " + dir + "/merged4 " + shard_dirs[0], out), 3) << out;
+  EXPECT_NE(out.find("run the missing shards"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace rl
