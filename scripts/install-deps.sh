@@ -17,6 +17,7 @@ packages=(
   libassimp-dev                       # meshes (OBJ, PLY) to bake into relief maps and as bases
   libeigen3-dev                       # least squares (per-vertex curvature, chapter 5 Listing 5.8)
   libgtest-dev libgmock-dev libbenchmark-dev
+  slurmctld slurmd slurm-client munge # the sharded-sweep test runs a throwaway one-node Slurm
 )
 
 missing=()
