@@ -121,6 +121,16 @@ TEST(Shard, MergedShardsEqualASingleProcessRun) {
     run_sweep(c, o);
     shard_dirs.push_back(o.out_dir);
   }
+  // Status: one shard's folder counts its own slice; two of three shards, the whole sweep.
+  const RunStatus one = run_status({shard_dirs[1]});
+  EXPECT_EQ(one.shard, "1/3");
+  EXPECT_EQ(one.done, one.cells);
+  EXPECT_EQ(one.truths_done, one.truths);
+  const RunStatus two = run_status({shard_dirs[0], shard_dirs[1]});
+  EXPECT_EQ(two.cells, expand_cells(c).size());
+  EXPECT_EQ(two.done, two.cells - shard_cells(c, expand_cells(c), {2, 3}).size());
+  EXPECT_LT(two.truths_done, two.truths);
+  EXPECT_NE(format_run_status(two).find("relief"), std::string::npos);
   const MergeSummary m = merge_shards(dir + "/merged", shard_dirs);
   EXPECT_EQ(m.shards, 3u);
   EXPECT_EQ(m.missing, 0u);

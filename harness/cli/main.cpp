@@ -3,6 +3,7 @@
 //                                        run a sweep (the built-in default without CONFIG),
 //                                        or one deterministic slice of it (sweep/shard.h)
 //   relieflab merge OUT SHARD_DIRS...    merge shards' results and write the tables
+//   relieflab status DIR...              how far a run (or a sweep's shards) has got
 //   relieflab list [--markdown]          techniques with citation, effects and parameters
 //   relieflab docs --update [--root DIR] rewrite the generated tables in README.md and
 //                                        techniques/*/README.md (technique/technique_docs.h)
@@ -143,6 +144,13 @@ int main(int argc, char** argv) {
   docs->add_flag("--update", docs_update, "Rewrite the files (required)")->required();
   docs->add_option("--root", docs_root, "Repository root (default: the current folder)");
 
+  std::vector<std::string> status_dirs;
+  CLI::App* status = app.add_subcommand(
+      "status",
+      "How far a run, or the shards of one sweep, has got: cells and truth traces "
+      "done, per technique");
+  status->add_option("dirs", status_dirs, "Output folder(s): one run or shard, or every shard")
+      ->required();
   std::string base_dir, new_dir, tolerance_file;
   CLI::App* compare = app.add_subcommand(
       "compare",
@@ -159,6 +167,10 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("list")) {
       markdown ? print_markdown() : print_list();
+      return 0;
+    }
+    if (app.got_subcommand("status")) {
+      std::fputs(rl::format_run_status(rl::run_status(status_dirs)).c_str(), stdout);
       return 0;
     }
     if (app.got_subcommand("merge")) {

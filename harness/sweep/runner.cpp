@@ -232,11 +232,15 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   std::map<std::string, std::pair<GBuffer, TruthStats>> truth_memo;
   size_t memo_scene = size_t(-1);
   const auto work_start = Clock::now();
+  // Wall time per technique (its cells' measurement, truths and assets not included), for the
+  // progress line's slowest technique.
+  std::map<std::string, std::pair<double, size_t>> technique_ms;
 
   for (size_t oi = 0; oi < order.size(); ++oi) {
     const Cell& cell = cells[order[oi]];
     if (done.count(cell.key)) continue;
     const SceneDesc& scene = config.scenes[cell.scene_index];
+    Clock::time_point cell_start;
 
     if (cell.asset_key != asset_key) {
       const auto t0 = Clock::now();
@@ -353,6 +357,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
                           {scene.name, "", "", cell.truth_key});
     }
 
+    cell_start = Clock::now();
     // Technique instance, prepared once per asset and parameter setting.
     const std::string instance_key = cell.technique + "|" + describe_params(cell);
     auto& slot = asset->prepared[instance_key];
@@ -479,19 +484,28 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     store.insert(cell.key, row);
     ++summary.new_rows;
     ++finished;
+    auto& [ms, n] = technique_ms[cell.technique];
+    ms += ms_since(cell_start);
+    ++n;
 
     if (options.progress) {
       const double elapsed = ms_since(work_start) / 1000.0;
       const double eta = elapsed / finished * (todo - finished);
-      char buf[512];
+      std::string slowest;
+      double slowest_ms = -1;
+      for (const auto& [t, s] : technique_ms)
+        if (s.first / s.second > slowest_ms) slowest = t, slowest_ms = s.first / s.second;
+      char buf[640];
       std::snprintf(buf, sizeof buf,
-                    "[%zu/%zu] %3.0f%% %s elapsed, ~%s left | %s %s | %s el=%g az=%g %dx%d | "
+                    "[%zu/%zu] %3.0f%% %s elapsed, ~%s left, %zu truths traced, slowest %s "
+                    "%.0f ms/cell | %s %s | %s el=%g az=%g %dx%d | "
                     "wrong=%.3g%% pos_err_rmse=%.4g fetches=%.1f frame=%.2fms",
                     summary.already_done + finished, cells.size(),
                     100.0 * (summary.already_done + finished) / cells.size(), hms(elapsed).c_str(),
-                    hms(eta).c_str(), cell.technique.c_str(), describe_params(cell).c_str(),
-                    scene.name.c_str(), cell.view.elevation_deg, cell.view.azimuth_deg, cell.width,
-                    cell.height, m.wrong_pct, m.pos_err.rmse, m.fetches.mean, timing.median_ms);
+                    hms(eta).c_str(), summary.truth_traces, slowest.c_str(), slowest_ms,
+                    cell.technique.c_str(), describe_params(cell).c_str(), scene.name.c_str(),
+                    cell.view.elevation_deg, cell.view.azimuth_deg, cell.width, cell.height,
+                    m.wrong_pct, m.pos_err.rmse, m.fetches.mean, timing.median_ms);
       std::fprintf(stderr, "%s\n", buf);
     }
   }

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -110,27 +111,90 @@ void write_sweep_record(const SweepConfig& config, const ShardSpec& shard,
   write_text_atomic(out_dir + "/sweep.json", j.dump(2) + "\n");
 }
 
-MergeSummary merge_shards(const std::string& out_dir, const std::vector<std::string>& shard_dirs) {
-  if (shard_dirs.empty()) throw ConfigError("merge: give the shards' output folders");
-  const nlohmann::json first = read_record(shard_dirs.front());
-  for (const std::string& d : shard_dirs) {
+namespace {
+
+// The config every folder ran (they must agree), rebuilt from the first one's record.
+SweepConfig recorded_config(const std::vector<std::string>& dirs) {
+  if (dirs.empty()) throw ConfigError("give the run's output folder(s)");
+  const nlohmann::json first = read_record(dirs.front());
+  for (const std::string& d : dirs) {
     const nlohmann::json r = read_record(d);
     if (r["config_hash"] != first["config_hash"])
       throw ConfigError(d + ": ran another config (" + r["source"].get<std::string>() +
                         ", config hash " + r["config_hash"].get<std::string>() + ") than " +
-                        shard_dirs.front() + " (" + first["source"].get<std::string>() + ", " +
+                        dirs.front() + " (" + first["source"].get<std::string>() + ", " +
                         first["config_hash"].get<std::string>() +
                         "); shards of one sweep must run the same config");
     if (!fs::exists(d + "/results.sqlite")) throw ConfigError(d + ": no results.sqlite");
   }
-  const SweepConfig config =
+  SweepConfig config =
       parse_sweep_config(first["text"].get<std::string>(), first["source"].get<std::string>(),
                          first["base_dir"].get<std::string>());
   if (config_hash(config) != first["config_hash"].get<std::string>())
-    throw ConfigError(shard_dirs.front() +
+    throw ConfigError(dirs.front() +
                       ": its config reads differently here (its files changed "
-                      "since the shards ran?); config hash " +
+                      "since it ran?); config hash " +
                       config_hash(config) + " against " + first["config_hash"].get<std::string>());
+  return config;
+}
+
+}  // namespace
+
+RunStatus run_status(const std::vector<std::string>& dirs) {
+  const SweepConfig config = recorded_config(dirs);
+  std::vector<Cell> cells = expand_cells(config);
+  RunStatus s;
+  s.name = config.name;
+  s.source = config.source;
+  if (dirs.size() == 1) {
+    const ShardSpec shard = parse_shard(read_record(dirs.front())["shard"].get<std::string>());
+    if (shard.active()) {
+      cells = shard_cells(config, cells, shard);
+      s.shard = std::to_string(shard.index) + "/" + std::to_string(shard.count);
+    }
+  }
+  std::set<std::string> have;
+  for (const std::string& d : dirs) {
+    ResultStore store(d + "/results.sqlite");
+    for (const std::string& k : store.keys()) have.insert(k);
+  }
+  std::map<std::string, std::pair<size_t, size_t>> truths, techniques;
+  std::vector<std::string> order;
+  for (const Cell& c : cells) {
+    const bool done = have.count(c.key) > 0;
+    s.done += done;
+    truths[c.truth_key].first += done;
+    ++truths[c.truth_key].second;
+    if (!techniques.count(c.technique)) order.push_back(c.technique);
+    techniques[c.technique].first += done;
+    ++techniques[c.technique].second;
+  }
+  s.cells = cells.size();
+  s.truths = truths.size();
+  for (const auto& [k, t] : truths) s.truths_done += t.first == t.second;
+  for (const std::string& t : order) s.techniques.push_back({t, techniques[t]});
+  return s;
+}
+
+std::string format_run_status(const RunStatus& s) {
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "sweep '%s' from %s%s: %zu of %zu cells done (%.1f%%), %zu of %zu truth traces "
+                "complete\n",
+                s.name.c_str(), s.source.c_str(),
+                s.shard.empty() ? "" : (", shard " + s.shard).c_str(), s.done, s.cells,
+                s.cells ? 100.0 * s.done / s.cells : 100.0, s.truths_done, s.truths);
+  std::string out = line;
+  for (const auto& [t, c] : s.techniques) {
+    std::snprintf(line, sizeof line, "  %-26s %zu / %zu\n", t.c_str(), c.first, c.second);
+    out += line;
+  }
+  return out;
+}
+
+MergeSummary merge_shards(const std::string& out_dir, const std::vector<std::string>& shard_dirs) {
+  if (shard_dirs.empty()) throw ConfigError("merge: give the shards' output folders");
+  const SweepConfig config = recorded_config(shard_dirs);
   fs::create_directories(out_dir);
   MergeSummary summary;
   summary.shards = shard_dirs.size();

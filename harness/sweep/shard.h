@@ -45,4 +45,16 @@ struct MergeSummary {
 // Throws ConfigError naming the folder when one has no run, or ran another config.
 MergeSummary merge_shards(const std::string& out_dir, const std::vector<std::string>& shard_dirs);
 
+// How far a run has got, from its store(s): one output folder (a whole run or one shard:
+// its own slice is the total), or several shards' folders of one sweep (the whole sweep is).
+// Cells done of all, truth traces whose cells are all done, and per technique. Throws
+// ConfigError like merge_shards.
+struct RunStatus {
+  std::string name, source, shard;  // shard: "i/n", or "" for a whole run or several folders
+  size_t cells = 0, done = 0, truths = 0, truths_done = 0;
+  std::vector<std::pair<std::string, std::pair<size_t, size_t>>> techniques;  // done, all
+};
+RunStatus run_status(const std::vector<std::string>& dirs);
+std::string format_run_status(const RunStatus& s);
+
 }  // namespace rl

@@ -108,7 +108,6 @@ class OmniDirectionalDisplacement final : public Described<OmniDirectionalDispla
   std::vector<std::pair<std::string, double>> frame_columns() const override {
     return {{"odd_missed_rays", double(odd_.missed_rays)}};
   }
-  const OddMap& map() const { return odd_; }
 
  private:
   void build(const ReliefMap& map, glm::dvec2 depth_aspect) {
@@ -119,6 +118,8 @@ class OmniDirectionalDisplacement final : public Described<OmniDirectionalDispla
     glTextureStorage2D(texture_, 1, GL_RGBA8, odd_.width, odd_.height);
     glTextureSubImage2D(texture_, 0, 0, 0, odd_.width, odd_.height, GL_RGBA, GL_FLOAT,
                         odd_.texels.data());
+    // The GPU has it now; the float copy is 4x the texture (1 GiB at 256^2 x 32^2).
+    odd_.texels = {};
     // Bilinear within the inner pair; lookups clamp to its texel centres, so no tile bleeds.
     glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);

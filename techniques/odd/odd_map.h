@@ -52,7 +52,7 @@ struct OddMap {
   static glm::dvec2 angles(const glm::dvec3& v);
   // Texel index of super pixel (x, y) and direction (ka, kb) in the layout.
   size_t index(int x, int y, int ka, int kb) const;
-  size_t bytes() const { return texels.size() * 4; }  // RGBA8
+  size_t bytes() const { return size_t(width) * height * 4; }  // as uploaded: RGBA8
 };
 
 // Casts the X Y A B rays into `map` (bilinear, tiled, solid floor) with Embree.
