@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "core/error.h"
 #include "support/test_support.h"
@@ -17,45 +19,17 @@
 namespace rl {
 namespace {
 
-// The default sweep's procedural scenes (normal and relief, the shadowed bricks) at 64^2, one
-// frame, as config text (merge rebuilds the config from the text the shards recorded): truth
-// groups of different costs.
+// tests/shard_sweep.toml (also the Slurm test's): the default sweep's procedural scenes at 64^2,
+// as config text (merge rebuilds the config from the text the shards recorded); truth groups of
+// different costs.
 std::string small_default_text(const std::string& elevations = "[90, 45, 20, 5]") {
-  return R"([sweep]
-name = "shard_test"
-elevations = )" +
-         elevations + R"(
-azimuths = [30]
-viewports = [64]
-frames = 1
-warmup = 0
-images = false
-
-[[scene]]
-name = "bricks"
-relief = { procedural = "bricks", resolution = 256 }
-depth = 0.08
-
-[[scene]]
-name = "pyramids"
-relief = { procedural = "pyramids", resolution = 256, options = { count = 8 } }
-depth = 0.08
-
-[[scene]]
-name = "bricks_shadowed"
-relief = { procedural = "bricks", resolution = 256 }
-depth = 0.08
-effects = ["self_shadow"]
-
-[[technique]]
-name = "normal"
-scenes = ["bricks", "pyramids"]
-
-[[technique]]
-name = "relief"
-linear_steps = [8, 16, 32, 64]
-binary_steps = [6]
-)";
+  std::ifstream in(std::string(RELIEFLAB_TEST_DIR) + "/shard_sweep.toml");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string text = ss.str();
+  const std::string views = "elevations = [90, 45, 20, 5]";
+  text.replace(text.find(views), views.size(), "elevations = " + elevations);
+  return text;
 }
 
 SweepConfig small_default(const std::string& dir = "") {

@@ -78,42 +78,8 @@ for ((i = 0; i < 60; ++i)); do
 done
 timeout 5 sinfo -h -o %t | grep -q idle || { echo "FAIL: the node never came up"; exit 1; }
 
-# A small sweep: the default sweep's procedural scenes, normal and relief, 4 views, 64^2.
-cat > "$dir/sweep.toml" << 'TOML'
-[sweep]
-name = "slurm_test"
-elevations = [90, 45, 20, 5]
-azimuths = [30]
-viewports = [64]
-frames = 1
-warmup = 0
-images = false
-
-[[scene]]
-name = "bricks"
-relief = { procedural = "bricks", resolution = 256 }
-depth = 0.08
-
-[[scene]]
-name = "pyramids"
-relief = { procedural = "pyramids", resolution = 256, options = { count = 8 } }
-depth = 0.08
-
-[[scene]]
-name = "bricks_shadowed"
-relief = { procedural = "bricks", resolution = 256 }
-depth = 0.08
-effects = ["self_shadow"]
-
-[[technique]]
-name = "normal"
-scenes = ["bricks", "pyramids"]
-
-[[technique]]
-name = "relief"
-linear_steps = [8, 16, 32, 64]
-binary_steps = [6]
-TOML
+# The sharding tests' small sweep: procedural scenes, normal and relief, 4 views, 64^2.
+cp "$root/tests/shard_sweep.toml" "$dir/sweep.toml"
 
 start=$(date +%s%N)
 timeout 400 "$root/scripts/slurm/submit.sh" --wait "$dir/sweep.toml" "$dir/cluster" 3 "$relieflab" \
