@@ -18,6 +18,8 @@ packages=(
   libeigen3-dev                       # least squares (per-vertex curvature, chapter 5 Listing 5.8)
   libgtest-dev libgmock-dev libbenchmark-dev
   slurmctld slurmd slurm-client munge # the sharded-sweep test runs a throwaway one-node Slurm
+  libjs-d3                            # the HTML report's plots (copied into each report)
+  chromium                            # the report's browser test (headless)
 )
 
 missing=()

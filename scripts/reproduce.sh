@@ -26,6 +26,8 @@ rm -rf "$dest/plots"
 cp "$run"/*.md "$run"/rows.csv "$dest/"
 # LaTeX tables (format = "latex"), where the config asks for them.
 for tex in "$run"/*.tex; do [ -e "$tex" ] && cp "$tex" "$dest/"; done
+# The HTML report (its pictures are those of images/, so complete with --images).
+cp "$run"/report.html "$dest/" && rm -rf "$dest/report_assets" && cp -r "$run"/report_assets "$dest/"
 cp -r "$run"/plots "$dest/"
 cp "$run"/run.log "$dest/run.log"
 if $images; then rm -rf "$dest/images" && cp -r "$run"/images "$dest/"; fi

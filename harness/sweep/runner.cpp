@@ -1,5 +1,7 @@
 #include "sweep/runner.h"
 
+#include "sweep/report.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -541,6 +543,7 @@ void write_sweep_outputs(const SweepConfig& config, const std::vector<Cell>& cel
   for (const PlotSpec& p : config.plots)
     fronts += write_pareto_plots(rows, p, parameter_columns(config), out_dir) + "\n";
   write_text_atomic(out_dir + "/pareto.md", fronts);
+  write_report(config, rows, parameter_columns(config), out_dir);
 }
 
 }  // namespace rl

@@ -1,0 +1,285 @@
+#include "sweep/report.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_write.h"
+#include "sweep/pareto.h"
+#include "sweep/tables.h"
+
+namespace rl {
+namespace fs = std::filesystem;
+
+std::string d3_script_path() {
+  const char* env = std::getenv("RELIEFLAB_D3");
+  return env && *env ? env : "/usr/share/javascript/d3/d3.min.js";
+}
+
+namespace {
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string cell_title(const Row& r, const std::vector<std::string>& parameter_columns) {
+  std::string t = r.value("technique", std::string("?"));
+  for (const auto& c : parameter_columns)
+    if (r.contains(c) && !r[c].is_null()) t += " " + c + "=" + format_value(r[c]);
+  t += " | " + r.value("scene", std::string("?")) + " el " +
+       format_value(r.value("elevation_deg", nlohmann::ordered_json())) + " az " +
+       format_value(r.value("azimuth_deg", nlohmann::ordered_json())) + " " +
+       r.value("viewport", std::string());
+  return t;
+}
+
+// The report's data: tables, plots (points with their front), cells, config and log.
+nlohmann::json report_data(const SweepConfig& config, const std::vector<Row>& rows,
+                           const std::vector<std::string>& parameter_columns,
+                           const std::string& out_dir) {
+  nlohmann::json data;
+  data["name"] = config.name;
+  data["source"] = config.source;
+  data["heat_map_scale"] = config.heat_map_scale;
+  data["config"] = config.text;
+  data["log"] = read_text(out_dir + "/run.log");
+  for (const TableSpec& t : config.tables) {
+    nlohmann::json table;
+    table["title"] = t.title.empty() ? t.file : t.title;
+    std::vector<std::string> fields = t.rows;
+    fields.insert(fields.end(), t.columns.begin(), t.columns.end());
+    fields.insert(fields.end(), t.values.begin(), t.values.end());
+    table["fields"] = fields;
+    table["rows"] = nlohmann::json::array();
+    for (const Row& r : rows) {
+      nlohmann::json line = nlohmann::json::array();
+      for (const auto& f : fields) {
+        auto it = r.find(f);
+        if (it == r.end() || it->is_null())
+          line.push_back(nullptr);
+        else if (it->is_number())
+          line.push_back(it->get<double>());
+        else
+          line.push_back(format_value(*it));
+      }
+      table["rows"].push_back({{"key", r.value("key", std::string())}, {"values", line}});
+    }
+    data["tables"].push_back(table);
+  }
+  for (const PlotSpec& p : config.plots) {
+    std::map<std::vector<std::string>, std::vector<const Row*>> groups;
+    std::vector<std::vector<std::string>> order;
+    for (const Row& r : rows) {
+      auto x = r.find(p.x), y = r.find(p.y);
+      if (x == r.end() || y == r.end() || !x->is_number() || !y->is_number()) continue;
+      std::vector<std::string> g;
+      for (const auto& f : p.group) g.push_back(r.contains(f) ? format_value(r[f]) : "–");
+      if (!groups.count(g)) order.push_back(g);
+      groups[g].push_back(&r);
+    }
+    for (const auto& g : order) {
+      std::vector<ParetoPoint> pts;
+      for (const Row* r : groups[g]) {
+        ParetoPoint pt;
+        pt.x = (*r)[p.x].get<double>();
+        pt.y = (*r)[p.y].get<double>();
+        pt.series = r->value("technique", std::string("?"));
+        pts.push_back(pt);
+      }
+      std::vector<bool> front(pts.size(), false);
+      for (size_t i : pareto_front(pts)) front[i] = true;
+      nlohmann::json plot;
+      std::string title;
+      for (size_t i = 0; i < g.size(); ++i) title += (i ? ", " : "") + p.group[i] + "=" + g[i];
+      plot["title"] = title;
+      plot["x"] = p.x;
+      plot["y"] = p.y;
+      plot["log_y"] = p.log_y;
+      plot["points"] = nlohmann::json::array();
+      for (size_t i = 0; i < pts.size(); ++i)
+        plot["points"].push_back({{"x", pts[i].x},
+                                  {"y", pts[i].y},
+                                  {"series", pts[i].series},
+                                  {"label", cell_title(*groups[g][i], parameter_columns)},
+                                  {"key", groups[g][i]->value("key", std::string())},
+                                  {"front", bool(front[i])}});
+      data["plots"].push_back(plot);
+    }
+  }
+  const char* numbers[] = {
+      "wrong_pct",           "missed_pct", "false_pct",    "pos_err_rmse", "pos_err_texels_mean",
+      "normal_err_mean_deg", "psnr_db",    "fetches_mean", "frame_ms",     "memory_bytes"};
+  data["cells"] = nlohmann::json::array();
+  for (const Row& r : rows) {
+    nlohmann::json cell = {{"key", r.value("key", std::string())},
+                           {"title", cell_title(r, parameter_columns)}};
+    for (const char* img : {"image_render", "image_truth", "image_error"})
+      if (r.contains(img) && r[img].is_string()) cell["images"][img] = r[img];
+    for (const char* n : numbers)
+      if (r.contains(n) && r[n].is_number()) cell["numbers"][n] = r[n].get<double>();
+    data["cells"].push_back(cell);
+  }
+  return data;
+}
+
+const char* kPage = R"HTML(<!doctype html>
+<html lang="en"><head><meta charset="utf-8"><title>ReliefLab report</title>
+<style>
+body{font:14px/1.4 sans-serif;margin:1.5em;color:#222}h1{font-size:1.5em}h2{margin-top:1.6em}
+table.rl-table{border-collapse:collapse;font-size:12px}table.rl-table td,table.rl-table th{border:1px solid #ccc;padding:2px 6px;text-align:right}
+table.rl-table th{cursor:pointer;background:#f3f3f3}table.rl-table td:first-child{text-align:left}
+.rl-plots{display:flex;flex-wrap:wrap;gap:1em}.rl-plot{border:1px solid #ddd;padding:4px}
+.rl-plot .domain{fill:none;stroke:#444}.rl-plot .tick line{stroke:#444}.rl-plot text{font-size:11px}
+.rl-point{cursor:pointer;stroke:#fff;stroke-width:0.5}.rl-front{fill:none;stroke:#222;stroke-dasharray:4 3}
+.rl-cell{border-top:1px solid #ddd;padding-top:.5em}.rl-cell img{width:256px;image-rendering:pixelated;margin-right:6px;border:1px solid #ccc}
+.rl-legend{height:12px;width:256px;background:linear-gradient(to right,#30123b,#4686fb,#1be5b5,#a4fc3c,#fbb938,#e4460a,#7a0403)}
+pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px}
+</style>
+<script src="report_assets/d3.min.js"></script></head>
+<body><h1 id="rl-title"></h1><p id="rl-source"></p>
+<h2>Tables</h2><div id="rl-tables"></div>
+<h2>Error against cost</h2><p>Each point is a cell (hover: its setting; click: its pictures); the dashed line is the Pareto front.</p><div id="rl-plots" class="rl-plots"></div>
+<h2>Cells</h2><p>Render, truth and error heat map of each cell. Heat map: position error from 0 to <span id="rl-scale"></span> texels, <span style="color:#e0e">magenta</span> missed, <span style="color:#0cc">cyan</span> false hit.</p><div class="rl-legend"></div><div id="rl-cells"></div>
+<h2>Config</h2><pre id="rl-config"></pre><h2>run.log</h2><pre id="rl-log"></pre>
+<script type="application/json" id="rl-data">@DATA@</script>
+<script>
+(function () {
+  var data = JSON.parse(document.getElementById('rl-data').textContent);
+  var el = function (tag, attrs, text) {
+    var e = document.createElement(tag);
+    for (var k in attrs || {}) e.setAttribute(k, attrs[k]);
+    if (text !== undefined) e.textContent = text;
+    return e;
+  };
+  var fmt = function (v) { return v === null ? '–' : (typeof v === 'number' ? +v.toPrecision(4) + '' : v); };
+  document.getElementById('rl-title').textContent = 'ReliefLab: ' + data.name;
+  document.getElementById('rl-source').textContent = 'Config: ' + data.source;
+  document.getElementById('rl-scale').textContent = data.heat_map_scale;
+  document.getElementById('rl-config').textContent = data.config;
+  document.getElementById('rl-log').textContent = data.log;
+  (data.tables || []).forEach(function (t) {
+    var box = document.getElementById('rl-tables');
+    box.appendChild(el('h3', {}, t.title));
+    var filter = el('input', {'class': 'rl-filter', placeholder: 'filter rows'});
+    box.appendChild(filter);
+    var table = el('table', {'class': 'rl-table', 'data-rows': t.rows.length});
+    var head = el('tr');
+    var body = el('tbody');
+    t.fields.forEach(function (f, i) {
+      var th = el('th', {}, f);
+      th.onclick = function () {
+        var rows = Array.prototype.slice.call(body.rows);
+        var up = th.getAttribute('data-order') !== 'up';
+        th.setAttribute('data-order', up ? 'up' : 'down');
+        rows.sort(function (a, b) {
+          var x = a.cells[i].getAttribute('data-v'), y = b.cells[i].getAttribute('data-v');
+          var nx = parseFloat(x), ny = parseFloat(y);
+          var c = (!isNaN(nx) && !isNaN(ny)) ? nx - ny : (x < y ? -1 : x > y ? 1 : 0);
+          return up ? c : -c;
+        });
+        rows.forEach(function (r) { body.appendChild(r); });
+      };
+      head.appendChild(th);
+    });
+    var thead = el('thead');
+    thead.appendChild(head);
+    table.appendChild(thead);
+    t.rows.forEach(function (r) {
+      var tr = el('tr');
+      r.values.forEach(function (v, i) {
+        var td = el('td', {'data-v': v === null ? '' : v});
+        if (i === 0 && r.key) {
+          var a = el('a', {href: '#cell-' + r.key}, fmt(v));
+          td.appendChild(a);
+        } else {
+          td.textContent = fmt(v);
+        }
+        tr.appendChild(td);
+      });
+      body.appendChild(tr);
+    });
+    table.appendChild(body);
+    filter.oninput = function () {
+      var q = filter.value.toLowerCase();
+      Array.prototype.forEach.call(body.rows, function (r) {
+        r.style.display = r.textContent.toLowerCase().indexOf(q) >= 0 ? '' : 'none';
+      });
+    };
+    box.appendChild(table);
+  });
+  if (typeof d3 === 'undefined') {
+    document.getElementById('rl-plots').textContent = 'd3 was not found when the report was written (install libjs-d3): no plots.';
+  } else {
+    var colour = d3.scale.category10();
+    (data.plots || []).forEach(function (p) {
+      var w = 380, h = 250, m = {l: 56, r: 12, t: 34, b: 40};
+      // A flat extent (every setting at one cost) still gets an axis.
+      var padded = function (e) { return e[0] === e[1] ? [e[0] - 1, e[1] + 1] : e; };
+      var div = el('div', {'class': 'rl-plot', 'data-points': p.points.length});
+      document.getElementById('rl-plots').appendChild(div);
+      var svg = d3.select(div).append('svg').attr('width', w).attr('height', h);
+      svg.append('text').attr('x', 4).attr('y', 12).style('font-weight', 'bold').text(p.title);
+      var xs = d3.scale.linear().domain(padded(d3.extent(p.points, function (d) { return d.x; }))).nice().range([m.l, w - m.r]);
+      var ylo = d3.min(p.points, function (d) { return d.y > 0 ? d.y : Infinity; });
+      var logy = p.log_y && isFinite(ylo);
+      var yf = function (d) { return logy ? Math.max(d.y, ylo) : d.y; };
+      var ye = d3.extent(p.points, yf);
+      if (ye[0] === ye[1]) ye = logy ? [ye[0] / 2, ye[1] * 2] : [ye[0] - 1, ye[1] + 1];
+      var ys = (logy ? d3.scale.log() : d3.scale.linear()).domain(ye).nice().range([h - m.b, m.t]);
+      svg.append('g').attr('transform', 'translate(0,' + (h - m.b) + ')').call(d3.svg.axis().scale(xs).ticks(5));
+      svg.append('g').attr('transform', 'translate(' + m.l + ',0)').call(d3.svg.axis().scale(ys).orient('left').ticks(5, logy ? '.2g' : null));
+      svg.append('text').attr('x', w - m.r).attr('y', h - 6).attr('text-anchor', 'end').text(p.x);
+      svg.append('text').attr('x', 4).attr('y', m.t - 8).text(p.y);
+      var front = p.points.filter(function (d) { return d.front; }).sort(function (a, b) { return a.x - b.x; });
+      svg.append('path').attr('class', 'rl-front').attr('d', d3.svg.line().x(function (d) { return xs(d.x); }).y(function (d) { return ys(yf(d)); })(front));
+      svg.selectAll('circle').data(p.points).enter().append('circle')
+        .attr('class', 'rl-point').attr('r', 4)
+        .attr('cx', function (d) { return xs(d.x); }).attr('cy', function (d) { return ys(yf(d)); })
+        .attr('fill', function (d) { return colour(d.series); })
+        .on('click', function (d) { location.hash = '#cell-' + d.key; })
+        .append('title').text(function (d) { return d.label + '\n' + p.x + ' ' + fmt(d.x) + ', ' + p.y + ' ' + fmt(d.y) + (d.front ? ' (on the front)' : ''); });
+    });
+  }
+  data.cells.forEach(function (c) {
+    var s = el('section', {'class': 'rl-cell', id: 'cell-' + c.key});
+    s.appendChild(el('h3', {}, c.title));
+    ['image_render', 'image_truth', 'image_error'].forEach(function (k) {
+      if (c.images && c.images[k]) s.appendChild(el('img', {src: c.images[k], alt: k.replace('image_', ''), title: k.replace('image_', '')}));
+    });
+    var nums = [];
+    for (var k in c.numbers || {}) nums.push(k + ' ' + fmt(c.numbers[k]));
+    s.appendChild(el('p', {}, nums.join(' · ')));
+    document.getElementById('rl-cells').appendChild(s);
+  });
+  document.body.setAttribute('data-ready', '1');
+})();
+</script></body></html>
+)HTML";
+
+}  // namespace
+
+bool write_report(const SweepConfig& config, const std::vector<Row>& rows,
+                  const std::vector<std::string>& parameter_columns, const std::string& out_dir) {
+  std::string json = report_data(config, rows, parameter_columns, out_dir).dump();
+  // The data sits in a <script> element: a "</" inside (a config's text) must not end it.
+  for (size_t at = 0; (at = json.find("</", at)) != std::string::npos; at += 3)
+    json.replace(at, 2, "<\\/");
+  std::string page = kPage;
+  page.replace(page.find("@DATA@"), 6, json);
+  bool have_d3 = fs::exists(d3_script_path());
+  if (have_d3) {
+    fs::create_directories(out_dir + "/report_assets");
+    write_text_atomic(out_dir + "/report_assets/d3.min.js", read_text(d3_script_path()));
+  }
+  write_text_atomic(out_dir + "/report.html", page);
+  return have_d3;
+}
+
+}  // namespace rl

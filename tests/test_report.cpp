@@ -1,0 +1,127 @@
+// The HTML report in a real browser: headless Chromium (Debian's chromium) loads a generated
+// report from disk -- no server, no network -- and the rendered DOM must hold every table of
+// the config, one plot per (plot, group) whose drawn points equal the rows it shows, and each
+// cell's render, truth and error pictures (files that exist). A screenshot is saved.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <regex>
+#include <set>
+
+#include "support/test_support.h"
+#include "sweep/report.h"
+
+namespace rl {
+namespace {
+
+size_t count_of(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+std::string run_command(const std::string& cmd, int& status) {
+  std::string out;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) {
+    status = -1;
+    return out;
+  }
+  char buf[4096];
+  while (fgets(buf, sizeof buf, pipe)) out += buf;
+  status = pclose(pipe);
+  return out;
+}
+
+TEST(Report, ChromiumRendersEveryTablePlotAndPicture) {
+  ASSERT_TRUE(std::filesystem::exists(d3_script_path()))
+      << d3_script_path() << " missing: run scripts/install-deps.sh (libjs-d3)";
+  int status = 0;
+  run_command("command -v chromium > /dev/null", status);
+  ASSERT_EQ(status, 0) << "chromium missing: run scripts/install-deps.sh";
+
+  const std::string dir = test::scratch_dir("report");
+  const SweepConfig config = test::run_sweep_in(R"(
+[sweep]
+name = "report_test"
+elevations = [45, 20]
+azimuths = [30]
+viewports = [48]
+frames = 1
+warmup = 0
+
+[[scene]]
+name = "bricks"
+relief = { procedural = "bricks", resolution = 64 }
+[[scene]]
+name = "pyramids"
+relief = { procedural = "pyramids", resolution = 64 }
+
+[[technique]]
+name = "normal"
+[[technique]]
+name = "relief"
+linear_steps = [8, 32]
+
+[[table]]
+file = "a.md"
+rows = ["scene", "elevation_deg", "technique", "linear_steps"]
+values = ["wrong_pct", "fetches_mean"]
+[[table]]
+file = "b.tex"
+format = "latex"
+rows = ["scene", "technique"]
+values = ["psnr_db"]
+)",
+                                                dir);
+  const std::string out = dir + "/out";
+  const std::string html = out + "/report.html";
+  ASSERT_TRUE(std::filesystem::exists(html));
+  ASSERT_TRUE(std::filesystem::exists(out + "/report_assets/d3.min.js"));
+  const std::string dom = run_command(
+      "timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage --allow-file-access-from-files "
+      "--virtual-time-budget=10000 --dump-dom 'file://" +
+          html + "' 2> /dev/null",
+      status);
+  ASSERT_EQ(status, 0);
+  ASSERT_NE(dom.find("data-ready=\"1\""), std::string::npos)
+      << "the report's script did not finish";
+  // 2 scenes x 2 views x 3 settings = 12 cells.
+  const size_t cells = 12;
+  EXPECT_EQ(count_of(dom, "class=\"rl-table\""), config.tables.size());
+  EXPECT_EQ(count_of(dom, "data-rows=\"12\""), config.tables.size());
+  // The default plot: wrong_pct against fetches_mean per scene and view: 4 plots of 3 points.
+  EXPECT_EQ(count_of(dom, "class=\"rl-plot\""), 4u);
+  EXPECT_EQ(count_of(dom, "data-points=\"3\""), 4u);
+  EXPECT_EQ(count_of(dom, "class=\"rl-point\""), cells);
+  EXPECT_EQ(count_of(dom, "class=\"rl-front\""), 4u);
+  EXPECT_EQ(count_of(dom, "class=\"rl-cell\""), cells);
+  // Every picture of every cell, side by side, pointing at files that exist.
+  std::regex img("<img src=\"([^\"]+)\" alt=\"(render|truth|error)\"");
+  size_t images = 0;
+  std::set<std::string> kinds;
+  for (auto it = std::sregex_iterator(dom.begin(), dom.end(), img); it != std::sregex_iterator();
+       ++it) {
+    ++images;
+    kinds.insert((*it)[2]);
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + (*it)[1].str())) << (*it)[1];
+  }
+  EXPECT_EQ(images, 3 * cells);
+  EXPECT_EQ(kinds.size(), 3u);
+  EXPECT_NE(dom.find("id=\"rl-config\""), std::string::npos);
+  EXPECT_NE(dom.find("name = \"report_test\""), std::string::npos);  // the config text
+  // A screenshot of the rendered page.
+  const std::string shot = dir + "/report.png";
+  run_command(
+      "timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage "
+      "--allow-file-access-from-files --virtual-time-budget=10000 --window-size=1200,1600 "
+      "--screenshot='" +
+          shot + "' 'file://" + html + "' > /dev/null 2>&1",
+      status);
+  ASSERT_TRUE(std::filesystem::exists(shot));
+  EXPECT_GT(std::filesystem::file_size(shot), 20000u);
+}
+
+}  // namespace
+}  // namespace rl
