@@ -80,7 +80,8 @@ values = ["psnr_db"]
   ASSERT_TRUE(std::filesystem::exists(html));
   ASSERT_TRUE(std::filesystem::exists(out + "/report_assets/d3.min.js"));
   const std::string dom = run_command(
-      "timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage --allow-file-access-from-files "
+      "timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage "
+      "--allow-file-access-from-files "
       "--virtual-time-budget=10000 --dump-dom 'file://" +
           html + "' 2> /dev/null",
       status);
@@ -121,6 +122,12 @@ values = ["psnr_db"]
       status);
   ASSERT_TRUE(std::filesystem::exists(shot));
   EXPECT_GT(std::filesystem::file_size(shot), 20000u);
+  // relieflab report rebuilds it from the folder alone.
+  std::filesystem::remove(html);
+  std::string cli;
+  EXPECT_EQ(test::run_cli("report " + out, cli), 0) << cli;
+  EXPECT_NE(cli.find("from 12 stored rows"), std::string::npos) << cli;
+  EXPECT_TRUE(std::filesystem::exists(html));
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 //                                        or one deterministic slice of it (sweep/shard.h)
 //   relieflab merge OUT SHARD_DIRS...    merge shards' results and write the tables
 //   relieflab status DIR...              how far a run (or a sweep's shards) has got
+//   relieflab report DIR                 rewrite a run's tables and report from its store
 //   relieflab list [--markdown]          techniques with citation, effects and parameters
 //   relieflab docs --update [--root DIR] rewrite the generated tables in README.md and
 //                                        techniques/*/README.md (technique/technique_docs.h)
@@ -151,6 +152,12 @@ int main(int argc, char** argv) {
       "done, per technique");
   status->add_option("dirs", status_dirs, "Output folder(s): one run or shard, or every shard")
       ->required();
+  std::string report_dir;
+  CLI::App* report = app.add_subcommand(
+      "report",
+      "Rewrite a run folder's rows.csv, tables, Pareto fronts and HTML report from "
+      "its store (a run writes them itself)");
+  report->add_option("dir", report_dir, "The run's output folder")->required();
   std::string base_dir, new_dir, tolerance_file;
   CLI::App* compare = app.add_subcommand(
       "compare",
@@ -167,6 +174,12 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("list")) {
       markdown ? print_markdown() : print_list();
+      return 0;
+    }
+    if (app.got_subcommand("report")) {
+      const size_t n = rl::rewrite_outputs(report_dir);
+      std::printf("relieflab: wrote %s/report.html and the tables from %zu stored rows\n",
+                  report_dir.c_str(), n);
       return 0;
     }
     if (app.got_subcommand("status")) {

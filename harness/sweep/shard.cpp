@@ -176,6 +176,19 @@ RunStatus run_status(const std::vector<std::string>& dirs) {
   return s;
 }
 
+size_t rewrite_outputs(const std::string& dir) {
+  const SweepConfig config = recorded_config({dir});
+  std::vector<Cell> cells = expand_cells(config);
+  const ShardSpec shard = parse_shard(read_record(dir)["shard"].get<std::string>());
+  cells = shard_cells(config, cells, shard);
+  ResultStore store(dir + "/results.sqlite");
+  write_sweep_outputs(config, cells, store, dir);
+  const std::set<std::string> have = store.keys();
+  size_t n = 0;
+  for (const Cell& c : cells) n += have.count(c.key);
+  return n;
+}
+
 std::string format_run_status(const RunStatus& s) {
   char line[512];
   std::snprintf(line, sizeof line,

@@ -55,6 +55,9 @@ struct RunStatus {
   std::vector<std::pair<std::string, std::pair<size_t, size_t>>> techniques;  // done, all
 };
 RunStatus run_status(const std::vector<std::string>& dirs);
+// Rewrites a run folder's rows.csv, tables, Pareto fronts and report from its store and its
+// recorded config (`relieflab report DIR`); returns how many of its cells have rows.
+size_t rewrite_outputs(const std::string& dir);
 std::string format_run_status(const RunStatus& s);
 
 }  // namespace rl
