@@ -36,13 +36,6 @@ SweepConfig small_default(const std::string& dir = "") {
   return parse_sweep_config(small_default_text(), "shard_test.toml", dir.empty() ? "." : dir);
 }
 
-std::map<std::string, nlohmann::ordered_json> rows_of(const std::string& dir) {
-  ResultStore store(dir + "/results.sqlite");
-  std::map<std::string, nlohmann::ordered_json> rows;
-  for (const std::string& k : store.keys()) rows[k] = *store.row(k);
-  return rows;
-}
-
 TEST(Shard, ShardsPartitionTheCellsAndKeepTruthsTogether) {
   const SweepConfig c = small_default();
   const std::vector<Cell> cells = expand_cells(c);
@@ -112,7 +105,8 @@ TEST(Shard, MergedShardsEqualASingleProcessRun) {
   // Every error column identical: compare with zero tolerance on every default metric.
   auto exact = default_tolerances();
   for (auto& [k, t] : exact) t.abs = t.rel = 0;
-  const Comparison cmp = compare_rows(rows_of(dir + "/single"), rows_of(dir + "/merged"), exact);
+  const Comparison cmp =
+      compare_rows(read_run_rows(dir + "/single"), read_run_rows(dir + "/merged"), exact);
   EXPECT_EQ(cmp.matched_by_key, m.cells);
   EXPECT_TRUE(cmp.worse.empty() && cmp.better.empty()) << format_comparison(cmp);
   EXPECT_TRUE(cmp.only_base.empty() && cmp.only_new.empty());

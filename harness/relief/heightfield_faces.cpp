@@ -44,30 +44,11 @@ glm::dvec3 HeightfieldFaces::face_texture(int k, const glm::dvec3& cube) const {
   return projection.texture_from_affine(a);
 }
 
-namespace {
-
-// Bilinear like GL_LINEAR with GL_CLAMP_TO_EDGE: the coordinate clamped to the edge texels'
-// centres (ReliefMap's own samplers repeat).
-glm::dvec4 sample_clamped(const ReliefMap& m, const std::vector<glm::vec4>& texels, double u,
-                          double v) {
-  const double x = std::clamp(u * m.width - 0.5, 0.0, double(m.width - 1));
-  const double y = std::clamp(v * m.height - 0.5, 0.0, double(m.height - 1));
-  const int x0 = std::min(int(x), m.width - 2 < 0 ? 0 : m.width - 2);
-  const int y0 = std::min(int(y), m.height - 2 < 0 ? 0 : m.height - 2);
-  const int x1 = std::min(x0 + 1, m.width - 1), y1 = std::min(y0 + 1, m.height - 1);
-  const double fx = x - x0, fy = y - y0;
-  auto at = [&](int xx, int yy) { return glm::dvec4(texels[size_t(yy) * m.width + xx]); };
-  return (at(x0, y0) * (1 - fx) + at(x1, y0) * fx) * (1 - fy) +
-         (at(x0, y1) * (1 - fx) + at(x1, y1) * fx) * fy;
-}
-
-}  // namespace
-
 double HeightfieldFaces::behind(int k, const glm::dvec3& cube) const {
   const glm::dvec3 t = face_texture(k, cube);
   if (t.x < 0 || t.x > 1 || t.y < 0 || t.y > 1) return std::numeric_limits<double>::infinity();
   const ReliefMap& m = maps[size_t(k)];
-  const double d = sample_clamped(m, m.relief, t.x, t.y).a;
+  const double d = m.sample_relief_clamped(t.x, t.y).a;
   if (d >= kEmptyFaceDepth) return -std::numeric_limits<double>::infinity();
   return t.z - d;
 }
@@ -88,7 +69,7 @@ int HeightfieldFaces::surface_face(const glm::dvec3& cube) const {
     if (!(b[size_t(k)] <= nearest + 1.0 / resolution())) continue;
     const glm::dvec3 t = face_texture(k, cube);
     const ReliefMap& m = maps[size_t(k)];
-    const double facing = sample_clamped(m, m.relief, t.x, t.y).b * 2 - 1;
+    const double facing = m.sample_relief_clamped(t.x, t.y).b * 2 - 1;
     if (facing > best_facing) best_facing = facing, best = k;
   }
   return best;
@@ -97,7 +78,7 @@ int HeightfieldFaces::surface_face(const glm::dvec3& cube) const {
 glm::dvec3 HeightfieldFaces::cube_normal(int k, const glm::dvec3& cube) const {
   const glm::dvec3 t = face_texture(k, cube);
   const ReliefMap& m = maps[size_t(k)];
-  const glm::dvec3 s = glm::dvec3(sample_clamped(m, m.relief, t.x, t.y)) * 2.0 - 1.0;
+  const glm::dvec3 s = glm::dvec3(m.sample_relief_clamped(t.x, t.y)) * 2.0 - 1.0;
   // Stored in the face's (u, v, up); its texture space points depth down.
   const glm::dvec3 n =
       glm::transpose(face_from_cube(faces[size_t(k)])) * glm::dvec3(s.x, s.y, -s.z);

@@ -50,6 +50,13 @@ glm::dvec4 ReliefMap::sample_relief(double u, double v) const {
   return bilinear(*this, u, v, [&](int x, int y) { return glm::dvec4(relief[index(x, y)]); });
 }
 
+glm::dvec4 ReliefMap::sample_relief_clamped(double u, double v) const {
+  // Between the edge texels' centres GL_LINEAR never reaches the other side, so the repeating
+  // sampler gives the clamped answer there.
+  return sample_relief(std::clamp(u, 0.5 / width, 1.0 - 0.5 / width),
+                       std::clamp(v, 0.5 / height, 1.0 - 0.5 / height));
+}
+
 double ReliefMap::surface_depth(double u, double v) const {
   return meta ? meta->depth(u, v) : sample_depth(u, v);
 }

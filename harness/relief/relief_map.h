@@ -79,6 +79,9 @@ struct ReliefMap {
   // Bilinear samples at texture coordinate (u, v), GL_LINEAR + GL_REPEAT semantics.
   double sample_depth(double u, double v) const;
   glm::dvec4 sample_relief(double u, double v) const;
+  // The same with GL_CLAMP_TO_EDGE semantics: the coordinate clamped to the edge texels'
+  // centres (a map that does not repeat, e.g. a heightfield object's face).
+  glm::dvec4 sample_relief_clamped(double u, double v) const;
   glm::dvec4 sample_color(double u, double v) const;
   // The surface the map stands for: its own samples, or a meta-relief's combination (Eqs. 1-2)
   // of which `relief` is only the bake. What the truth traces and shades with.

@@ -118,7 +118,9 @@ void compare_cell(const nlohmann::ordered_json& b, const nlohmann::ordered_json&
   }
 }
 
-std::map<std::string, nlohmann::ordered_json> read_store(const std::string& dir) {
+}  // namespace
+
+std::map<std::string, nlohmann::ordered_json> read_run_rows(const std::string& dir) {
   const std::string path = dir + "/results.sqlite";
   if (!std::filesystem::exists(path))
     throw ConfigError(dir + ": no results.sqlite (is it a relieflab run's output folder?)");
@@ -128,8 +130,6 @@ std::map<std::string, nlohmann::ordered_json> read_store(const std::string& dir)
     if (auto r = store.row(k)) rows[k] = *r;
   return rows;
 }
-
-}  // namespace
 
 Comparison compare_rows(const std::map<std::string, nlohmann::ordered_json>& base,
                         const std::map<std::string, nlohmann::ordered_json>& now,
@@ -169,7 +169,7 @@ Comparison compare_rows(const std::map<std::string, nlohmann::ordered_json>& bas
 
 Comparison compare_runs(const std::string& base_dir, const std::string& new_dir,
                         const std::map<std::string, MetricTolerance>& tolerances) {
-  return compare_rows(read_store(base_dir), read_store(new_dir), tolerances);
+  return compare_rows(read_run_rows(base_dir), read_run_rows(new_dir), tolerances);
 }
 
 std::string format_comparison(const Comparison& c) {

@@ -49,6 +49,10 @@ Comparison compare_rows(const std::map<std::string, nlohmann::ordered_json>& bas
                         const std::map<std::string, nlohmann::ordered_json>& now,
                         const std::map<std::string, MetricTolerance>& tolerances);
 
+// Every row of a run's output folder (DIR/results.sqlite) by key. Throws ConfigError when the
+// folder has no results.
+std::map<std::string, nlohmann::ordered_json> read_run_rows(const std::string& dir);
+
 // Reads DIR/results.sqlite of both runs and compares them. Throws ConfigError when a folder has
 // no results.
 Comparison compare_runs(const std::string& base_dir, const std::string& new_dir,

@@ -151,17 +151,23 @@ std::string format_svg_plot(const std::vector<ParetoPoint>& points, const std::s
   return s + "</svg>\n";
 }
 
-std::string write_pareto_plots(const std::vector<Row>& rows, const PlotSpec& spec,
-                               const std::vector<std::string>& parameter_columns,
-                               const std::string& out_dir) {
-  std::vector<std::vector<std::string>> groups;
-  std::map<std::vector<std::string>, std::vector<ParetoPoint>> points;
+std::vector<PlotGroup> plot_groups(const std::vector<Row>& rows, const PlotSpec& spec,
+                                   const std::vector<std::string>& parameter_columns) {
+  std::vector<PlotGroup> groups;
+  std::map<std::vector<std::string>, size_t> index;
   for (const Row& r : rows) {
     auto x = r.find(spec.x), y = r.find(spec.y);
     if (x == r.end() || y == r.end() || !x->is_number() || !y->is_number()) continue;
     std::vector<std::string> g;
     for (const auto& f : spec.group) g.push_back(r.contains(f) ? format_value(r[f]) : "–");
-    if (!points.count(g)) groups.push_back(g);
+    auto [it, fresh] = index.emplace(g, groups.size());
+    if (fresh) {
+      PlotGroup pg;
+      pg.values = g;
+      for (size_t i = 0; i < g.size(); ++i)
+        pg.title += (i ? ", " : "") + spec.group[i] + "=" + g[i];
+      groups.push_back(pg);
+    }
     ParetoPoint p;
     p.x = x->get<double>();
     p.y = y->get<double>();
@@ -169,21 +175,27 @@ std::string write_pareto_plots(const std::vector<Row>& rows, const PlotSpec& spe
     p.label = p.series;
     for (const auto& c : parameter_columns)
       if (r.contains(c) && !r[c].is_null()) p.label += " " + c + "=" + format_value(r[c]);
-    points[g].push_back(p);
+    p.key = r.value("key", "");
+    groups[it->second].points.push_back(p);
   }
+  return groups;
+}
+
+std::string write_pareto_plots(const std::vector<Row>& rows, const PlotSpec& spec,
+                               const std::vector<std::string>& parameter_columns,
+                               const std::string& out_dir) {
   std::string md = "### Pareto fronts: " + spec.y + " against " + spec.x + "\n\n";
   md += "Settings no other setting beats on both cost and error, cheapest first.\n\n";
-  for (const auto& g : groups) {
-    std::string title, file_part;
-    for (size_t i = 0; i < g.size(); ++i) {
-      title += (i ? ", " : "") + spec.group[i] + "=" + g[i];
-      file_part += (i ? "_" : "") + safe_file_part(g[i]);
-    }
-    const auto& pts = points[g];
+  for (const PlotGroup& g : plot_groups(rows, spec, parameter_columns)) {
+    std::string file_part;
+    for (size_t i = 0; i < g.values.size(); ++i)
+      file_part += (i ? "_" : "") + safe_file_part(g.values[i]);
+    const auto& pts = g.points;
     const std::string rel = "plots/" + safe_file_part(spec.y) + "_vs_" + safe_file_part(spec.x) +
                             "__" + file_part + ".svg";
-    write_text_atomic(out_dir + "/" + rel, format_svg_plot(pts, title, spec.x, spec.y, spec.log_y));
-    md += "- **" + title + "** ([plot](" + rel + ")): ";
+    write_text_atomic(out_dir + "/" + rel,
+                      format_svg_plot(pts, g.title, spec.x, spec.y, spec.log_y));
+    md += "- **" + g.title + "** ([plot](" + rel + ")): ";
     bool first = true;
     for (size_t i : pareto_front(pts)) {
       md += std::string(first ? "" : " → ") + pts[i].label + " (" + fmt(pts[i].x) + ", " +

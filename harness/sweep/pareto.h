@@ -20,7 +20,19 @@ struct ParetoPoint {
   double x = 0, y = 0;
   std::string label;   // technique and parameters
   std::string series;  // technique (one colour each)
+  std::string key;     // the row's cell key
 };
+
+// One plot's rows: those with numeric x and y that share the values of spec.group.
+struct PlotGroup {
+  std::vector<std::string> values;  // of spec.group, as tables show them
+  std::string title;                // "scene=..., elevation_deg=..."
+  std::vector<ParetoPoint> points;  // labelled with technique and parameters
+};
+
+// The groups of `rows` in order of first appearance (the SVG plots' and the report's).
+std::vector<PlotGroup> plot_groups(const std::vector<Row>& rows, const PlotSpec& spec,
+                                   const std::vector<std::string>& parameter_columns);
 
 // Indices of the points on the Pareto front (minimising x and y), ordered by x. A point is on
 // it when no other point is at least as good on both and strictly better on one.

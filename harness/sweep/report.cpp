@@ -73,46 +73,26 @@ nlohmann::json report_data(const SweepConfig& config, const std::vector<Row>& ro
     }
     data["tables"].push_back(table);
   }
-  for (const PlotSpec& p : config.plots) {
-    std::map<std::vector<std::string>, std::vector<const Row*>> groups;
-    std::vector<std::vector<std::string>> order;
-    for (const Row& r : rows) {
-      auto x = r.find(p.x), y = r.find(p.y);
-      if (x == r.end() || y == r.end() || !x->is_number() || !y->is_number()) continue;
-      std::vector<std::string> g;
-      for (const auto& f : p.group) g.push_back(r.contains(f) ? format_value(r[f]) : "–");
-      if (!groups.count(g)) order.push_back(g);
-      groups[g].push_back(&r);
-    }
-    for (const auto& g : order) {
-      std::vector<ParetoPoint> pts;
-      for (const Row* r : groups[g]) {
-        ParetoPoint pt;
-        pt.x = (*r)[p.x].get<double>();
-        pt.y = (*r)[p.y].get<double>();
-        pt.series = r->value("technique", std::string("?"));
-        pts.push_back(pt);
-      }
-      std::vector<bool> front(pts.size(), false);
-      for (size_t i : pareto_front(pts)) front[i] = true;
-      nlohmann::json plot;
-      std::string title;
-      for (size_t i = 0; i < g.size(); ++i) title += (i ? ", " : "") + p.group[i] + "=" + g[i];
-      plot["title"] = title;
-      plot["x"] = p.x;
-      plot["y"] = p.y;
-      plot["log_y"] = p.log_y;
-      plot["points"] = nlohmann::json::array();
-      for (size_t i = 0; i < pts.size(); ++i)
-        plot["points"].push_back({{"x", pts[i].x},
-                                  {"y", pts[i].y},
-                                  {"series", pts[i].series},
-                                  {"label", cell_title(*groups[g][i], parameter_columns)},
-                                  {"key", groups[g][i]->value("key", std::string())},
+  for (const PlotSpec& p : config.plots)
+    for (const PlotGroup& g : plot_groups(rows, p, parameter_columns)) {
+      std::vector<bool> front(g.points.size(), false);
+      for (size_t i : pareto_front(g.points)) front[i] = true;
+      nlohmann::json plot = {{"title", g.title},
+                             {"x", p.x},
+                             {"y", p.y},
+                             {"log_y", p.log_y},
+                             {"points", nlohmann::json::array()}};
+      for (size_t i = 0; i < g.points.size(); ++i) {
+        const ParetoPoint& pt = g.points[i];
+        plot["points"].push_back({{"x", pt.x},
+                                  {"y", pt.y},
+                                  {"series", pt.series},
+                                  {"label", pt.label},
+                                  {"key", pt.key},
                                   {"front", bool(front[i])}});
+      }
       data["plots"].push_back(plot);
     }
-  }
   const char* numbers[] = {
       "wrong_pct",           "missed_pct", "false_pct",    "pos_err_rmse", "pos_err_texels_mean",
       "normal_err_mean_deg", "psnr_db",    "fetches_mean", "frame_ms",     "memory_bytes"};

@@ -1,7 +1,5 @@
 #include "sweep/runner.h"
 
-#include "sweep/report.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -29,6 +27,7 @@
 #include "sweep/cells.h"
 #include "sweep/gbuffer_export.h"
 #include "sweep/pareto.h"
+#include "sweep/report.h"
 #include "sweep/result_store.h"
 #include "sweep/tables.h"
 #include "technique/technique.h"
@@ -194,8 +193,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   summary.renderer = gl.renderer();
   log.line("relieflab: sweep '" + config.name + "' from " + config.source + ": " +
            std::to_string(cells.size()) + " cells" +
-           (options.shard.active() ? " (shard " + std::to_string(options.shard.index) + "/" +
-                                         std::to_string(options.shard.count) + " of " +
+           (options.shard.active() ? " (shard " + options.shard.text() + " of " +
                                          std::to_string(all_cells.size()) + ")"
                                    : std::string()) +
            ", " + std::to_string(summary.already_done) + " already in " + options.out_dir +
@@ -242,7 +240,6 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     const Cell& cell = cells[order[oi]];
     if (done.count(cell.key)) continue;
     const SceneDesc& scene = config.scenes[cell.scene_index];
-    Clock::time_point cell_start;
 
     if (cell.asset_key != asset_key) {
       const auto t0 = Clock::now();
@@ -359,7 +356,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
                           {scene.name, "", "", cell.truth_key});
     }
 
-    cell_start = Clock::now();
+    const auto cell_start = Clock::now();  // the technique's part of the cell, truth excluded
     // Technique instance, prepared once per asset and parameter setting.
     const std::string instance_key = cell.technique + "|" + describe_params(cell);
     auto& slot = asset->prepared[instance_key];

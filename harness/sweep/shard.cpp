@@ -101,13 +101,9 @@ nlohmann::json read_record(const std::string& dir) {
 
 void write_sweep_record(const SweepConfig& config, const ShardSpec& shard,
                         const std::string& out_dir) {
-  const nlohmann::json j = {
-      {"name", config.name},
-      {"source", config.source},
-      {"base_dir", config.base_dir},
-      {"config_hash", config_hash(config)},
-      {"shard", std::to_string(shard.index) + "/" + std::to_string(shard.count)},
-      {"text", config.text}};
+  const nlohmann::json j = {{"name", config.name},         {"source", config.source},
+                            {"base_dir", config.base_dir}, {"config_hash", config_hash(config)},
+                            {"shard", shard.text()},       {"text", config.text}};
   write_text_atomic(out_dir + "/sweep.json", j.dump(2) + "\n");
 }
 
@@ -138,6 +134,14 @@ SweepConfig recorded_config(const std::vector<std::string>& dirs) {
   return config;
 }
 
+// How many of `cells` have no row in `store`.
+size_t missing_cells(const std::vector<Cell>& cells, const ResultStore& store) {
+  const std::set<std::string> have = store.keys();
+  size_t n = 0;
+  for (const Cell& c : cells) n += !have.count(c.key);
+  return n;
+}
+
 }  // namespace
 
 RunStatus run_status(const std::vector<std::string>& dirs) {
@@ -150,7 +154,7 @@ RunStatus run_status(const std::vector<std::string>& dirs) {
     const ShardSpec shard = parse_shard(read_record(dirs.front())["shard"].get<std::string>());
     if (shard.active()) {
       cells = shard_cells(config, cells, shard);
-      s.shard = std::to_string(shard.index) + "/" + std::to_string(shard.count);
+      s.shard = shard.text();
     }
   }
   std::set<std::string> have;
@@ -183,10 +187,7 @@ size_t rewrite_outputs(const std::string& dir) {
   cells = shard_cells(config, cells, shard);
   ResultStore store(dir + "/results.sqlite");
   write_sweep_outputs(config, cells, store, dir);
-  const std::set<std::string> have = store.keys();
-  size_t n = 0;
-  for (const Cell& c : cells) n += have.count(c.key);
-  return n;
+  return cells.size() - missing_cells(cells, store);
 }
 
 std::string format_run_status(const RunStatus& s) {
@@ -211,16 +212,12 @@ MergeSummary merge_shards(const std::string& out_dir, const std::vector<std::str
   fs::create_directories(out_dir);
   MergeSummary summary;
   summary.shards = shard_dirs.size();
-  {
-    ResultStore store(out_dir + "/results.sqlite");
-    for (const std::string& d : shard_dirs)
-      summary.rows_added += store.merge_from(d + "/results.sqlite");
-  }
+  ResultStore store(out_dir + "/results.sqlite");
+  for (const std::string& d : shard_dirs)
+    summary.rows_added += store.merge_from(d + "/results.sqlite");
   const std::vector<Cell> cells = expand_cells(config);
   summary.cells = cells.size();
-  ResultStore store(out_dir + "/results.sqlite");
-  const std::set<std::string> have = store.keys();
-  for (const Cell& c : cells) summary.missing += !have.count(c.key);
+  summary.missing = missing_cells(cells, store);
   write_sweep_record(config, ShardSpec{}, out_dir);
   write_sweep_outputs(config, cells, store, out_dir);
   return summary;

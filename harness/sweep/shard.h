@@ -18,6 +18,7 @@ namespace rl {
 struct ShardSpec {
   int index = 0, count = 1;  // shard `index` of `count`, 0-based
   bool active() const { return count > 1; }
+  std::string text() const { return std::to_string(index) + "/" + std::to_string(count); }
 };
 
 // "I/N" with 0 <= I < N <= 10000; throws ConfigError otherwise.
