@@ -128,6 +128,22 @@ values = ["psnr_db"]
   EXPECT_EQ(test::run_cli("report " + out, cli), 0) << cli;
   EXPECT_NE(cli.find("from 12 stored rows"), std::string::npos) << cli;
   EXPECT_TRUE(std::filesystem::exists(html));
+  // Copied without a picture (a committed reproduction keeps no images/): the cell says so
+  // instead of showing a broken image. A tall window puts every lazy picture in view.
+  std::regex first_render("<img src=\"([^\"]+)\" alt=\"render\"");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(dom, m, first_render));
+  ASSERT_TRUE(std::filesystem::remove(out + "/" + m[1].str()));
+  const std::string without = run_command(
+      "timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage "
+      "--allow-file-access-from-files --virtual-time-budget=10000 --window-size=1200,40000 "
+      "--dump-dom 'file://" +
+          html + "' 2> /dev/null",
+      status);
+  ASSERT_EQ(status, 0);
+  EXPECT_EQ(count_of(without, "class=\"rl-missing\""), 1u);
+  EXPECT_NE(without.find(m[1].str() + " is not beside this report"), std::string::npos);
+  EXPECT_EQ(count_of(without, "<img src="), 3 * cells - 1);
 }
 
 }  // namespace

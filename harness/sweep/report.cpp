@@ -119,6 +119,7 @@ table.rl-table th{cursor:pointer;background:#f3f3f3}table.rl-table td:first-chil
 .rl-plot .domain{fill:none;stroke:#444}.rl-plot .tick line{stroke:#444}.rl-plot text{font-size:11px}
 .rl-point{cursor:pointer;stroke:#fff;stroke-width:0.5}.rl-front{fill:none;stroke:#222;stroke-dasharray:4 3}
 .rl-cell{border-top:1px solid #ddd;padding-top:.5em}.rl-cell img{width:256px;image-rendering:pixelated;margin-right:6px;border:1px solid #ccc}
+.rl-missing{display:inline-block;width:248px;height:3em;margin-right:6px;padding:4px;border:1px dashed #bbb;color:#777;font-size:11px;vertical-align:top}
 .rl-legend{height:12px;width:256px;background:linear-gradient(to right,#30123b,#4686fb,#1be5b5,#a4fc3c,#fbb938,#e4460a,#7a0403)}
 pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px}
 </style>
@@ -231,7 +232,15 @@ pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px
     var s = el('section', {'class': 'rl-cell', id: 'cell-' + c.key});
     s.appendChild(el('h3', {}, c.title));
     ['image_render', 'image_truth', 'image_error'].forEach(function (k) {
-      if (c.images && c.images[k]) s.appendChild(el('img', {src: c.images[k], alt: k.replace('image_', ''), title: k.replace('image_', '')}));
+      if (!c.images || !c.images[k]) return;
+      var what = k.replace('image_', '');
+      // Lazy: a 1000-cell sweep's pictures load as they scroll into view.
+      var img = el('img', {src: c.images[k], alt: what, title: what, loading: 'lazy'});
+      // A report copied without its images/ folder (a committed reproduction) says so.
+      img.onerror = function () {
+        img.parentNode.replaceChild(el('span', {'class': 'rl-missing'}, what + ': ' + c.images[k] + ' is not beside this report'), img);
+      };
+      s.appendChild(img);
     });
     var nums = [];
     for (var k in c.numbers || {}) nums.push(k + ' ' + fmt(c.numbers[k]));
