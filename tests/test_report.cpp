@@ -91,12 +91,18 @@ values = ["psnr_db"]
   // 2 scenes x 2 views x 3 settings = 12 cells.
   const size_t cells = 12;
   EXPECT_EQ(count_of(dom, "class=\"rl-table\""), config.tables.size());
-  EXPECT_EQ(count_of(dom, "data-rows=\"12\""), config.tables.size());
+  // Each table laid out as its Markdown / LaTeX file: a.md one line per cell; b.tex one line
+  // per scene and technique, the first of the rows sharing it shown and a footnote saying so.
+  EXPECT_EQ(count_of(dom, "data-rows=\"12\""), 1u);
+  EXPECT_EQ(count_of(dom, "data-rows=\"4\""), 1u);
+  EXPECT_NE(dom.find("8 rows share a table cell with another row"), std::string::npos);
   // The default plot: wrong_pct against fetches_mean per scene and view: 4 plots of 3 points.
   EXPECT_EQ(count_of(dom, "class=\"rl-plot\""), 4u);
   EXPECT_EQ(count_of(dom, "data-points=\"3\""), 4u);
   EXPECT_EQ(count_of(dom, "class=\"rl-point\""), cells);
   EXPECT_EQ(count_of(dom, "class=\"rl-front\""), 4u);
+  EXPECT_EQ(count_of(dom, "class=\"rl-series\""), 4u);  // a legend per plot: normal, relief
+  EXPECT_EQ(count_of(dom, "\u25cf relief</span>"), 4u);
   EXPECT_EQ(count_of(dom, "class=\"rl-cell\""), cells);
   // Every picture of every cell, side by side, pointing at files that exist.
   std::regex img("<img src=\"([^\"]+)\" alt=\"(render|truth|error)\"");

@@ -50,26 +50,31 @@ nlohmann::json report_data(const SweepConfig& config, const std::vector<Row>& ro
   data["heat_map_scale"] = config.heat_map_scale;
   data["config"] = config.text;
   data["log"] = read_text(out_dir + "/run.log");
-  for (const TableSpec& t : config.tables) {
+  // The tables as their Markdown and LaTeX forms lay them out (aggregates included).
+  for (const TableSpec& spec : config.tables) {
+    const TableLayout t = lay_out_table(rows, spec);
     nlohmann::json table;
-    table["title"] = t.title.empty() ? t.file : t.title;
-    std::vector<std::string> fields = t.rows;
-    fields.insert(fields.end(), t.columns.begin(), t.columns.end());
-    fields.insert(fields.end(), t.values.begin(), t.values.end());
+    table["title"] = t.title.empty() ? spec.file : t.title;
+    std::vector<std::string> fields = t.row_fields;
+    for (const auto& c : t.value_columns)
+      fields.push_back(c.group.empty() ? c.metric : c.group + " " + c.metric);
     table["fields"] = fields;
+    table["footnote"] = t.footnote;
     table["rows"] = nlohmann::json::array();
-    for (const Row& r : rows) {
-      nlohmann::json line = nlohmann::json::array();
-      for (const auto& f : fields) {
-        auto it = r.find(f);
-        if (it == r.end() || it->is_null())
-          line.push_back(nullptr);
-        else if (it->is_number())
-          line.push_back(it->get<double>());
+    for (const TableLine& line : t.lines) {
+      nlohmann::json values = nlohmann::json::array();
+      for (const auto& k : line.row_key) values.push_back(k);
+      for (const auto& v : line.values) {
+        if (!v)
+          values.push_back("");  // no row at this row key and column key
+        else if (v->is_number())
+          values.push_back(v->get<double>());
+        else if (v->is_null())
+          values.push_back(nullptr);
         else
-          line.push_back(format_value(*it));
+          values.push_back(format_value(*v));
       }
-      table["rows"].push_back({{"key", r.value("key", std::string())}, {"values", line}});
+      table["rows"].push_back({{"cells", line.cell_keys}, {"values", values}});
     }
     data["tables"].push_back(table);
   }
@@ -114,10 +119,10 @@ const char* kPage = R"HTML(<!doctype html>
 <style>
 body{font:14px/1.4 sans-serif;margin:1.5em;color:#222}h1{font-size:1.5em}h2{margin-top:1.6em}
 table.rl-table{border-collapse:collapse;font-size:12px}table.rl-table td,table.rl-table th{border:1px solid #ccc;padding:2px 6px;text-align:right}
-table.rl-table th{cursor:pointer;background:#f3f3f3}table.rl-table td:first-child{text-align:left}
+table.rl-table th{cursor:pointer;background:#f3f3f3;position:sticky;top:0}.rl-table-box{max-height:36em;max-width:100%;overflow:auto;display:inline-block}.rl-footnote{font-size:12px;color:#555}table.rl-table td:first-child{text-align:left}
 .rl-plots{display:flex;flex-wrap:wrap;gap:1em}.rl-plot{border:1px solid #ddd;padding:4px}
 .rl-plot .domain{fill:none;stroke:#444}.rl-plot .tick line{stroke:#444}.rl-plot text{font-size:11px}
-.rl-point{cursor:pointer;stroke:#fff;stroke-width:0.5}.rl-front{fill:none;stroke:#222;stroke-dasharray:4 3}
+.rl-series{font-size:11px;max-width:380px}.rl-series span{margin-right:8px;white-space:nowrap}.rl-point{cursor:pointer;stroke:#fff;stroke-width:0.5}.rl-front{fill:none;stroke:#222;stroke-dasharray:4 3}
 .rl-cell{border-top:1px solid #ddd;padding-top:.5em}.rl-cell img{width:256px;image-rendering:pixelated;margin-right:6px;border:1px solid #ccc}
 .rl-missing{display:inline-block;width:248px;height:3em;margin-right:6px;padding:4px;border:1px dashed #bbb;color:#777;font-size:11px;vertical-align:top}
 .rl-legend{height:12px;width:256px;background:linear-gradient(to right,#30123b,#4686fb,#1be5b5,#a4fc3c,#fbb938,#e4460a,#7a0403)}
@@ -176,8 +181,10 @@ pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px
       var tr = el('tr');
       r.values.forEach(function (v, i) {
         var td = el('td', {'data-v': v === null ? '' : v});
-        if (i === 0 && r.key) {
-          var a = el('a', {href: '#cell-' + r.key}, fmt(v));
+        if (i === 0 && r.cells.length) {
+          // A line that combines several cells (an aggregate) links to the first of them.
+          var a = el('a', {href: '#cell-' + r.cells[0]}, fmt(v));
+          if (r.cells.length > 1) a.setAttribute('title', r.cells.length + ' cells behind this line; the link opens the first');
           td.appendChild(a);
         } else {
           td.textContent = fmt(v);
@@ -193,7 +200,11 @@ pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px
         r.style.display = r.textContent.toLowerCase().indexOf(q) >= 0 ? '' : 'none';
       });
     };
-    box.appendChild(table);
+    // A long table scrolls in its own box (headers stay in view) rather than pushing the plots away.
+    var scroller = el('div', {'class': 'rl-table-box'});
+    scroller.appendChild(table);
+    box.appendChild(scroller);
+    if (t.footnote) box.appendChild(el('p', {'class': 'rl-footnote'}, t.footnote));
   });
   if (typeof d3 === 'undefined') {
     document.getElementById('rl-plots').textContent = 'd3 was not found when the report was written (install libjs-d3): no plots.';
@@ -226,6 +237,14 @@ pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px
         .attr('fill', function (d) { return colour(d.series); })
         .on('click', function (d) { location.hash = '#cell-' + d.key; })
         .append('title').text(function (d) { return d.label + '\n' + p.x + ' ' + fmt(d.x) + ', ' + p.y + ' ' + fmt(d.y) + (d.front ? ' (on the front)' : ''); });
+      // Which colour is which series (the technique), under the plot.
+      var legend = el('div', {'class': 'rl-series'});
+      d3.set(p.points.map(function (d) { return d.series; })).values().forEach(function (name) {
+        var item = el('span', {}, '\u25cf ' + name);
+        item.style.color = colour(name);
+        legend.appendChild(item);
+      });
+      div.appendChild(legend);
     });
   }
   data.cells.forEach(function (c) {

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 
 namespace rl {
@@ -63,39 +64,8 @@ std::string format_csv(const std::vector<Row>& rows, const std::vector<std::stri
 
 namespace {
 
-// A [[table]] laid out: row keys, column keys, and per (row key, column key) the rows there.
-struct TableGrid {
-  std::vector<std::vector<std::string>> row_keys, col_keys;
-  std::map<std::pair<std::vector<std::string>, std::vector<std::string>>, std::vector<const Row*>>
-      cells;
-  size_t collisions = 0, most_per_cell = 0;
-};
-
-TableGrid lay_out(const std::vector<Row>& rows, const TableSpec& spec) {
-  auto key_of = [](const Row& r, const std::vector<std::string>& fields) {
-    std::vector<std::string> k;
-    for (const auto& f : fields) {
-      auto it = r.find(f);
-      k.push_back(it == r.end() ? "–" : format_value(*it));
-    }
-    return k;
-  };
-  TableGrid g;
-  for (const Row& r : rows) {
-    auto rk = key_of(r, spec.rows), ck = key_of(r, spec.columns);
-    if (std::find(g.row_keys.begin(), g.row_keys.end(), rk) == g.row_keys.end())
-      g.row_keys.push_back(rk);
-    if (std::find(g.col_keys.begin(), g.col_keys.end(), ck) == g.col_keys.end())
-      g.col_keys.push_back(ck);
-    std::vector<const Row*>& cell = g.cells[{rk, ck}];
-    cell.push_back(&r);
-    if (cell.size() > 1) ++g.collisions;
-    g.most_per_cell = std::max(g.most_per_cell, cell.size());
-  }
-  return g;
-}
-
-// A value of a cell: its one row's, or the mean or max over its rows' numbers (null if none).
+// The value of a table cell: its one row's, or the mean or max over its rows' numbers (null if
+// none).
 nlohmann::ordered_json cell_value(const std::vector<const Row*>& cell, const std::string& v,
                                   const std::string& aggregate) {
   if (aggregate.empty() || cell.size() == 1) {
@@ -114,24 +84,6 @@ nlohmann::ordered_json cell_value(const std::vector<const Row*>& cell, const std
   }
   if (n == 0) return nlohmann::ordered_json();
   return nlohmann::ordered_json(aggregate == "mean" ? sum / n : most);
-}
-
-// The header of one value column: its column key's fields, then the metric.
-std::string column_group(const TableSpec& spec, const std::vector<std::string>& ck) {
-  std::string group;
-  for (size_t i = 0; i < ck.size(); ++i) group += (i ? " " : "") + spec.columns[i] + "=" + ck[i];
-  return group;
-}
-
-std::string table_footnote(const TableGrid& g, const TableSpec& spec) {
-  if (g.collisions && spec.aggregate.empty())
-    return std::to_string(g.collisions) +
-           " rows share a table cell with another row (the first is shown): add fields to "
-           "'rows' or 'columns' to separate them.";
-  if (g.collisions)
-    return "Each cell is the " + spec.aggregate + " over the rows that share it (up to " +
-           std::to_string(g.most_per_cell) + " per cell).";
-  return "";
 }
 
 std::string latex_escape(const std::string& s) {
@@ -168,6 +120,64 @@ std::string latex_escape(const std::string& s) {
 
 }  // namespace
 
+TableLayout lay_out_table(const std::vector<Row>& rows, const TableSpec& spec) {
+  auto key_of = [](const Row& r, const std::vector<std::string>& fields) {
+    std::vector<std::string> k;
+    for (const auto& f : fields) {
+      auto it = r.find(f);
+      k.push_back(it == r.end() ? "–" : format_value(*it));
+    }
+    return k;
+  };
+  // Row keys and column keys in order of first appearance; per (row key, column key) its rows.
+  std::vector<std::vector<std::string>> row_keys, col_keys;
+  std::map<std::pair<std::vector<std::string>, std::vector<std::string>>, std::vector<const Row*>>
+      cells;
+  size_t collisions = 0, most_per_cell = 0;
+  for (const Row& r : rows) {
+    auto rk = key_of(r, spec.rows), ck = key_of(r, spec.columns);
+    if (std::find(row_keys.begin(), row_keys.end(), rk) == row_keys.end()) row_keys.push_back(rk);
+    if (std::find(col_keys.begin(), col_keys.end(), ck) == col_keys.end()) col_keys.push_back(ck);
+    std::vector<const Row*>& cell = cells[{rk, ck}];
+    cell.push_back(&r);
+    if (cell.size() > 1) ++collisions;
+    most_per_cell = std::max(most_per_cell, cell.size());
+  }
+  TableLayout t;
+  t.title = spec.title;
+  t.row_fields = spec.rows;
+  for (const auto& ck : col_keys) {
+    std::string group;
+    for (size_t i = 0; i < ck.size(); ++i) group += (i ? " " : "") + spec.columns[i] + "=" + ck[i];
+    for (const auto& v : spec.values) t.value_columns.push_back({group, v});
+  }
+  for (const auto& rk : row_keys) {
+    TableLine line;
+    line.row_key = rk;
+    for (const auto& ck : col_keys) {
+      auto it = cells.find({rk, ck});
+      for (const auto& v : spec.values) {
+        if (it == cells.end()) {
+          line.values.emplace_back(std::nullopt);
+          continue;
+        }
+        line.values.emplace_back(cell_value(it->second, v, spec.aggregate));
+      }
+      if (it != cells.end())
+        for (const Row* r : it->second) line.cell_keys.push_back(r->value("key", std::string()));
+    }
+    t.lines.push_back(std::move(line));
+  }
+  if (collisions && spec.aggregate.empty())
+    t.footnote = std::to_string(collisions) +
+                 " rows share a table cell with another row (the first is shown): add fields to "
+                 "'rows' or 'columns' to separate them.";
+  else if (collisions)
+    t.footnote = "Each cell is the " + spec.aggregate + " over the rows that share it (up to " +
+                 std::to_string(most_per_cell) + " per cell).";
+  return t;
+}
+
 bool best_is_lowest(const std::string& metric, bool& has_best) {
   // Columns with no better or worse (sizes, counts, settings of the run) get no bold.
   static const std::set<std::string> neutral = {
@@ -182,54 +192,40 @@ bool best_is_lowest(const std::string& metric, bool& has_best) {
 }
 
 std::string format_markdown_table(const std::vector<Row>& rows, const TableSpec& spec) {
-  const TableGrid g = lay_out(rows, spec);
+  const TableLayout t = lay_out_table(rows, spec);
   std::string out;
-  if (!spec.title.empty()) out += "### " + spec.title + "\n\n";
-  // Header: row fields, then per column key each value.
-  std::vector<std::string> header = spec.rows;
-  for (const auto& ck : g.col_keys) {
-    const std::string group = column_group(spec, ck);
-    for (const auto& v : spec.values) header.push_back(group.empty() ? v : group + "<br>" + v);
-  }
+  if (!t.title.empty()) out += "### " + t.title + "\n\n";
+  std::vector<std::string> header = t.row_fields;
+  for (const auto& c : t.value_columns)
+    header.push_back(c.group.empty() ? c.metric : c.group + "<br>" + c.metric);
   out += "|";
   for (const auto& h : header) out += " " + h + " |";
   out += "\n|";
-  for (size_t i = 0; i < header.size(); ++i) out += i < spec.rows.size() ? " --- |" : " ---: |";
+  for (size_t i = 0; i < header.size(); ++i) out += i < t.row_fields.size() ? " --- |" : " ---: |";
   out += "\n";
-  for (const auto& rk : g.row_keys) {
+  for (const TableLine& line : t.lines) {
     out += "|";
-    for (const auto& k : rk) out += " " + k + " |";
-    for (const auto& ck : g.col_keys) {
-      auto it = g.cells.find({rk, ck});
-      for (const auto& v : spec.values)
-        out += " " +
-               (it != g.cells.end() ? format_value(cell_value(it->second, v, spec.aggregate))
-                                    : std::string()) +
-               " |";
-    }
+    for (const auto& k : line.row_key) out += " " + k + " |";
+    for (const auto& v : line.values) out += " " + (v ? format_value(*v) : std::string()) + " |";
     out += "\n";
   }
-  const std::string note = table_footnote(g, spec);
-  if (!note.empty()) out += "\n> " + note + "\n";
+  if (!t.footnote.empty()) out += "\n> " + t.footnote + "\n";
   return out;
 }
 
 std::string format_latex_table(const std::vector<Row>& rows, const TableSpec& spec) {
-  const TableGrid g = lay_out(rows, spec);
-  // Per value column (column key x value), the best number over the rows, for the bold.
-  const size_t value_columns = g.col_keys.size() * spec.values.size();
+  const TableLayout t = lay_out_table(rows, spec);
+  // Per value column the best number over the lines, for the bold.
+  const size_t value_columns = t.value_columns.size();
   std::vector<double> best(value_columns, std::numeric_limits<double>::quiet_NaN());
   for (size_t c = 0; c < value_columns; ++c) {
-    const std::string& v = spec.values[c % spec.values.size()];
     bool has_best = false;
-    const bool lowest = best_is_lowest(v, has_best);
+    const bool lowest = best_is_lowest(t.value_columns[c].metric, has_best);
     if (!has_best) continue;
-    for (const auto& rk : g.row_keys) {
-      auto it = g.cells.find({rk, g.col_keys[c / spec.values.size()]});
-      if (it == g.cells.end()) continue;
-      const nlohmann::ordered_json x = cell_value(it->second, v, spec.aggregate);
-      if (!x.is_number()) continue;
-      const double d = x.get<double>();
+    for (const TableLine& line : t.lines) {
+      const auto& x = line.values[c];
+      if (!x || !x->is_number()) continue;
+      const double d = x->get<double>();
       if (!std::isfinite(d)) continue;
       if (std::isnan(best[c]) || (lowest ? d < best[c] : d > best[c])) best[c] = d;
     }
@@ -237,31 +233,26 @@ std::string format_latex_table(const std::vector<Row>& rows, const TableSpec& sp
   std::string out =
       "% Generated by relieflab from the sweep's rows; needs \\usepackage{booktabs}.\n";
   out += "\\begin{table}\n\\centering\n";
-  if (!spec.title.empty()) out += "\\caption{" + latex_escape(spec.title) + "}\n";
-  out += "\\begin{tabular}{" + std::string(spec.rows.size(), 'l') +
+  if (!t.title.empty()) out += "\\caption{" + latex_escape(t.title) + "}\n";
+  out += "\\begin{tabular}{" + std::string(t.row_fields.size(), 'l') +
          std::string(value_columns, 'r') + "}\n\\toprule\n";
   std::vector<std::string> header;
-  for (const auto& r : spec.rows) header.push_back(latex_escape(r));
-  for (const auto& ck : g.col_keys) {
-    const std::string group = column_group(spec, ck);
-    for (const auto& v : spec.values)
-      header.push_back(latex_escape(group.empty() ? v : group + " " + v));
-  }
+  for (const auto& r : t.row_fields) header.push_back(latex_escape(r));
+  for (const auto& c : t.value_columns)
+    header.push_back(latex_escape(c.group.empty() ? c.metric : c.group + " " + c.metric));
   for (size_t i = 0; i < header.size(); ++i) out += (i ? " & " : "") + header[i];
   out += " \\\\\n\\midrule\n";
-  for (const auto& rk : g.row_keys) {
+  for (const TableLine& line : t.lines) {
     std::vector<std::string> cells;
-    for (const auto& k : rk) cells.push_back(latex_escape(k));
+    for (const auto& k : line.row_key) cells.push_back(latex_escape(k));
     for (size_t c = 0; c < value_columns; ++c) {
-      auto it = g.cells.find({rk, g.col_keys[c / spec.values.size()]});
-      if (it == g.cells.end()) {
+      const auto& x = line.values[c];
+      if (!x) {
         cells.push_back("");
         continue;
       }
-      const nlohmann::ordered_json x =
-          cell_value(it->second, spec.values[c % spec.values.size()], spec.aggregate);
-      std::string text = latex_escape(format_value(x));
-      if (x.is_number() && !std::isnan(best[c]) && x.get<double>() == best[c])
+      std::string text = latex_escape(format_value(*x));
+      if (x->is_number() && !std::isnan(best[c]) && x->get<double>() == best[c])
         text = "\\textbf{" + text + "}";
       cells.push_back(text);
     }
@@ -269,8 +260,8 @@ std::string format_latex_table(const std::vector<Row>& rows, const TableSpec& sp
     out += " \\\\\n";
   }
   out += "\\bottomrule\n\\end{tabular}\n";
-  const std::string note = table_footnote(g, spec);
-  if (!note.empty()) out += "\\par\\smallskip{\\footnotesize " + latex_escape(note) + "}\n";
+  if (!t.footnote.empty())
+    out += "\\par\\smallskip{\\footnotesize " + latex_escape(t.footnote) + "}\n";
   out += "\\end{table}\n";
   return out;
 }

@@ -2,6 +2,7 @@
 // Writers for sweep results: rows.csv (one row per cell, every column) and Markdown tables
 // laid out as the config declares (row fields, column fields, metric values). Every file is
 // written to a temporary name and renamed, so a reader never sees half a table.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,29 @@ namespace rl {
 std::vector<std::string> csv_columns(const std::vector<Row>& rows,
                                      const std::vector<std::string>& leading);
 std::string format_csv(const std::vector<Row>& rows, const std::vector<std::string>& columns);
+// A [[table]] laid out as its Markdown, LaTeX and HTML forms show it: one line per row key (in
+// order of first appearance), per column key each value, combined by the table's aggregate
+// where several rows share a table cell (then the footnote says so).
+struct TableValueColumn {
+  std::string group;   // the column key, "field=value ..." ("" when the table has no columns)
+  std::string metric;  // the value's column in the rows
+};
+struct TableLine {
+  std::vector<std::string> row_key;  // the row fields' values as the table shows them
+  // Per value column: nullopt where no row has this line's row key and the column's column key;
+  // a null json where those rows lack the metric.
+  std::vector<std::optional<nlohmann::ordered_json>> values;
+  std::vector<std::string> cell_keys;  // the keys of the rows behind the line's values
+};
+struct TableLayout {
+  std::string title;
+  std::vector<std::string> row_fields;
+  std::vector<TableValueColumn> value_columns;
+  std::vector<TableLine> lines;
+  std::string footnote;  // rows hidden or combined, "" when every table cell holds one row
+};
+TableLayout lay_out_table(const std::vector<Row>& rows, const TableSpec& spec);
+
 std::string format_markdown_table(const std::vector<Row>& rows, const TableSpec& spec);
 // The same table as a LaTeX booktabs tabular in a table float (the title as its caption), the
 // best value of each value column in bold (format = "latex": what researchers paste into papers).
