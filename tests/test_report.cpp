@@ -64,6 +64,15 @@ name = "normal"
 name = "relief"
 linear_steps = [8, 32]
 
+[[plot]]
+x = "fetches_mean"
+y = "wrong_pct"
+group = ["scene", "elevation_deg"]
+[[plot]]
+x = "fetches_mean"
+y = "psnr_db"
+group = ["scene", "elevation_deg", "technique", "linear_steps"]
+
 [[table]]
 file = "a.md"
 rows = ["scene", "elevation_deg", "technique", "linear_steps"]
@@ -96,11 +105,14 @@ values = ["psnr_db"]
   EXPECT_EQ(count_of(dom, "data-rows=\"12\""), 1u);
   EXPECT_EQ(count_of(dom, "data-rows=\"4\""), 1u);
   EXPECT_NE(dom.find("8 rows share a table cell with another row"), std::string::npos);
-  // The default plot: wrong_pct against fetches_mean per scene and view: 4 plots of 3 points.
+  // wrong_pct against fetches_mean per scene and view: 4 plots of 3 points; the second plot's
+  // 12 groups hold one setting each and are listed, not drawn.
   EXPECT_EQ(count_of(dom, "class=\"rl-plot\""), 4u);
   EXPECT_EQ(count_of(dom, "data-points=\"3\""), 4u);
   EXPECT_EQ(count_of(dom, "class=\"rl-point\""), cells);
   EXPECT_EQ(count_of(dom, "class=\"rl-front\""), 4u);
+  EXPECT_NE(dom.find("12 plot group(s) hold a single setting and are not drawn"),
+            std::string::npos);
   EXPECT_EQ(count_of(dom, "class=\"rl-series\""), 4u);  // a legend per plot: normal, relief
   EXPECT_EQ(count_of(dom, "\u25cf relief</span>"), 4u);
   EXPECT_EQ(count_of(dom, "class=\"rl-cell\""), cells);

@@ -119,7 +119,7 @@ const char* kPage = R"HTML(<!doctype html>
 <style>
 body{font:14px/1.4 sans-serif;margin:1.5em;color:#222}h1{font-size:1.5em}h2{margin-top:1.6em}
 table.rl-table{border-collapse:collapse;font-size:12px}table.rl-table td,table.rl-table th{border:1px solid #ccc;padding:2px 6px;text-align:right}
-table.rl-table th{cursor:pointer;background:#f3f3f3;position:sticky;top:0}.rl-table-box{max-height:36em;max-width:100%;overflow:auto;display:inline-block}.rl-footnote{font-size:12px;color:#555}table.rl-table td:first-child{text-align:left}
+table.rl-table th{cursor:pointer;background:#f3f3f3;position:sticky;top:0}.rl-table-box{max-height:36em;max-width:100%;overflow:auto;display:inline-block}.rl-lone{font-size:12px;color:#555}.rl-footnote{font-size:12px;color:#555}table.rl-table td:first-child{text-align:left}
 .rl-plots{display:flex;flex-wrap:wrap;gap:1em}.rl-plot{border:1px solid #ddd;padding:4px}
 .rl-plot .domain{fill:none;stroke:#444}.rl-plot .tick line{stroke:#444}.rl-plot text{font-size:11px}
 .rl-series{font-size:11px;max-width:380px}.rl-series span{margin-right:8px;white-space:nowrap}.rl-point{cursor:pointer;stroke:#fff;stroke-width:0.5}.rl-front{fill:none;stroke:#222;stroke-dasharray:4 3}
@@ -210,7 +210,15 @@ pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px
     document.getElementById('rl-plots').textContent = 'd3 was not found when the report was written (install libjs-d3): no plots.';
   } else {
     var colour = d3.scale.category10();
-    (data.plots || []).forEach(function (p) {
+    // A group with one setting has no trade-off to draw: counted, not plotted (its numbers are
+    // in the tables).
+    var lone = (data.plots || []).filter(function (p) { return p.points.length < 2; });
+    if (lone.length) {
+      document.getElementById('rl-plots').parentNode.insertBefore(el('p', {'class': 'rl-lone'},
+          lone.length + ' plot group(s) hold a single setting and are not drawn: ' +
+          lone.map(function (p) { return p.title; }).join('; ')), document.getElementById('rl-plots'));
+    }
+    (data.plots || []).filter(function (p) { return p.points.length >= 2; }).forEach(function (p) {
       var w = 380, h = 250, m = {l: 56, r: 12, t: 34, b: 40};
       // A flat extent (every setting at one cost) still gets an axis.
       var padded = function (e) { return e[0] === e[1] ? [e[0] - 1, e[1] + 1] : e; };
