@@ -98,9 +98,10 @@ nlohmann::json report_data(const SweepConfig& config, const std::vector<Row>& ro
       }
       data["plots"].push_back(plot);
     }
-  const char* numbers[] = {
-      "wrong_pct",           "missed_pct", "false_pct",    "pos_err_rmse", "pos_err_texels_mean",
-      "normal_err_mean_deg", "psnr_db",    "fetches_mean", "frame_ms",     "memory_bytes"};
+  const char* numbers[] = {"wrong_pct",    "missed_pct",          "false_pct",
+                           "pos_err_rmse", "pos_err_texels_mean", "normal_err_mean_deg",
+                           "psnr_db",      "fetches_mean",        "frame_ms",
+                           "memory_bytes", "ao_err_mean"};
   data["cells"] = nlohmann::json::array();
   for (const Row& r : rows) {
     nlohmann::json cell = {{"key", r.value("key", std::string())},
@@ -119,12 +120,12 @@ const char* kPage = R"HTML(<!doctype html>
 <style>
 body{font:14px/1.4 sans-serif;margin:1.5em;color:#222}h1{font-size:1.5em}h2{margin-top:1.6em}
 table.rl-table{border-collapse:collapse;font-size:12px}table.rl-table td,table.rl-table th{border:1px solid #ccc;padding:2px 6px;text-align:right}
-table.rl-table th{cursor:pointer;background:#f3f3f3;position:sticky;top:0}.rl-table-box{max-height:36em;max-width:100%;overflow:auto;display:inline-block}.rl-lone{font-size:12px;color:#555}.rl-footnote{font-size:12px;color:#555}table.rl-table td:first-child{text-align:left}
+table.rl-table th{cursor:pointer;background:#f3f3f3;position:sticky;top:0}.rl-table-box{max-height:36em;max-width:100%;width:fit-content;overflow:auto;margin-top:4px}.rl-lone{font-size:12px;color:#555}.rl-footnote{font-size:12px;color:#555}table.rl-table td:first-child{text-align:left}
 .rl-plots{display:flex;flex-wrap:wrap;gap:1em}.rl-plot{border:1px solid #ddd;padding:4px}
 .rl-plot .domain{fill:none;stroke:#444}.rl-plot .tick line{stroke:#444}.rl-plot text{font-size:11px}
 .rl-series{font-size:11px;max-width:380px}.rl-series span{margin-right:8px;white-space:nowrap}.rl-point{cursor:pointer;stroke:#fff;stroke-width:0.5}.rl-front{fill:none;stroke:#222;stroke-dasharray:4 3}
 .rl-cell{border-top:1px solid #ddd;padding-top:.5em}.rl-cell img{width:256px;image-rendering:pixelated;margin-right:6px;border:1px solid #ccc}
-.rl-missing{display:inline-block;width:248px;height:3em;margin-right:6px;padding:4px;border:1px dashed #bbb;color:#777;font-size:11px;vertical-align:top}
+.rl-missing{display:inline-block;width:248px;min-height:3em;word-break:break-all;margin-right:6px;padding:4px;border:1px dashed #bbb;color:#777;font-size:11px;vertical-align:top}
 .rl-legend{height:12px;width:256px;background:linear-gradient(to right,#30123b,#4686fb,#1be5b5,#a4fc3c,#fbb938,#e4460a,#7a0403)}
 pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px}
 </style>
@@ -216,7 +217,8 @@ pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px
     if (lone.length) {
       document.getElementById('rl-plots').parentNode.insertBefore(el('p', {'class': 'rl-lone'},
           lone.length + ' plot group(s) hold a single setting and are not drawn: ' +
-          lone.map(function (p) { return p.title; }).join('; ')), document.getElementById('rl-plots'));
+          lone.slice(0, 4).map(function (p) { return p.title; }).join('; ') +
+          (lone.length > 4 ? '; …' : '')), document.getElementById('rl-plots'));
     }
     (data.plots || []).filter(function (p) { return p.points.length >= 2; }).forEach(function (p) {
       var w = 380, h = 250, m = {l: 56, r: 12, t: 34, b: 40};
