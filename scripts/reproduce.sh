@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates one committed reproduction: runs CONFIG from an empty folder and copies its
-# tables (Markdown and LaTeX), rows.csv, Pareto fronts and plots into results/<sweep name>/ (images stay in the
-# scratch run folder, out/<sweep name>-reproduction/images).
+# tables (Markdown and LaTeX), rows.csv, Pareto fronts, plots and HTML report into
+# results/<sweep name>/ (images stay in the scratch run folder,
+# out/<sweep name>-reproduction/images; the report names the pictures it cannot find).
 # With --images the run's images come along too (for figure reproductions with few cells).
 #   scripts/reproduce.sh                                        # the built-in default sweep
 #   scripts/reproduce.sh configs/papers/baboud2006-table1.toml

@@ -1,10 +1,12 @@
 #pragma once
 // The report a person reads: OUT/report.html and its assets folder (report_assets/: d3 from
 // Debian's libjs-d3), opening from disk with no server and no network. Per [[table]] a
-// sortable, filterable table; per [[plot]] and group (scene, view) an error-against-cost plot
-// with its Pareto front (hover: the setting and its numbers; click: the cell); per cell its
-// render, truth and error heat map side by side with the heat map's scale and the cell's
-// numbers; the run's config and run.log. d3 because Debian packages it as one browser bundle
+// sortable, filterable table laid out as its Markdown file (lay_out_table); per [[plot]] and
+// group (scene, view) an error-against-cost plot with its Pareto front and a colour legend
+// (hover: the setting and its numbers; click: the cell), groups with a single setting listed
+// instead; per cell its render, truth and error heat map side by side with the heat map's
+// scale and the cell's numbers (a picture missing beside the report is named); the run's
+// config and run.log. d3 because Debian packages it as one browser bundle
 // (Debian's Vega comes as 31 UMD modules that need d3 modules it does not ship), and a scatter
 // with a front line is a few dozen lines of it; the SVG files of plots/ stay as static copies.
 #include <string>
