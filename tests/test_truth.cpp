@@ -25,7 +25,8 @@ TEST(Truth, EveryHitLiesWithinTheStatedBoundOfTheBilinearSurface) {
     int hits = 0;
     for (const test::TangentRay& r :
          test::random_tangent_rays(3000, 10, 85, 0.08 * 64 / 64.0, 11, -1e-6)) {
-      TruthHit h = truth.intersect(r.origin, r.direction, 0, 1.0 + 1e-6);
+      // Rays end a hair below depth 1, as the renderer's do: the walls' floor lies exactly at 1.
+      TruthHit h = truth.intersect(r.origin, r.direction, 0, 1.0 + 1e-4);
       if (!h.hit) continue;
       ++hits;
       const double surface = m.sample_depth(h.point.x, h.point.y);

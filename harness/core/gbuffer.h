@@ -15,7 +15,9 @@ struct GBuffer {
   std::vector<glm::vec4> hit;       // hit u, v, layer, texture fetches of this pixel
   // x: ambient visibility the pixel was shaded with (1 without ambient_occlusion); y: its
   // standard error (the truth's hemisphere sampling; 0 for a technique); z: the unoccluded
-  // ambient term's mean over rgb (ambient * albedo), so AO's share of colour error is known.
+  // ambient term's mean over rgb (ambient * albedo), so AO's share of colour error is known;
+  // w: the truth's bound on this pixel's hit, a world distance along the camera ray
+  // (truth/truth_render.h truth_hit_bound; 0 in a technique's G-buffer).
   std::vector<glm::vec4> aux;
 
   void resize(int w, int h) {

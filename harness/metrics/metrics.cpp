@@ -104,9 +104,15 @@ ImageMetrics compare_gbuffers(const GBuffer& t, const GBuffer& r, double depth_w
   std::vector<double> ao_err;
   double ao_signed = 0, ao_stderr = 0, ao_color = 0, color_err = 0, color_signed = 0;
   long both = 0, missed = 0, false_hits = 0, artifacts = 0, shadow_diff = 0, object_diff = 0;
+  long uncertain = 0;
   std::vector<double> pos, pos_texels, normal_deg, fetches;
   for (size_t i = 0; i < t.size(); ++i) {
     const bool tc = t.covered(i), rc = r.covered(i);
+    if (rc) {
+      const double bound = double(r.aux[i].w) / texel_world;
+      m.truth_bound_texels = std::max(m.truth_bound_texels, std::isfinite(bound) ? bound : 1e30);
+      uncertain += !(bound <= kTruthBoundTarget);
+    }
     if (!finite4(t.color[i]) || !finite4(t.position[i]) || !finite4(t.normal[i]) ||
         !finite4(t.hit[i]))
       ++m.nonfinite_px;
@@ -152,6 +158,8 @@ ImageMetrics compare_gbuffers(const GBuffer& t, const GBuffer& r, double depth_w
   }
   const double covered = std::max<long>(1, m.truth_covered_px);
   m.missed_pct = 100.0 * missed / covered;
+  m.truth_uncertain_pct =
+      m.union_covered_px ? 100.0 * double(uncertain) / double(m.union_covered_px) : 0.0;
   m.false_pct = 100.0 * false_hits / covered;
   m.pos_err = error_stats(pos);
   m.pos_err_texels = error_stats(pos_texels);
@@ -194,7 +202,9 @@ std::vector<std::pair<std::string, double>> ImageMetrics::named() const {
                                                    {"fetches_mean", fetches.mean},
                                                    {"fetches_p99", fetches.p99},
                                                    {"fetches_max", fetches.max},
-                                                   {"nonfinite_px", double(nonfinite_px)}};
+                                                   {"nonfinite_px", double(nonfinite_px)},
+                                                   {"truth_bound_texels", truth_bound_texels},
+                                                   {"truth_uncertain_pct", truth_uncertain_pct}};
   if (has_ao)
     v.insert(v.end(), {{"ao_err_mean", ao_err_mean},
                        {"ao_err_p99", ao_err_p99},
@@ -204,7 +214,8 @@ std::vector<std::pair<std::string, double>> ImageMetrics::named() const {
                        {"color_bias", color_bias}});
   if (empty())
     for (auto& [name, value] : v)
-      if (name != "covered_px" && name != "union_px" && name != "nonfinite_px")
+      if (name != "covered_px" && name != "union_px" && name != "nonfinite_px" &&
+          name.rfind("truth_", 0) != 0)
         value = std::numeric_limits<double>::quiet_NaN();
   return v;
 }

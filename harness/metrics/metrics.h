@@ -20,6 +20,12 @@
 //   (hit layer -1) and the other the relief: visibility resolved differently (depth_correct);
 // - fetches_*: technique texture fetches per covered relief pixel;
 // - nonfinite_px: technique pixels with a NaN or infinite output (hard cases report them);
+// - the truth's own accuracy at this view, from its per-pixel bound (G-buffer aux.w, a world
+//   distance along the ray: truth/truth_render.h): truth_bound_texels = the largest over the
+//   pixels it covers, in texels; truth_uncertain_pct = % of the union of covered pixels where
+//   the truth covers and its bound exceeds kTruthBoundTarget. A row is flagged (truth_flagged)
+//   when that share exceeds kTruthUncertainFlagPct: its wrong_pct could then be the truth's
+//   own error by more than that many points, so it is not to be scored;
 // - with ambient_occlusion only: ao_err_mean / ao_err_p99 = |visibility - the truth's| and
 //   ao_bias = mean signed difference over jointly covered relief pixels; ao_ref_stderr = the
 //   truth's mean standard error there (its noise floor); ao_color_share_pct = the ambient
@@ -38,6 +44,11 @@ namespace rl {
 struct ErrorStats {
   double mean = 0, rmse = 0, p99 = 0, max = 0;
 };
+
+// A truth hit is trusted when its bound is this far below the headline's 1-texel threshold.
+inline constexpr double kTruthBoundTarget = 0.05;  // texels
+// A row is flagged when more than this % of its covered pixels have an untrusted truth hit.
+inline constexpr double kTruthUncertainFlagPct = 0.1;
 
 // mean / rmse / 99th percentile (nearest rank) / max of the values; zeros when empty.
 ErrorStats error_stats(std::vector<double> values);
@@ -59,7 +70,11 @@ struct ImageMetrics {
   bool has_ao = false;  // the AO columns below are measured (and named)
   double ao_err_mean = 0, ao_err_p99 = 0, ao_bias = 0, ao_ref_stderr = 0, ao_color_share_pct = 0;
   double color_bias = 0;
+  double truth_bound_texels = 0;   // largest per-pixel truth bound, texels
+  double truth_uncertain_pct = 0;  // % of the union where that bound exceeds kTruthBoundTarget
 
+  // The truth is not accurate enough at this view to score the row (see above).
+  bool truth_flagged() const { return truth_uncertain_pct > kTruthUncertainFlagPct; }
   // Nothing to measure: neither side covers a pixel. Error columns are then reported empty
   // (NaN in named()), never as a perfect score.
   bool empty() const { return union_covered_px == 0; }

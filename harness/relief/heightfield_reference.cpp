@@ -36,6 +36,17 @@ double smallest_root_in(double a, double b, double c, double lo, double hi) {
   return best;
 }
 
+double bilinear_patch_hit(double d00, double d10, double d01, double d11, double x, double y,
+                          double z, double dx, double dy, double dz, double span) {
+  // Bilinear D(x, y) = d00 + A x + B y + C x y; g(s) = ray depth - D along the segment.
+  const double A = d10 - d00, B = d01 - d00, C = d00 - d10 - d01 + d11;
+  const double qa = -C * dx * dy;
+  const double qb = dz - A * dx - B * dy - C * (x * dy + y * dx);
+  const double qc = z - d00 - A * x - B * y - C * x * y;
+  if (qc >= 0) return 0.0;  // already at or below the patch where the segment starts
+  return smallest_root_in(qa, qb, qc, 0.0, span);
+}
+
 ReferenceHit intersect_heightfield(const ReliefMap& map, const glm::dvec3& origin,
                                    const glm::dvec3& direction, double t_max) {
   ReferenceHit result;
@@ -49,19 +60,12 @@ ReferenceHit intersect_heightfield(const ReliefMap& map, const glm::dvec3& origi
   walk_grid_2d(X0, Y0, dX, dY, 0.0, t_max, [&](long i, long j, double t_enter, double t_exit) {
     ++result.cells;
     const int xi = static_cast<int>(((i % w) + w) % w), yj = static_cast<int>(((j % h) + h) % h);
-    const double d00 = map.depth_texel(xi, yj), d10 = map.depth_texel(xi + 1, yj);
-    const double d01 = map.depth_texel(xi, yj + 1), d11 = map.depth_texel(xi + 1, yj + 1);
-    // Local coordinates in the cell: fx = (X0 - i) + dX t, fy = (Y0 - j) + dY t.
-    const double px = X0 - i, py = Y0 - j;
-    // Bilinear D(fx, fy) = d00 + (d10-d00) fx + (d01-d00) fy + (d00-d10-d01+d11) fx fy.
-    const double A = d10 - d00, B = d01 - d00, C = d00 - d10 - d01 + d11;
-    // f(t) = ray depth - surface depth = z0 + dz t - D(px + dX t, py + dY t).
-    const double qa = -C * dX * dY;
-    const double qb = dz - A * dX - B * dY - C * (px * dY + py * dX);
-    const double qc = z0 - d00 - A * px - B * py - C * px * py;
-    const double f_enter = qa * t_enter * t_enter + qb * t_enter + qc;
-    const double t_hit = f_enter >= 0 ? t_enter : smallest_root_in(qa, qb, qc, t_enter, t_exit);
-    if (std::isnan(t_hit)) return false;
+    const double s = bilinear_patch_hit(
+        map.depth_texel(xi, yj), map.depth_texel(xi + 1, yj), map.depth_texel(xi, yj + 1),
+        map.depth_texel(xi + 1, yj + 1), X0 + dX * t_enter - double(i),
+        Y0 + dY * t_enter - double(j), z0 + dz * t_enter, dX, dY, dz, t_exit - t_enter);
+    if (std::isnan(s)) return false;
+    const double t_hit = t_enter + s;
     result.hit = true;
     result.t = t_hit;
     result.uv = glm::dvec2(origin.x + direction.x * t_hit, origin.y + direction.y * t_hit);

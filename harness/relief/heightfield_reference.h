@@ -25,6 +25,14 @@ struct ReferenceHit {
 // to rounding counts as a double root), or NaN.
 double smallest_root_in(double a, double b, double c, double lo, double hi);
 
+// One bilinear patch against a ray segment. The patch has depths d00, d10, d01, d11 at the
+// corners of its unit cell; the segment starts at cell coordinates (x, y), depth z, and moves
+// by (dx, dy, dz) per unit of s. Returns the first s in [0, span] at which the ray is at or
+// below the patch, or NaN. Working from the segment's own start keeps every coefficient of
+// the quadratic of order one, however far along the ray the cell lies.
+double bilinear_patch_hit(double d00, double d10, double d01, double d11, double x, double y,
+                          double z, double dx, double dy, double dz, double span);
+
 ReferenceHit intersect_heightfield(const ReliefMap& map, const glm::dvec3& origin,
                                    const glm::dvec3& direction, double t_max);
 

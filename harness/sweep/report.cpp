@@ -74,8 +74,13 @@ nlohmann::json report_data(const SweepConfig& config, const std::vector<Row>& ro
         else
           values.push_back(format_value(*v));
       }
-      table["rows"].push_back({{"cells", line.cell_keys}, {"values", values}});
+      // Per value: a truth_flagged row behind it (the table marks it).
+      std::vector<bool> flagged(line.row_key.size(), false);
+      flagged.insert(flagged.end(), line.flagged.begin(), line.flagged.end());
+      table["rows"].push_back(
+          {{"cells", line.cell_keys}, {"values", values}, {"flagged", flagged}});
     }
+    table["flag_note"] = t.flagged_values ? truth_flag_note() : std::string();
     data["tables"].push_back(table);
   }
   for (const PlotSpec& p : config.plots)
@@ -98,10 +103,19 @@ nlohmann::json report_data(const SweepConfig& config, const std::vector<Row>& ro
       }
       data["plots"].push_back(plot);
     }
-  const char* numbers[] = {"wrong_pct",    "missed_pct",          "false_pct",
-                           "pos_err_rmse", "pos_err_texels_mean", "normal_err_mean_deg",
-                           "psnr_db",      "fetches_mean",        "frame_ms",
-                           "memory_bytes", "ao_err_mean"};
+  const char* numbers[] = {"wrong_pct",
+                           "missed_pct",
+                           "false_pct",
+                           "pos_err_rmse",
+                           "pos_err_texels_mean",
+                           "normal_err_mean_deg",
+                           "psnr_db",
+                           "fetches_mean",
+                           "frame_ms",
+                           "memory_bytes",
+                           "ao_err_mean",
+                           "truth_bound_texels",
+                           "truth_uncertain_pct"};
   data["cells"] = nlohmann::json::array();
   for (const Row& r : rows) {
     nlohmann::json cell = {{"key", r.value("key", std::string())},
@@ -110,6 +124,7 @@ nlohmann::json report_data(const SweepConfig& config, const std::vector<Row>& ro
       if (r.contains(img) && r[img].is_string()) cell["images"][img] = r[img];
     for (const char* n : numbers)
       if (r.contains(n) && r[n].is_number()) cell["numbers"][n] = r[n].get<double>();
+    if (r.value("truth_flagged", false)) cell["flag"] = truth_flag_note();
     data["cells"].push_back(cell);
   }
   return data;
@@ -120,7 +135,7 @@ const char* kPage = R"HTML(<!doctype html>
 <style>
 body{font:14px/1.4 sans-serif;margin:1.5em;color:#222}h1{font-size:1.5em}h2{margin-top:1.6em}
 table.rl-table{border-collapse:collapse;font-size:12px}table.rl-table td,table.rl-table th{border:1px solid #ccc;padding:2px 6px;text-align:right}
-table.rl-table th{cursor:pointer;background:#f3f3f3;position:sticky;top:0}.rl-table-box{max-height:36em;max-width:100%;width:fit-content;overflow:auto;margin-top:4px}.rl-lone{font-size:12px;color:#555}.rl-footnote{font-size:12px;color:#555}table.rl-table td:first-child{text-align:left}
+table.rl-table th{cursor:pointer;background:#f3f3f3;position:sticky;top:0}.rl-table-box{max-height:36em;max-width:100%;width:fit-content;overflow:auto;margin-top:4px}.rl-lone{font-size:12px;color:#555}.rl-footnote{font-size:12px;color:#555}.rl-flagged{background:#fff3cd}table.rl-table td:first-child{text-align:left}
 .rl-plots{display:flex;flex-wrap:wrap;gap:1em}.rl-plot{border:1px solid #ddd;padding:4px}
 .rl-plot .domain{fill:none;stroke:#444}.rl-plot .tick line{stroke:#444}.rl-plot text{font-size:11px}
 .rl-series{font-size:11px;max-width:380px}.rl-series span{margin-right:8px;white-space:nowrap}.rl-point{cursor:pointer;stroke:#fff;stroke-width:0.5}.rl-front{fill:none;stroke:#222;stroke-dasharray:4 3}
@@ -190,6 +205,11 @@ pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px
         } else {
           td.textContent = fmt(v);
         }
+        if (r.flagged && r.flagged[i]) {
+          td.className = 'rl-flagged';
+          td.appendChild(document.createTextNode(' \u2691'));
+          td.title = 'truth not accurate enough at this view to score it';
+        }
         tr.appendChild(td);
       });
       body.appendChild(tr);
@@ -206,6 +226,7 @@ pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px
     scroller.appendChild(table);
     box.appendChild(scroller);
     if (t.footnote) box.appendChild(el('p', {'class': 'rl-footnote'}, t.footnote));
+    if (t.flag_note) box.appendChild(el('p', {'class': 'rl-footnote rl-flag-note'}, t.flag_note));
   });
   if (typeof d3 === 'undefined') {
     document.getElementById('rl-plots').textContent = 'd3 was not found when the report was written (install libjs-d3): no plots.';
@@ -274,6 +295,7 @@ pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px
     var nums = [];
     for (var k in c.numbers || {}) nums.push(k + ' ' + fmt(c.numbers[k]));
     s.appendChild(el('p', {}, nums.join(' · ')));
+    if (c.flag) s.appendChild(el('p', {'class': 'rl-flagged'}, c.flag));
     document.getElementById('rl-cells').appendChild(s);
   });
   document.body.setAttribute('data-ready', '1');

@@ -120,10 +120,32 @@ std::string stored_row_problem(const ResultStore& store, const Cell& cell) {
   }
   for (const std::string& m : measured_columns()) {
     auto it = row->find(m);
-    if (it != row->end() && !it->is_number() && !it->is_null())
-      return "holds a non-number in '" + m + "'";
+    if (it == row->end() || it->is_null()) continue;
+    if (m == "truth_flagged" ? !it->is_boolean() : !it->is_number())
+      return std::string("holds a non-") + (m == "truth_flagged" ? "boolean" : "number") + " in '" +
+             m + "'";
   }
   return "";
+}
+
+// The run log's statement of a truth trace's accuracy in the headline's units.
+std::string describe_truth_bound(const GBuffer& truth, double texel_world) {
+  double largest = 0;
+  long covered = 0, uncertain = 0;
+  for (size_t i = 0; i < truth.size(); ++i) {
+    if (!truth.covered(i)) continue;
+    const double bound = double(truth.aux[i].w) / texel_world;
+    ++covered;
+    largest = std::max(largest, bound);
+    uncertain += !(bound <= kTruthBoundTarget);
+  }
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "relieflab: truth bound at this view: <= %.3g texels on every hit; %ld of %ld "
+                "pixels (%.3g%%) above the %.2g-texel target",
+                largest, uncertain, covered, covered ? 100.0 * double(uncertain) / covered : 0.0,
+                kTruthBoundTarget);
+  return buf;
 }
 
 // A cell complex's construction (Apaza & Andujar, Table 1) and ray throughput (Table 2):
@@ -303,6 +325,12 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
                       "%zu-layer meta-relief traced exactly)",
                       scene.name.c_str(), layer0_size.width, layer0_size.height, asset->map.width,
                       asset->map.height, asset->build_ms, scene.meta.layers.size() + 1);
+      else if (asset->truth->tessellation_bound() == 0 && !scene.base.curved())
+        std::snprintf(buf, sizeof buf,
+                      "relieflab: asset %s at %dx%d: built in %.0f ms (truth %.0f ms, exact to "
+                      "rounding: each trace states its bound in texels)",
+                      scene.name.c_str(), layer0_size.width, layer0_size.height, asset->build_ms,
+                      asset->truth->build_ms());
       else
         std::snprintf(buf, sizeof buf,
                       "relieflab: asset %s at %dx%d: built in %.0f ms (Embree truth %.0f ms, "
@@ -345,6 +373,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
                     (unsigned long long)truth_stats.shadow_rays,
                     (unsigned long long)truth_stats.ao_rays, truth_stats.trace_ms);
       log.line(buf);
+      log.line(describe_truth_bound(truth, asset->metric_texel));
       if (truth_stats.unresolved)
         log.line("relieflab: warning: " + std::to_string(truth_stats.unresolved) +
                  " truth rays passed the floor by rounding and were placed on it");
@@ -429,6 +458,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     row["memory_bytes"] = double(asset->relief->bytes() + technique.memory_bytes());
     row["truth_subdivision"] = asset->truth->subdivision();
     row["truth_bound"] = asset->truth->tessellation_bound();
+    row["truth_flagged"] = m.truth_flagged();
     row["truth_ms"] = truth_stats.trace_ms;
     row["truth_unresolved_px"] = double(truth_stats.unresolved);
     if (ambient_occlusion) {

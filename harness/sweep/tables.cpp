@@ -1,5 +1,7 @@
 #include "sweep/tables.h"
 
+#include "metrics/metrics.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -118,7 +120,25 @@ std::string latex_escape(const std::string& s) {
   return out;
 }
 
+bool any_flagged(const std::vector<const Row*>& cell) {
+  for (const Row* r : cell) {
+    auto f = r->find("truth_flagged");
+    if (f != r->end() && f->is_boolean() && f->get<bool>()) return true;
+  }
+  return false;
+}
+
 }  // namespace
+
+std::string truth_flag_note() {
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "%s: the truth is not accurate enough at that view to score the row -- its "
+                "bound exceeds %.2g texel on more than %.2g%% of the pixels "
+                "(truth_uncertain_pct, truth_bound_texels).",
+                kTruthFlagMark, kTruthBoundTarget, kTruthUncertainFlagPct);
+  return buf;
+}
 
 TableLayout lay_out_table(const std::vector<Row>& rows, const TableSpec& spec) {
   auto key_of = [](const Row& r, const std::vector<std::string>& fields) {
@@ -159,9 +179,12 @@ TableLayout lay_out_table(const std::vector<Row>& rows, const TableSpec& spec) {
       for (const auto& v : spec.values) {
         if (it == cells.end()) {
           line.values.emplace_back(std::nullopt);
+          line.flagged.push_back(false);
           continue;
         }
         line.values.emplace_back(cell_value(it->second, v, spec.aggregate));
+        line.flagged.push_back(any_flagged(it->second));
+        t.flagged_values += line.flagged.back();
       }
       if (it != cells.end())
         for (const Row* r : it->second) line.cell_keys.push_back(r->value("key", std::string()));
@@ -180,13 +203,18 @@ TableLayout lay_out_table(const std::vector<Row>& rows, const TableSpec& spec) {
 
 bool best_is_lowest(const std::string& metric, bool& has_best) {
   // Columns with no better or worse (sizes, counts, settings of the run) get no bold.
-  static const std::set<std::string> neutral = {
-      "covered_px",          "union_px",      "elev_min_deg",      "elev_max_deg",
-      "frames_timed",        "truth_bound",   "truth_subdivision", "truth_ms",
-      "truth_unresolved_px", "layers",        "depth_complexity",  "ao_rescale",
-      "truth_ao_rays",       "ao_ref_stderr", "cell_grid",         "mesh_faces",
-      "grey_cells",          "domain_faces",  "color_bias",        "ao_bias",
-      "face_count"};
+  static const std::set<std::string> neutral = {"covered_px",          "union_px",
+                                                "elev_min_deg",        "elev_max_deg",
+                                                "frames_timed",        "truth_bound",
+                                                "truth_subdivision",   "truth_ms",
+                                                "truth_unresolved_px", "layers",
+                                                "depth_complexity",    "ao_rescale",
+                                                "truth_ao_rays",       "ao_ref_stderr",
+                                                "cell_grid",           "mesh_faces",
+                                                "grey_cells",          "domain_faces",
+                                                "color_bias",          "ao_bias",
+                                                "face_count",          "truth_bound_texels",
+                                                "truth_uncertain_pct"};
   has_best = !neutral.count(metric);
   return !(metric == "psnr_db" || metric == "ssim" || metric == "intersections_per_s");
 }
@@ -206,10 +234,16 @@ std::string format_markdown_table(const std::vector<Row>& rows, const TableSpec&
   for (const TableLine& line : t.lines) {
     out += "|";
     for (const auto& k : line.row_key) out += " " + k + " |";
-    for (const auto& v : line.values) out += " " + (v ? format_value(*v) : std::string()) + " |";
+    for (size_t c = 0; c < line.values.size(); ++c) {
+      const auto& v = line.values[c];
+      out += " " + (v ? format_value(*v) : std::string());
+      if (line.flagged[c]) out += std::string(" ") + kTruthFlagMark;
+      out += " |";
+    }
     out += "\n";
   }
   if (!t.footnote.empty()) out += "\n> " + t.footnote + "\n";
+  if (t.flagged_values) out += "\n> " + truth_flag_note() + "\n";
   return out;
 }
 
@@ -224,7 +258,7 @@ std::string format_latex_table(const std::vector<Row>& rows, const TableSpec& sp
     if (!has_best) continue;
     for (const TableLine& line : t.lines) {
       const auto& x = line.values[c];
-      if (!x || !x->is_number()) continue;
+      if (!x || !x->is_number() || line.flagged[c]) continue;
       const double d = x->get<double>();
       if (!std::isfinite(d)) continue;
       if (std::isnan(best[c]) || (lowest ? d < best[c] : d > best[c])) best[c] = d;
@@ -252,8 +286,9 @@ std::string format_latex_table(const std::vector<Row>& rows, const TableSpec& sp
         continue;
       }
       std::string text = latex_escape(format_value(*x));
-      if (x->is_number() && !std::isnan(best[c]) && x->get<double>() == best[c])
+      if (x->is_number() && !line.flagged[c] && !std::isnan(best[c]) && x->get<double>() == best[c])
         text = "\\textbf{" + text + "}";
+      if (line.flagged[c]) text += "$^\\dagger$";
       cells.push_back(text);
     }
     for (size_t i = 0; i < cells.size(); ++i) out += (i ? " & " : "") + cells[i];
@@ -262,6 +297,11 @@ std::string format_latex_table(const std::vector<Row>& rows, const TableSpec& sp
   out += "\\bottomrule\n\\end{tabular}\n";
   if (!t.footnote.empty())
     out += "\\par\\smallskip{\\footnotesize " + latex_escape(t.footnote) + "}\n";
+  if (t.flagged_values) {
+    std::string note = truth_flag_note();
+    note.replace(0, std::string(kTruthFlagMark).size(), "");
+    out += "\\par\\smallskip{\\footnotesize $^\\dagger$" + latex_escape(note) + "}\n";
+  }
   out += "\\end{table}\n";
   return out;
 }

@@ -29,13 +29,20 @@ struct TableLine {
   // a null json where those rows lack the metric.
   std::vector<std::optional<nlohmann::ordered_json>> values;
   std::vector<std::string> cell_keys;  // the keys of the rows behind the line's values
+  // Per value column: a row behind it is truth_flagged (its truth is not accurate enough at
+  // that view to score it: metrics/metrics.h); the tables mark it and never bold it.
+  std::vector<bool> flagged;
 };
+// The mark and note a table gives values resting on a truth_flagged row.
+inline constexpr const char* kTruthFlagMark = "⚑";
+std::string truth_flag_note();
 struct TableLayout {
   std::string title;
   std::vector<std::string> row_fields;
   std::vector<TableValueColumn> value_columns;
   std::vector<TableLine> lines;
-  std::string footnote;  // rows hidden or combined, "" when every table cell holds one row
+  std::string footnote;     // rows hidden or combined, "" when every table cell holds one row
+  long flagged_values = 0;  // values resting on a truth_flagged row
 };
 TableLayout lay_out_table(const std::vector<Row>& rows, const TableSpec& spec);
 

@@ -23,6 +23,10 @@ class CellComplexTruth final : public TruthSurface {
                 double t_max) const override;
   float max_depth() const override { return 1.0f; }
   double tessellation_bound() const override { return step_; }
+  // A crossing it finds is bisected to double rounding: its position is exact. The step bounds
+  // only what it can miss (two crossings closer than a step along the ray), not where it hits.
+  double vertical_bound() const override { return 0.0; }
+  double rounding_bound() const override { return kDoubleRounding; }
   double build_ms() const override { return 0; }
 
  private:

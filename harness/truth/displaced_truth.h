@@ -22,6 +22,7 @@
 
 #include "relief/relief_map.h"
 #include "scene/base_mesh.h"
+#include "truth/truth_surface.h"
 
 namespace rl {
 
@@ -51,7 +52,10 @@ class DisplacedTruth {
                 double t_max) const;
 
   double tessellation_bound() const { return bound_; }  // depth units, measured
-  int subdivision() const { return subdivision_; }      // k per texel, or n per base triangle
+  // As TruthSurface's: the deviation along the base's normal, and Embree's float rounding.
+  double vertical_bound() const { return bound_; }
+  double rounding_bound() const { return TruthSurface::kEmbreeRounding; }
+  int subdivision() const { return subdivision_; }  // k per texel, or n per base triangle
   size_t triangles() const { return indices_.size() / 3; }
   double build_ms() const { return build_ms_; }
   uint64_t primary_rays() const { return primary_rays_.load(); }

@@ -26,6 +26,7 @@ class LayersTruth final : public TruthSurface {
                 double t_max) const override;
   float max_depth() const override { return 1.0f; }
   double tessellation_bound() const override { return 0.0; }  // exact for nearest sampling
+  double rounding_bound() const override { return kDoubleRounding; }
   double build_ms() const override { return 0.0; }
 
  private:

@@ -29,6 +29,7 @@ class MetaReliefTruth final : public TruthSurface {
                 double t_max) const override;
   float max_depth() const override { return float(meta_->max_depth()); }
   double tessellation_bound() const override { return 0.0; }
+  double rounding_bound() const override { return kDoubleRounding; }
   double build_ms() const override { return 0.0; }
 
   // The first t in [t_min, t_max] where the ray is at or below the surface, or NaN; `cells`

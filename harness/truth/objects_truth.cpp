@@ -56,7 +56,10 @@ void write_object_pixel(GBuffer& g, size_t i, const ObjectHit& h, const SceneDes
   g.normal[i] = glm::vec4(glm::vec3(h.normal), 0.0f);
   g.hit[i] = glm::vec4(0.0f, 0.0f, -1.0f, 0.0f);
   const glm::dvec3 ambient = scene.material.ambient * h.albedo;
-  g.aux[i] = glm::vec4(1.0f, 0.0f, float((ambient.x + ambient.y + ambient.z) / 3.0), 0.0f);
+  // Meshes traced as they are drawn: only Embree's rounding, at the scene's scale.
+  const double bound = truth_hit_bound(0.0, TruthSurface::kEmbreeRounding * scene.size, h.normal,
+                                       h.normal, view_dir, h.position);
+  g.aux[i] = glm::vec4(1.0f, 0.0f, float((ambient.x + ambient.y + ambient.z) / 3.0), float(bound));
 }
 
 }  // namespace rl

@@ -32,6 +32,8 @@ class PatternBaseTruth {
                 double t_max) const;
 
   double tessellation_bound() const { return 0.0; }
+  double vertical_bound() const { return 0.0; }  // the pattern mesh itself, placed exactly
+  double rounding_bound() const { return TruthSurface::kEmbreeRounding; }
   int subdivision() const { return 1; }
   size_t triangles() const { return triangles_.size(); }
   double build_ms() const { return build_ms_; }

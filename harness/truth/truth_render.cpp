@@ -118,12 +118,23 @@ glm::dvec3 shade(const Material& m, const glm::dvec3& albedo, const glm::dvec3& 
   return ambient_visibility * m.ambient * albedo + lit;
 }
 
+double truth_hit_bound(double vertical, double rounding, const glm::dvec3& base_normal,
+                       const glm::dvec3& surface_normal, const glm::dvec3& dir,
+                       const glm::dvec3& position) {
+  // Cosines floored so a ray exactly tangent to the surface states a huge bound, not infinity.
+  const double across_base = std::max(std::abs(glm::dot(base_normal, dir)), 1e-9);
+  const double across_surface = std::max(std::abs(glm::dot(surface_normal, dir)), 1e-9);
+  const double largest =
+      std::max({std::abs(position.x), std::abs(position.y), std::abs(position.z)});
+  return vertical / across_base + rounding / across_surface + std::sqrt(3.0) * 0x1p-24 * largest;
+}
+
 namespace {
 
 void write_relief_pixel(GBuffer& g, size_t i, const SceneDesc& scene, const glm::dvec3& albedo,
                         const glm::dvec3& n, const glm::dvec3& world, const glm::dvec3& to_light,
                         const glm::dvec3& dir, const glm::dvec2& uv, bool in_shadow,
-                        const AoEstimate& ao) {
+                        const AoEstimate& ao, double bound) {
   const glm::dvec3 c = shade(scene.material, albedo, n, to_light, -dir, in_shadow, ao.visibility);
   g.color[i] = glm::vec4(glm::vec3(c), 1.0f);
   g.position[i] = glm::vec4(glm::vec3(world), 1.0f);
@@ -131,7 +142,7 @@ void write_relief_pixel(GBuffer& g, size_t i, const SceneDesc& scene, const glm:
   g.hit[i] = glm::vec4(float(uv.x), float(uv.y), 0.0f, 0.0f);
   const glm::dvec3 ambient = scene.material.ambient * albedo;
   g.aux[i] = glm::vec4(float(ao.visibility), float(ao.std_error),
-                       float((ambient.x + ambient.y + ambient.z) / 3.0), 0.0f);
+                       float((ambient.x + ambient.y + ambient.z) / 3.0), float(bound));
 }
 
 // Per-pixel seed of the reference AO's directions: the same on every run and thread count.
@@ -154,6 +165,12 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
   // Rays end just below the deepest point of the map (not clamped at 1: a map reaching depth 1
   // would put its deepest hits exactly on the end of the ray, where rounding can lose them).
   const double bottom = double(truth.max_depth()) + 1e-4;
+  // The truth's bound in world units: its vertical deviation, and its rounding at the scale of
+  // a unit of texture space.
+  const double vertical_world = truth.vertical_bound() * base.depth;
+  const double rounding_world =
+      truth.rounding_bound() *
+      std::max({glm::length(base.dpdu()), glm::length(base.dpdv()), base.depth});
   GBuffer g;
   g.resize(camera.width, camera.height);
   std::atomic<long> unresolved{0};
@@ -249,7 +266,9 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
                               });
             ao_rays += uint64_t(ao.rays);
           }
-          write_relief_pixel(g, i, scene, albedo, n, world, to_light, dir, uv, in_shadow, ao);
+          write_relief_pixel(
+              g, i, scene, albedo, n, world, to_light, dir, uv, in_shadow, ao,
+              truth_hit_bound(vertical_world, rounding_world, base.normal(), n, dir, world));
         }
       },
       256);
@@ -278,6 +297,8 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
   // Hemisphere directions sampled, and those traced (the truth counts them as occlusion rays).
   std::atomic<uint64_t> ao_rays{0}, ao_traced{0};
   const double far = camera.far_plane;
+  const double vertical_world = truth.vertical_bound() * scene.depth;
+  const double rounding_world = truth.rounding_bound() * std::max(scene.size, scene.depth);
   GBuffer g;
   g.resize(camera.width, camera.height);
   parallel_for(
@@ -327,8 +348,9 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
                 });
             ao_rays += uint64_t(ao.rays);
           }
-          write_relief_pixel(g, i, scene, albedo, n, h.position, to_light, dir, h.uv, in_shadow,
-                             ao);
+          write_relief_pixel(
+              g, i, scene, albedo, n, h.position, to_light, dir, h.uv, in_shadow, ao,
+              truth_hit_bound(vertical_world, rounding_world, h.normal, n, dir, h.position));
         }
       },
       256);

@@ -35,6 +35,16 @@ class TruthSurface {
   virtual float max_depth() const = 0;
   // Largest deviation from the surface it stands for, in depth units.
   virtual double tessellation_bound() const = 0;
+  // How far (depth units, along the base's normal) a hit it reports may lie from the surface it
+  // stands for: a ray crossing s depth units per unit of length meets a surface moved this far
+  // 1 / s further along. The tessellation bound unless a truth says otherwise (one whose found
+  // hits are exact while its tessellation_bound() states something else).
+  virtual double vertical_bound() const { return tessellation_bound(); }
+  // Rounding of its arithmetic, relative to the coordinates' magnitude (texture space, order
+  // one): float for Embree's (kEmbreeRounding), double for truths solved on the CPU.
+  virtual double rounding_bound() const { return kEmbreeRounding; }
+  static constexpr double kEmbreeRounding = 1e-6;  // eight float ulps at magnitude one
+  static constexpr double kDoubleRounding = 1e-12;
   virtual int subdivision() const { return 1; }
   virtual double build_ms() const = 0;
   uint64_t primary_rays() const { return primary_rays_.load(); }
