@@ -1,7 +1,9 @@
-// Truth throughput: rays/s of HeightfieldTruth::intersect (tile walk + Embree grid) against
-// raw rtcIntersect1 on the same Embree scene with the same rays, single-threaded, and the
-// whole truth G-buffer (all cores); the displaced-mesh truth of a curved base: its build
-// (tessellation + BVH) and its G-buffer. Not part of CI.
+// Truth throughput: rays/s of HeightfieldTruth::intersect (Embree on the lifted grid, then the
+// exact walk) against raw rtcIntersect1 on the same Embree scene with the same rays,
+// single-threaded, and the whole truth G-buffer (all cores), at 45 degrees and, on the TRaK5
+// panel at 1024^2, at grazing views (the truth's build and trace separately, with the exact
+// stage's work per ray); the displaced-mesh truth of a curved base: its build (tessellation +
+// BVH) and its G-buffer. Not part of CI.
 #include <cmath>
 #include <map>
 #include <memory>
@@ -83,17 +85,61 @@ void BM_RawEmbreeIntersect1(benchmark::State& state, std::string kind) {
   state.SetItemsProcessed(state.iterations());
 }
 
-void BM_TruthGBuffer(benchmark::State& state) {
-  Setup& s = setup("bricks", 256);
-  const Camera cam = make_camera(s.scene, View{45, 30}, 512, 512);
+// Renders the truth G-buffer once per iteration; rays traced, for items processed.
+template <typename Truth>
+uint64_t time_truth_gbuffers(benchmark::State& state, const Truth& truth, const ReliefMap& map,
+                             const SceneDesc& scene, const Camera& cam) {
   uint64_t rays = 0;
   for (auto _ : state) {
     TruthStats stats;
-    GBuffer g = render_truth(*s.truth, s.map, s.scene, cam, EffectSet{}, &stats);
+    GBuffer g = render_truth(truth, map, scene, cam, EffectSet{}, &stats);
     benchmark::DoNotOptimize(g.color.data());
     rays += stats.primary_rays;
   }
   state.SetItemsProcessed(int64_t(rays));
+  return rays;
+}
+
+void BM_TruthGBuffer(benchmark::State& state) {
+  Setup& s = setup("bricks", 256);
+  time_truth_gbuffers(state, *s.truth, s.map, s.scene,
+                      make_camera(s.scene, View{45, 30}, 512, 512));
+}
+
+// The panel map at 1024^2 (upsampled from 512^2, normalised), filling a 512^2 viewport.
+SceneDesc panel_scene() {
+  SceneDesc scene;
+  scene.name = "panel";
+  scene.relief.normal_path =
+      std::string(RELIEFLAB_SOURCE_DIR) + "/assets/relief/trak5/panel1_n.png";
+  scene.relief.normalize = true;
+  scene.relief.native = {512, 512};
+  return scene;
+}
+
+void BM_TruthBuildPanel(benchmark::State& state) {
+  const ReliefMap map = build_relief_asset(panel_scene(), int(state.range(0)));
+  int k = 0;
+  for (auto _ : state) {
+    HeightfieldTruth truth(map);
+    k = truth.subdivision();
+  }
+  state.counters["subdivision"] = k;
+}
+
+void BM_TruthGBufferPanel(benchmark::State& state) {
+  SceneDesc scene = panel_scene();
+  const double elevation = double(state.range(1));
+  apply_fill_framing(scene, elevation, 1.0);
+  const ReliefMap map = build_relief_asset(scene, int(state.range(0)));
+  const HeightfieldTruth truth(map);
+  const uint64_t queries0 = truth.embree_queries(), cells0 = truth.exact_cells();
+  const uint64_t rays = time_truth_gbuffers(state, truth, map, scene,
+                                            make_camera(scene, View{elevation, 30}, 512, 512));
+  state.counters["embree_queries_per_ray"] =
+      double(truth.embree_queries() - queries0) / double(std::max<uint64_t>(rays, 1));
+  state.counters["exact_cells_per_ray"] =
+      double(truth.exact_cells() - cells0) / double(std::max<uint64_t>(rays, 1));
 }
 
 // A curved base (chapter 5): `kind` on a 32-segment sphere at res^2 (two tiles around).
@@ -122,15 +168,7 @@ void BM_DisplacedTruthGBuffer(benchmark::State& state) {
   const ReliefMap map = build_relief_asset(scene, 256);
   const DisplacedTruth truth(make_base_mesh(scene.base, scene.size, scene.tile), map, scene.depth,
                              2e-3);
-  const Camera cam = make_camera(scene, View{30, 30}, 512, 512);
-  uint64_t rays = 0;
-  for (auto _ : state) {
-    TruthStats stats;
-    GBuffer g = render_truth(truth, map, scene, cam, EffectSet{}, &stats);
-    benchmark::DoNotOptimize(g.color.data());
-    rays += stats.primary_rays;
-  }
-  state.SetItemsProcessed(int64_t(rays));
+  time_truth_gbuffers(state, truth, map, scene, make_camera(scene, View{30, 30}, 512, 512));
 }
 
 BENCHMARK_CAPTURE(BM_TruthIntersect, bricks, "bricks")->Arg(256)->Arg(512);
@@ -149,6 +187,14 @@ BENCHMARK_CAPTURE(BM_DisplacedTruthBuild, bricks, "bricks")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_DisplacedTruthGBuffer)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_TruthBuildPanel)->Arg(1024)->Arg(2048)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_TruthGBufferPanel)
+    ->Args({1024, 1})
+    ->Args({1024, 5})
+    ->Args({1024, 20})
+    ->Args({2048, 5})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace rl

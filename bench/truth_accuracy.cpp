@@ -5,7 +5,7 @@
 // quadratic solved in double) on the same texture-space ray. Not part of CI: the closing notes'
 // before/after tables of issue 27 come from it.
 //
-//   truth_accuracy [--quick] [--maps panel,rockwall,bricks,bricks_wide] [--sizes 512,1024,2048]
+//   truth_accuracy [--maps panel,pits,rockwall,bricks] [--sizes 512,1024,2048]
 //                  [--elevations 1,5,20,45,90] [--viewport 512]
 #include <algorithm>
 #include <chrono>
@@ -44,9 +44,6 @@ SceneDesc study_scene(const std::string& name) {
   } else if (name == "rockwall") {
     scene.relief.depth_path = assets + "rockwall/rockwall_height.bmp";
     scene.relief.native = {256, 256};
-  } else if (name == "bricks_wide") {
-    scene.relief.procedural = "bricks";
-    scene.relief.native = {1024, 256};  // non-square: 4:1
   } else {
     scene.relief.procedural = name;
     scene.relief.native = {512, 512};
@@ -122,7 +119,7 @@ Study study(const SceneDesc& scene, const ReliefMap& map, const HeightfieldTruth
 
 int main(int argc, char** argv) {
   using namespace rl;
-  std::vector<std::string> maps = {"panel", "rockwall", "bricks", "bricks_wide"};
+  std::vector<std::string> maps = {"panel", "pits", "rockwall", "bricks"};
   std::vector<std::string> sizes = {"512", "1024", "2048"};
   std::vector<std::string> elevations = {"1", "5", "20", "45", "90"};
   int viewport = 512;

@@ -81,8 +81,8 @@ linear_steps = [8]
   const Exr tech = read_exr(out + "/" + std::string((*row)["gbuffer"]));
   const Exr truth = read_exr(out + "/" + std::string((*row)["gbuffer_truth"]));
   const std::set<std::string> expected = {
-      "R",   "G",    "B",    "A", "P.X",   "P.Y",     "P.Z",    "N.X",         "N.Y",
-      "N.Z", "uv.U", "uv.V", "Z", "layer", "fetches", "shadow", "relief_depth"};
+      "R",   "G",    "B",    "A", "P.X",   "P.Y",     "P.Z",    "N.X",          "N.Y",
+      "N.Z", "uv.U", "uv.V", "Z", "layer", "fetches", "shadow", "relief_depth", "truth_bound"};
   for (const Exr* e : {&tech, &truth}) {
     EXPECT_EQ(e->width, 40);
     EXPECT_EQ(e->height, 28);
@@ -120,6 +120,10 @@ linear_steps = [8]
       EXPECT_NEAR(truth.at(x, r, "Z"), -(view * p).z, 1e-4);
       const float d = truth.at(x, r, "relief_depth");
       EXPECT_TRUE(d >= -1e-4f && d <= 1 + 1e-4f) << d;
+      // The exact truth's bound: float storage of the position, under a thousandth of a texel.
+      EXPECT_GT(truth.at(x, r, "truth_bound"), 0.0f);
+      EXPECT_LT(truth.at(x, r, "truth_bound"), 1e-3f / 32);  // texels of 1/32
+      if (tech.at(x, r, "A") > 0.5f) EXPECT_EQ(tech.at(x, r, "truth_bound"), 0.0f);
     }
   EXPECT_GT(truth_covered, 500);
   EXPECT_EQ(truth_covered, long((*row)["covered_px"]));

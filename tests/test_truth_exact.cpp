@@ -17,6 +17,7 @@
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
+#include "sweep/pareto.h"
 #include "sweep/tables.h"
 #include "truth/displaced_truth.h"
 #include "truth/heightfield_truth.h"
@@ -355,16 +356,38 @@ TEST(TruthBound, FlaggedRowsAreMarkedInTheTables) {
   rows[1]["technique"] = "b";
   rows[1]["wrong_pct"] = 1.5;
   rows[1]["truth_flagged"] = false;
+  rows[0]["fetches_mean"] = 12.0;  // a cost: the truth does not enter it, so it is not marked
+  rows[1]["fetches_mean"] = 14.0;
   TableSpec spec;
   spec.rows = {"technique"};
-  spec.values = {"wrong_pct"};
+  spec.values = {"wrong_pct", "fetches_mean"};
   const std::string md = format_markdown_table(rows, spec);
-  EXPECT_NE(md.find("| a | 0.5 " + std::string(kTruthFlagMark) + " |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| b | 1.5 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| a | 0.5 " + std::string(kTruthFlagMark) + " | 12 |"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| b | 1.5 | 14 |"), std::string::npos) << md;
   EXPECT_NE(md.find(truth_flag_note()), std::string::npos) << md;
   const std::string tex = format_latex_table(rows, spec);
   EXPECT_NE(tex.find("0.5$^\\dagger$"), std::string::npos) << tex;
   EXPECT_NE(tex.find("\\textbf{1.5}"), std::string::npos) << tex;  // the best unflagged value
+}
+
+// A flagged setting is drawn but not ranked: it neither sits on the front nor pushes a setting
+// it would beat off it.
+TEST(TruthBound, FlaggedSettingsAreNotRankedOnTheParetoFront) {
+  std::vector<Row> rows(2);
+  rows[0]["technique"] = "a";
+  rows[0]["fetches_mean"] = 5.0;
+  rows[0]["wrong_pct"] = 0.5;
+  rows[0]["truth_flagged"] = true;
+  rows[1]["technique"] = "b";
+  rows[1]["fetches_mean"] = 10.0;
+  rows[1]["wrong_pct"] = 1.5;
+  rows[1]["truth_flagged"] = false;
+  const std::vector<PlotGroup> groups = plot_groups(rows, PlotSpec{}, {});
+  ASSERT_EQ(groups.size(), 1u);
+  ASSERT_EQ(groups[0].points.size(), 2u);
+  EXPECT_TRUE(groups[0].points[0].flagged);
+  EXPECT_EQ(pareto_front(groups[0].points), std::vector<size_t>{1});
 }
 
 }  // namespace

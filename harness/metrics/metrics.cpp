@@ -220,6 +220,20 @@ std::vector<std::pair<std::string, double>> ImageMetrics::named() const {
   return v;
 }
 
+bool measured_against_truth(const std::string& column) {
+  static const std::vector<std::string> errors = [] {
+    ImageMetrics every;
+    every.has_ao = true;
+    std::vector<std::string> names;
+    for (const auto& [name, value] : every.named())
+      if (name != "covered_px" && name != "union_px" && name != "nonfinite_px" &&
+          name.rfind("fetches_", 0) != 0 && name.rfind("truth_", 0) != 0)
+        names.push_back(name);
+    return names;
+  }();
+  return std::find(errors.begin(), errors.end(), column) != errors.end();
+}
+
 std::vector<float> error_heat_map(const GBuffer& t, const GBuffer& r, double texel_world,
                                   double scale_texels) {
   const std::vector<float> err = position_error_texels(t, r, texel_world);

@@ -83,6 +83,10 @@ struct ImageMetrics {
   std::vector<std::pair<std::string, double>> named() const;
 };
 
+// Does this row column compare the technique with the truth (an error column that a flagged
+// truth makes unscoreable)? Costs, counts and the truth's own bound do not.
+bool measured_against_truth(const std::string& column);
+
 // `ambient_occlusion`: the scene asked for it, so the AO columns are measured.
 ImageMetrics compare_gbuffers(const GBuffer& technique, const GBuffer& truth, double depth_world,
                               double texel_world, bool ambient_occlusion = false);

@@ -26,7 +26,10 @@ void write_gbuffer_exr(const std::string& path, const GBuffer& g, const SceneDes
   std::vector<std::string> names = {"R",   "G",     "B",       "A",     "P.X",  "P.Y",
                                     "P.Z", "N.X",   "N.Y",     "N.Z",   "uv.U", "uv.V",
                                     "Z",   "layer", "fetches", "shadow"};
+  const int relief_depth_channel = int(names.size());
   if (planar) names.push_back("relief_depth");
+  const int bound_channel = int(names.size());
+  names.push_back("truth_bound");
   // The ambient visibility shaded with, and its standard error (the truth's sampling).
   const bool ambient_occlusion = scene.effects.has(Effect::AmbientOcclusion);
   const int ao_channel = int(names.size());
@@ -52,8 +55,9 @@ void write_gbuffer_exr(const std::string& path, const GBuffer& g, const SceneDes
       if (planar) {
         // Texture depth through the base (and a baked mesh's reverse projection, if any).
         const glm::dvec3 t = scene.projection.texture_from_affine(base.texture_from_world(world));
-        p[ao_channel - 1] = float(t.z);
+        p[relief_depth_channel] = float(t.z);
       }
+      p[bound_channel] = g.aux[i].w;
       if (ambient_occlusion) {
         p[ao_channel] = g.aux[i].x;
         p[ao_channel + 1] = g.aux[i].y;

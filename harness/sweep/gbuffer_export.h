@@ -10,6 +10,8 @@
 //   uv.U, uv.V     texture coordinate of the hit (tiled: may exceed 1)
 //   Z              camera-space depth of the hit: distance along the view axis
 //   relief_depth   relief depth of the hit, 0 (top) to 1 (bottom); planar bases only
+//   truth_bound    how far the truth's hit may be off, a world distance along the ray
+//                  (truth/truth_render.h truth_hit_bound; 0 for a technique)
 //   layer          layer of a multilayer map (0 for heightfields)
 //   fetches        texture fetches this pixel's search made (0 in a truth)
 //   shadow         1 where the hit is in shadow (scenes with self_shadow)

@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 
+#include "metrics/metrics.h"
 #include "sweep/tables.h"
 
 namespace rl {
@@ -48,9 +49,10 @@ std::string safe_file_part(std::string s) {
 std::vector<size_t> pareto_front(const std::vector<ParetoPoint>& points) {
   std::vector<size_t> front;
   for (size_t i = 0; i < points.size(); ++i) {
+    if (points[i].flagged) continue;
     bool dominated = false;
     for (size_t j = 0; j < points.size() && !dominated; ++j) {
-      if (i == j) continue;
+      if (i == j || points[j].flagged) continue;
       const ParetoPoint &a = points[j], &b = points[i];
       dominated = a.x <= b.x && a.y <= b.y && (a.x < b.x || a.y < b.y);
     }
@@ -129,9 +131,12 @@ std::string format_svg_plot(const std::vector<ParetoPoint>& points, const std::s
     const auto& p = points[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
     const char* c = kPalette[colour[p.series] % 8];
+    // A flagged point (not ranked) is drawn hollow in its colour.
+    const std::string fill = p.flagged ? "none" : c;
+    const std::string stroke = on_front.count(i) ? "black" : (p.flagged ? c : "none");
     s += "<circle cx=\"" + fmt(sx(p.x)) + "\" cy=\"" + fmt(sy(p.y)) + "\" r=\"" +
-         (on_front.count(i) ? "5" : "3.5") + "\" fill=\"" + c + "\" stroke=\"" +
-         (on_front.count(i) ? "black" : "none") + "\"><title>" +
+         (on_front.count(i) ? "5" : "3.5") + "\" fill=\"" + fill + "\" stroke=\"" + stroke +
+         "\"><title>" +
          escape(p.label + ": " + x_name + "=" + fmt(p.x) + ", " + y_name + "=" + fmt(p.y)) +
          "</title></circle>\n";
     s += "<text x=\"" + fmt(sx(p.x) + 6) + "\" y=\"" + fmt(sy(p.y) - 6) +
@@ -148,6 +153,9 @@ std::string format_svg_plot(const std::vector<ParetoPoint>& points, const std::s
   }
   s += "<text x=\"" + fmt(W - right + 14) + "\" y=\"" + fmt(ly + 10) +
        "\" font-size=\"9\">outlined, dashed: Pareto front</text>\n";
+  if (std::any_of(points.begin(), points.end(), [](const ParetoPoint& p) { return p.flagged; }))
+    s += "<text x=\"" + fmt(W - right + 14) + "\" y=\"" + fmt(ly + 24) +
+         "\" font-size=\"9\">hollow: truth not accurate enough, not ranked</text>\n";
   return s + "</svg>\n";
 }
 
@@ -176,6 +184,9 @@ std::vector<PlotGroup> plot_groups(const std::vector<Row>& rows, const PlotSpec&
     for (const auto& c : parameter_columns)
       if (r.contains(c) && !r[c].is_null()) p.label += " " + c + "=" + format_value(r[c]);
     p.key = r.value("key", "");
+    p.flagged = (measured_against_truth(spec.x) || measured_against_truth(spec.y)) &&
+                r.value("truth_flagged", false);
+    if (p.flagged) p.label += std::string(" ") + kTruthFlagMark;
     groups[it->second].points.push_back(p);
   }
   return groups;
@@ -202,6 +213,10 @@ std::string write_pareto_plots(const std::vector<Row>& rows, const PlotSpec& spe
             fmt(pts[i].y) + ")";
       first = false;
     }
+    long flagged = 0;
+    for (const ParetoPoint& p : pts) flagged += p.flagged;
+    if (flagged)
+      md += " (" + std::to_string(flagged) + " settings not ranked: " + kTruthFlagMark + ")";
     md += "\n";
   }
   return md;

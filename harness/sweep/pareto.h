@@ -21,6 +21,9 @@ struct ParetoPoint {
   std::string label;   // technique and parameters
   std::string series;  // technique (one colour each)
   std::string key;     // the row's cell key
+  // Its row is truth_flagged and the plot's error is measured against the truth: drawn, but
+  // not ranked (never on the front, never beating another point).
+  bool flagged = false;
 };
 
 // One plot's rows: those with numeric x and y that share the values of spec.group.
@@ -35,7 +38,8 @@ std::vector<PlotGroup> plot_groups(const std::vector<Row>& rows, const PlotSpec&
                                    const std::vector<std::string>& parameter_columns);
 
 // Indices of the points on the Pareto front (minimising x and y), ordered by x. A point is on
-// it when no other point is at least as good on both and strictly better on one.
+// it when no other point is at least as good on both and strictly better on one; flagged
+// points take no part.
 std::vector<size_t> pareto_front(const std::vector<ParetoPoint>& points);
 
 std::string format_svg_plot(const std::vector<ParetoPoint>& points, const std::string& title,

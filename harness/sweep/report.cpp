@@ -99,7 +99,8 @@ nlohmann::json report_data(const SweepConfig& config, const std::vector<Row>& ro
                                   {"series", pt.series},
                                   {"label", pt.label},
                                   {"key", pt.key},
-                                  {"front", bool(front[i])}});
+                                  {"front", bool(front[i])},
+                                  {"flagged", pt.flagged}});
       }
       data["plots"].push_back(plot);
     }
@@ -265,9 +266,10 @@ pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px
       svg.selectAll('circle').data(p.points).enter().append('circle')
         .attr('class', 'rl-point').attr('r', 4)
         .attr('cx', function (d) { return xs(d.x); }).attr('cy', function (d) { return ys(yf(d)); })
-        .attr('fill', function (d) { return colour(d.series); })
+        .attr('fill', function (d) { return d.flagged ? 'none' : colour(d.series); })
+        .attr('stroke', function (d) { return d.flagged ? colour(d.series) : null; })
         .on('click', function (d) { location.hash = '#cell-' + d.key; })
-        .append('title').text(function (d) { return d.label + '\n' + p.x + ' ' + fmt(d.x) + ', ' + p.y + ' ' + fmt(d.y) + (d.front ? ' (on the front)' : ''); });
+        .append('title').text(function (d) { return d.label + '\n' + p.x + ' ' + fmt(d.x) + ', ' + p.y + ' ' + fmt(d.y) + (d.front ? ' (on the front)' : '') + (d.flagged ? ' (truth not accurate enough at this view: not ranked)' : ''); });
       // Which colour is which series (the technique), under the plot.
       var legend = el('div', {'class': 'rl-series'});
       d3.set(p.points.map(function (d) { return d.series; })).values().forEach(function (name) {

@@ -183,7 +183,7 @@ TableLayout lay_out_table(const std::vector<Row>& rows, const TableSpec& spec) {
           continue;
         }
         line.values.emplace_back(cell_value(it->second, v, spec.aggregate));
-        line.flagged.push_back(any_flagged(it->second));
+        line.flagged.push_back(measured_against_truth(v) && any_flagged(it->second));
         t.flagged_values += line.flagged.back();
       }
       if (it != cells.end())

@@ -29,8 +29,9 @@ struct TableLine {
   // a null json where those rows lack the metric.
   std::vector<std::optional<nlohmann::ordered_json>> values;
   std::vector<std::string> cell_keys;  // the keys of the rows behind the line's values
-  // Per value column: a row behind it is truth_flagged (its truth is not accurate enough at
-  // that view to score it: metrics/metrics.h); the tables mark it and never bold it.
+  // Per value column: an error column (measured_against_truth) with a truth_flagged row behind
+  // it (its truth is not accurate enough at that view to score it: metrics/metrics.h); the
+  // tables mark it and never bold it.
   std::vector<bool> flagged;
 };
 // The mark and note a table gives values resting on a truth_flagged row.
