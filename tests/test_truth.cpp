@@ -120,3 +120,44 @@ TEST(Truth, FlatMapHitsTheBaseExactly) {
 
 }  // namespace
 }  // namespace rl
+
+namespace rl {
+namespace {
+
+// Occlusion queries (shadow and AO rays) start on the surface, where a tessellated truth and
+// the surface differ most: from hits on the bricks (steep one-texel walls) and the pyramids,
+// rays up into the hemisphere must be blocked exactly when the reference walk (texel cells
+// only, no Embree) finds the surface before they leave the relief at the top.
+TEST(Truth, OcclusionFromTheSurfaceAgreesWithTheReferenceWalk) {
+  for (const char* kind : {"bricks", "pyramids"}) {
+    SceneDesc scene = test::procedural_scene(kind, 256, 0.08, true);
+    const ReliefMap m = build_relief_asset(scene, 256);
+    HeightfieldTruth truth(m);
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> u01(0, 1);
+    long rays = 0, differ = 0, blocked = 0;
+    for (const test::TangentRay& r : test::random_tangent_rays(400, 20, 80, 0.08, 3, -1e-6)) {
+      const TruthHit h = truth.intersect(r.origin, r.direction, 0, 1.0 + 1e-4);
+      if (!h.hit) continue;
+      for (int k = 0; k < 16; ++k) {
+        // A direction in the upper hemisphere of the base, in texture units (depth 0.08).
+        const double a = 6.2831853 * u01(rng), c = std::sqrt(u01(rng)), s = std::sqrt(1 - c * c);
+        const glm::dvec3 l(s * std::cos(a), s * std::sin(a), -c / 0.08);
+        const double t0 = 1e-4 / std::max(1.0, glm::length(l)), t_exit = -h.point.z / l.z;
+        if (!(t_exit > t0)) continue;
+        const glm::dvec3 start = h.point + l * t0;
+        const ReferenceHit ref = intersect_heightfield(m, start, l, t_exit - t0);
+        const bool occluded = truth.occluded(h.point, l, t0, t_exit);
+        ++rays;
+        blocked += occluded;
+        differ += occluded != ref.hit;
+      }
+    }
+    EXPECT_GT(rays, 800) << kind;  // rays from the bricks' flat tops leave at once: not counted
+    EXPECT_GT(blocked, rays / 20) << kind;
+    EXPECT_EQ(differ, 0) << kind << ": " << differ << " of " << rays;
+  }
+}
+
+}  // namespace
+}  // namespace rl
