@@ -158,5 +158,24 @@ TEST(Faults, CorruptStoredRowsAreMeasuredAgainWithAWarning) {
   EXPECT_EQ(rows, 4);
 }
 
+// A store measured by another version of the measurement (every key differs): `report` would
+// have nothing to lay out, and must not overwrite the folder's tables with empty ones.
+TEST(Faults, ReportRefusesAStoreOfAnotherMeasurementVersion) {
+  const std::string dir = test::scratch_dir("old-store");
+  const std::string config = write_small_sweep(dir, "images = false\n");
+  const std::string out = dir + "/out";
+  std::string output;
+  ASSERT_EQ(test::run_cli("run " + config + " --out " + out + " -q", output), 0) << output;
+  std::ifstream before_file(out + "/rows.csv");
+  const std::string before((std::istreambuf_iterator<char>(before_file)), {});
+  store_exec(out + "/results.sqlite", "UPDATE rows SET key = 'v0-' || key");
+  EXPECT_NE(test::run_cli("report " + out, output), 0) << output;
+  EXPECT_NE(output.find("none under this sweep's cell keys"), std::string::npos) << output;
+  std::ifstream after_file(out + "/rows.csv");
+  const std::string after((std::istreambuf_iterator<char>(after_file)), {});
+  EXPECT_EQ(after, before);
+  EXPECT_NE(before.find("relief,bricks,"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace rl

@@ -186,8 +186,17 @@ size_t rewrite_outputs(const std::string& dir) {
   const ShardSpec shard = parse_shard(read_record(dir)["shard"].get<std::string>());
   cells = shard_cells(config, cells, shard);
   ResultStore store(dir + "/results.sqlite");
+  // Rows under none of the sweep's keys were measured by another version of the measurement
+  // (cells.cpp's kMeasurementVersion is in every key): rewriting from them would replace the
+  // folder's tables with empty ones.
+  const size_t stored = store.keys().size(), found = cells.size() - missing_cells(cells, store);
+  if (stored > 0 && found == 0)
+    throw ConfigError("report: " + dir + "/results.sqlite holds " + std::to_string(stored) +
+                      " rows, none under this sweep's cell keys: they were measured by another "
+                      "version of relieflab's measurement; run the sweep again (nothing was "
+                      "rewritten)");
   write_sweep_outputs(config, cells, store, dir);
-  return cells.size() - missing_cells(cells, store);
+  return found;
 }
 
 std::string format_run_status(const RunStatus& s) {

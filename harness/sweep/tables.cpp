@@ -237,7 +237,7 @@ std::string format_markdown_table(const std::vector<Row>& rows, const TableSpec&
     for (size_t c = 0; c < line.values.size(); ++c) {
       const auto& v = line.values[c];
       out += " " + (v ? format_value(*v) : std::string());
-      if (line.flagged[c]) out += std::string(" ") + kTruthFlagMark;
+      if (line.flagged[c] && v && !v->is_null()) out += std::string(" ") + kTruthFlagMark;
       out += " |";
     }
     out += "\n";
@@ -288,7 +288,7 @@ std::string format_latex_table(const std::vector<Row>& rows, const TableSpec& sp
       std::string text = latex_escape(format_value(*x));
       if (x->is_number() && !line.flagged[c] && !std::isnan(best[c]) && x->get<double>() == best[c])
         text = "\\textbf{" + text + "}";
-      if (line.flagged[c]) text += "$^\\dagger$";
+      if (line.flagged[c] && !x->is_null()) text += "$^\\dagger$";
       cells.push_back(text);
     }
     for (size_t i = 0; i < cells.size(); ++i) out += (i ? " & " : "") + cells[i];

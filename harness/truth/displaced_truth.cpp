@@ -305,6 +305,9 @@ DisplacedHit DisplacedTruth::intersect(const glm::dvec3& origin, const glm::dvec
     h.uv = w0 * glm::dvec2(a.uv) + w1 * glm::dvec2(b.uv) + w2 * glm::dvec2(c.uv);
     h.tangent = mix3(a.tangent, b.tangent, c.tangent);
     h.bitangent = mix3(a.bitangent, b.bitangent, c.bitangent);
+    const glm::dvec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+    if (glm::length(ng) > 0)
+      h.geometric_normal = glm::dot(ng, direction) > 0 ? -glm::normalize(ng) : glm::normalize(ng);
     return h;
   }
   return h;

@@ -32,6 +32,9 @@ struct DisplacedHit {
   glm::dvec3 position;  // world
   glm::dvec2 uv;
   glm::dvec3 tangent, bitangent, normal;  // the base's unit frame at the hit (shading)
+  // The traced surface's own unit normal there (the hit triangle's, facing the ray): what a
+  // vertical error of the truth moves the hit along (truth_hit_bound).
+  glm::dvec3 geometric_normal{0, 0, 1};
   // The surface's own shading normal (world, facing the ray) and colour, where the truth has
   // them (a pattern mesh on the base); otherwise the map's at `uv` in the frame above.
   bool has_surface = false;

@@ -58,7 +58,7 @@ void write_object_pixel(GBuffer& g, size_t i, const ObjectHit& h, const SceneDes
   const glm::dvec3 ambient = scene.material.ambient * h.albedo;
   // Meshes traced as they are drawn: only Embree's rounding, at the scene's scale.
   const double bound = truth_hit_bound(0.0, TruthSurface::kEmbreeRounding * scene.size, h.normal,
-                                       h.normal, view_dir, h.position);
+                                       h.normal, h.normal, view_dir, h.position);
   g.aux[i] = glm::vec4(1.0f, 0.0f, float((ambient.x + ambient.y + ambient.z) / 3.0), float(bound));
 }
 

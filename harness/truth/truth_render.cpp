@@ -119,14 +119,15 @@ glm::dvec3 shade(const Material& m, const glm::dvec3& albedo, const glm::dvec3& 
 }
 
 double truth_hit_bound(double vertical, double rounding, const glm::dvec3& base_normal,
-                       const glm::dvec3& surface_normal, const glm::dvec3& dir,
-                       const glm::dvec3& position) {
+                       const glm::dvec3& geometric_normal, const glm::dvec3& shading_normal,
+                       const glm::dvec3& dir, const glm::dvec3& position) {
   // Cosines floored so a ray exactly tangent to the surface states a huge bound, not infinity.
-  const double across_base = std::max(std::abs(glm::dot(base_normal, dir)), 1e-9);
-  const double across_surface = std::max(std::abs(glm::dot(surface_normal, dir)), 1e-9);
+  const double across_surface = std::max(std::abs(glm::dot(geometric_normal, dir)), 1e-9);
+  const double across_shading = std::max(std::abs(glm::dot(shading_normal, dir)), 1e-9);
   const double largest =
       std::max({std::abs(position.x), std::abs(position.y), std::abs(position.z)});
-  return vertical / across_base + rounding / across_surface + std::sqrt(3.0) * 0x1p-24 * largest;
+  return vertical * std::abs(glm::dot(geometric_normal, base_normal)) / across_surface +
+         rounding / across_shading + std::sqrt(3.0) * 0x1p-24 * largest;
 }
 
 namespace {
@@ -268,7 +269,10 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
           }
           write_relief_pixel(
               g, i, scene, albedo, n, world, to_light, dir, uv, in_shadow, ao,
-              truth_hit_bound(vertical_world, rounding_world, base.normal(), n, dir, world));
+              // Every planar truth is exact (vertical 0) or a mesh traced as it is, so the
+              // shading normal stands in for the geometric one; a tessellated planar truth
+              // would have to supply its own (as DisplacedHit does).
+              truth_hit_bound(vertical_world, rounding_world, base.normal(), n, n, dir, world));
         }
       },
       256);
@@ -348,9 +352,9 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
                 });
             ao_rays += uint64_t(ao.rays);
           }
-          write_relief_pixel(
-              g, i, scene, albedo, n, h.position, to_light, dir, h.uv, in_shadow, ao,
-              truth_hit_bound(vertical_world, rounding_world, h.normal, n, dir, h.position));
+          write_relief_pixel(g, i, scene, albedo, n, h.position, to_light, dir, h.uv, in_shadow, ao,
+                             truth_hit_bound(vertical_world, rounding_world, h.normal,
+                                             h.geometric_normal, n, dir, h.position));
         }
       },
       256);

@@ -29,13 +29,14 @@ glm::dvec3 shade(const Material& m, const glm::dvec3& albedo, const glm::dvec3& 
 
 // How far one pixel's truth hit may be from the exact one, as a distance along the camera ray
 // `dir` (world units): the truth's surface off by `vertical` (world, along `base_normal`) moves
-// the hit by vertical / |base_normal . dir| (the issue of grazing views: 11x at 5 degrees, 57x at
-// 1); its rounding (`rounding`, world) by rounding / |surface_normal . dir|; and storing the
-// position as float rounds each coordinate by up to 2^-24 of the largest. Written to the truth
-// G-buffer's aux.w (core/gbuffer.h).
+// the hit by vertical (n . base_normal) / |n . dir|, n the surface's own unit normal
+// (`geometric_normal`: a grazing view multiplies the error, 11x at 5 degrees, 57x at 1, more
+// where the surface slopes away from the eye); its rounding (`rounding`, world) by
+// rounding / |shading_normal . dir|; and storing the position as float rounds each coordinate by
+// up to 2^-24 of the largest. Written to the truth G-buffer's aux.w (core/gbuffer.h).
 double truth_hit_bound(double vertical, double rounding, const glm::dvec3& base_normal,
-                       const glm::dvec3& surface_normal, const glm::dvec3& dir,
-                       const glm::dvec3& position);
+                       const glm::dvec3& geometric_normal, const glm::dvec3& shading_normal,
+                       const glm::dvec3& dir, const glm::dvec3& position);
 
 class ObjectsTruth;
 class DisplacedTruth;
