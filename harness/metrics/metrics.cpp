@@ -104,15 +104,9 @@ ImageMetrics compare_gbuffers(const GBuffer& t, const GBuffer& r, double depth_w
   std::vector<double> ao_err;
   double ao_signed = 0, ao_stderr = 0, ao_color = 0, color_err = 0, color_signed = 0;
   long both = 0, missed = 0, false_hits = 0, artifacts = 0, shadow_diff = 0, object_diff = 0;
-  long uncertain = 0;
   std::vector<double> pos, pos_texels, normal_deg, fetches;
   for (size_t i = 0; i < t.size(); ++i) {
     const bool tc = t.covered(i), rc = r.covered(i);
-    if (rc) {
-      const double bound = double(r.aux[i].w) / texel_world;
-      m.truth_bound_texels = std::max(m.truth_bound_texels, std::isfinite(bound) ? bound : 1e30);
-      uncertain += !(bound <= kTruthBoundTarget);
-    }
     if (!finite4(t.color[i]) || !finite4(t.position[i]) || !finite4(t.normal[i]) ||
         !finite4(t.hit[i]))
       ++m.nonfinite_px;
@@ -158,8 +152,10 @@ ImageMetrics compare_gbuffers(const GBuffer& t, const GBuffer& r, double depth_w
   }
   const double covered = std::max<long>(1, m.truth_covered_px);
   m.missed_pct = 100.0 * missed / covered;
+  const TruthBoundStats bound = truth_bound_stats(r, texel_world);
+  m.truth_bound_texels = bound.largest_texels;
   m.truth_uncertain_pct =
-      m.union_covered_px ? 100.0 * double(uncertain) / double(m.union_covered_px) : 0.0;
+      m.union_covered_px ? 100.0 * double(bound.uncertain) / double(m.union_covered_px) : 0.0;
   m.false_pct = 100.0 * false_hits / covered;
   m.pos_err = error_stats(pos);
   m.pos_err_texels = error_stats(pos_texels);
@@ -218,6 +214,18 @@ std::vector<std::pair<std::string, double>> ImageMetrics::named() const {
           name.rfind("truth_", 0) != 0)
         value = std::numeric_limits<double>::quiet_NaN();
   return v;
+}
+
+TruthBoundStats truth_bound_stats(const GBuffer& truth, double texel_world) {
+  TruthBoundStats s;
+  for (size_t i = 0; i < truth.size(); ++i) {
+    if (!truth.covered(i)) continue;
+    const double bound = double(truth.aux[i].w) / texel_world;
+    ++s.covered;
+    s.largest_texels = std::max(s.largest_texels, std::isfinite(bound) ? bound : 1e30);
+    s.uncertain += !(bound <= kTruthBoundTarget);
+  }
+  return s;
 }
 
 bool measured_against_truth(const std::string& column) {

@@ -83,6 +83,14 @@ struct ImageMetrics {
   std::vector<std::pair<std::string, double>> named() const;
 };
 
+// The truth's own bound over the pixels it covers (G-buffer aux.w in texels): the largest,
+// and how many exceed kTruthBoundTarget. What the row's truth columns and the run log state.
+struct TruthBoundStats {
+  double largest_texels = 0;
+  long covered = 0, uncertain = 0;
+};
+TruthBoundStats truth_bound_stats(const GBuffer& truth, double texel_world);
+
 // Does this row column compare the technique with the truth (an error column that a flagged
 // truth makes unscoreable)? Costs, counts and the truth's own bound do not.
 bool measured_against_truth(const std::string& column);

@@ -128,22 +128,57 @@ std::string stored_row_problem(const ResultStore& store, const Cell& cell) {
   return "";
 }
 
+// The run log's line for a built asset: its size, build time and what its truth is.
+std::string describe_asset(const SceneDesc& scene, const Asset& asset) {
+  char buf[320];
+  const char* unit = scene.base.curved() && (!has_charts(scene.base) || scene.meta.active())
+                         ? "base triangle"
+                         : "texel";
+  // A meta-relief's size is its layer 0's (its bake, `map`, may differ).
+  const MapSize layer0_size = asset.map.meta ? MapSize{asset.map.meta->layers()[0].map.width,
+                                                       asset.map.meta->layers()[0].map.height}
+                                             : MapSize{asset.map.width, asset.map.height};
+  if (const CellComplex* cc = asset.map.cells.get())
+    std::snprintf(buf, sizeof buf,
+                  "relieflab: asset %s: cell complex %d^3, %ld grey cells, %ld domain faces "
+                  "of %dx%d, classified in %.0f ms, sampled in %.0f ms (%.0f ms with the grid "
+                  "choice%s), %.1f%% occluded fragments (Embree truth of the mesh %.0f ms)",
+                  scene.name.c_str(), cc->grid(), cc->stats().grey_cells, cc->stats().domain_faces,
+                  cc->resolution(), cc->resolution(), cc->stats().classify_ms,
+                  cc->stats().sample_ms, cc->stats().construction_ms,
+                  cc->stats().from_cache ? "; read from the precompute cache" : "",
+                  100.0 * cc->stats().occluded_ratio(), asset.truth->build_ms());
+  else if (scene.meta.active() && !scene.base.curved())
+    std::snprintf(buf, sizeof buf,
+                  "relieflab: asset %s at %dx%d (bake %dx%d): built in %.0f ms (truth: the "
+                  "%zu-layer meta-relief traced exactly)",
+                  scene.name.c_str(), layer0_size.width, layer0_size.height, asset.map.width,
+                  asset.map.height, asset.build_ms, scene.meta.layers.size() + 1);
+  else if (asset.truth->tessellation_bound() == 0 && !scene.base.curved())
+    std::snprintf(buf, sizeof buf,
+                  "relieflab: asset %s at %dx%d: built in %.0f ms (truth %.0f ms, exact to "
+                  "rounding: each trace states its bound in texels)",
+                  scene.name.c_str(), layer0_size.width, layer0_size.height, asset.build_ms,
+                  asset.truth->build_ms());
+  else
+    std::snprintf(buf, sizeof buf,
+                  "relieflab: asset %s at %dx%d: built in %.0f ms (Embree truth %.0f ms, "
+                  "tessellation %dx%d per %s, deviation <= %.2g depth units)",
+                  scene.name.c_str(), layer0_size.width, layer0_size.height, asset.build_ms,
+                  asset.truth->build_ms(), asset.truth->subdivision(), asset.truth->subdivision(),
+                  unit, asset.truth->tessellation_bound());
+  return buf;
+}
+
 // The run log's statement of a truth trace's accuracy in the headline's units.
 std::string describe_truth_bound(const GBuffer& truth, double texel_world) {
-  double largest = 0;
-  long covered = 0, uncertain = 0;
-  for (size_t i = 0; i < truth.size(); ++i) {
-    if (!truth.covered(i)) continue;
-    const double bound = double(truth.aux[i].w) / texel_world;
-    ++covered;
-    largest = std::max(largest, bound);
-    uncertain += !(bound <= kTruthBoundTarget);
-  }
+  const TruthBoundStats s = truth_bound_stats(truth, texel_world);
   char buf[256];
   std::snprintf(buf, sizeof buf,
                 "relieflab: truth bound at this view: <= %.3g texels on every hit; %ld of %ld "
                 "pixels (%.3g%%) above the %.2g-texel target",
-                largest, uncertain, covered, covered ? 100.0 * double(uncertain) / covered : 0.0,
+                s.largest_texels, s.uncertain, s.covered,
+                s.covered ? 100.0 * double(s.uncertain) / double(s.covered) : 0.0,
                 kTruthBoundTarget);
   return buf;
 }
@@ -301,44 +336,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       asset_key = cell.asset_key;
       truth_key.clear();
       ++summary.asset_builds;
-      char buf[320];
-      const char* unit = scene.base.curved() && (!has_charts(scene.base) || scene.meta.active())
-                             ? "base triangle"
-                             : "texel";
-      // A meta-relief's size is its layer 0's (its bake, `map`, may differ).
-      const MapSize layer0_size = asset->map.meta ? MapSize{asset->map.meta->layers()[0].map.width,
-                                                            asset->map.meta->layers()[0].map.height}
-                                                  : MapSize{asset->map.width, asset->map.height};
-      if (const CellComplex* cc = asset->map.cells.get())
-        std::snprintf(buf, sizeof buf,
-                      "relieflab: asset %s: cell complex %d^3, %ld grey cells, %ld domain faces "
-                      "of %dx%d, classified in %.0f ms, sampled in %.0f ms (%.0f ms with the grid "
-                      "choice%s), %.1f%% occluded fragments (Embree truth of the mesh %.0f ms)",
-                      scene.name.c_str(), cc->grid(), cc->stats().grey_cells,
-                      cc->stats().domain_faces, cc->resolution(), cc->resolution(),
-                      cc->stats().classify_ms, cc->stats().sample_ms, cc->stats().construction_ms,
-                      cc->stats().from_cache ? "; read from the precompute cache" : "",
-                      100.0 * cc->stats().occluded_ratio(), asset->truth->build_ms());
-      else if (scene.meta.active() && !scene.base.curved())
-        std::snprintf(buf, sizeof buf,
-                      "relieflab: asset %s at %dx%d (bake %dx%d): built in %.0f ms (truth: the "
-                      "%zu-layer meta-relief traced exactly)",
-                      scene.name.c_str(), layer0_size.width, layer0_size.height, asset->map.width,
-                      asset->map.height, asset->build_ms, scene.meta.layers.size() + 1);
-      else if (asset->truth->tessellation_bound() == 0 && !scene.base.curved())
-        std::snprintf(buf, sizeof buf,
-                      "relieflab: asset %s at %dx%d: built in %.0f ms (truth %.0f ms, exact to "
-                      "rounding: each trace states its bound in texels)",
-                      scene.name.c_str(), layer0_size.width, layer0_size.height, asset->build_ms,
-                      asset->truth->build_ms());
-      else
-        std::snprintf(buf, sizeof buf,
-                      "relieflab: asset %s at %dx%d: built in %.0f ms (Embree truth %.0f ms, "
-                      "tessellation %dx%d per %s, deviation <= %.2g depth units)",
-                      scene.name.c_str(), layer0_size.width, layer0_size.height, asset->build_ms,
-                      asset->truth->build_ms(), asset->truth->subdivision(),
-                      asset->truth->subdivision(), unit, asset->truth->tessellation_bound());
-      log.line(buf);
+      log.line(describe_asset(scene, *asset));
       if (const CellComplex* cc = asset->map.cells.get(); cc && cc->stats().ambiguous_regions)
         log.line("relieflab: warning: scene " + scene.name + ": " +
                  std::to_string(cc->stats().ambiguous_regions) +
