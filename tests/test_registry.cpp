@@ -38,7 +38,11 @@ class PairedSamples final : public Technique {
                         .default_value = 32,
                         .min_value = 1,
                         .max_value = 256,
-                        .doc = "most samples"}}};
+                        .doc = "most samples"}},
+            .contract = {.answer = Answer::Approximation,
+                         .max_fetches = [](const RayQuery&) { return 0.0; },
+                         .max_fetches_formula = "0 (it draws nothing)",
+                         .ray_probe = false}};
   }
   static void validate(const ParamValues& p, const std::string& where) {
     if (p.at("min_samples") > p.at("max_samples"))
@@ -127,6 +131,35 @@ TEST(Registry, RefusesInconsistentMetadata) {
   bad_name.name = "Test Plugin";
   EXPECT_NE(refusal(entry_with(bad_name)).find("lower-case"), std::string::npos);
   EXPECT_EQ(TechniqueRegistry::instance().find("test_bad_metadata"), nullptr);
+}
+
+TEST(Registry, RefusesAContractItCannotBeHeldTo) {
+  auto with_contract = [](TechniqueContract c) {
+    TechniqueInfo info = PairedSamples::describe();
+    info.name = "test_bad_contract";
+    info.contract = std::move(c);
+    return entry_with(info);
+  };
+  const TechniqueContract good = PairedSamples::describe().contract;
+  TechniqueContract unbounded = good;
+  unbounded.max_fetches = nullptr;
+  EXPECT_NE(refusal(with_contract(unbounded)).find("declare max_fetches"), std::string::npos);
+  TechniqueContract stray_knob = good;
+  stray_knob.knobs = {{"linear_steps"}};
+  EXPECT_NE(refusal(with_contract(stray_knob)).find("knob 'linear_steps' is not a declared"),
+            std::string::npos);
+  TechniqueContract converging = good;
+  converging.answer = Answer::Converging;
+  EXPECT_NE(refusal(with_contract(converging)).find("names its knobs"), std::string::npos);
+  converging.knobs = {{"max_samples"}};
+  EXPECT_NE(refusal(with_contract(converging)).find("knob 'max_samples' a finest value"),
+            std::string::npos);
+  converging.finest = {{"max_samples", 512}};
+  EXPECT_NE(refusal(with_contract(converging)).find("outside its range"), std::string::npos);
+  converging.finest = {{"max_samples", 256}};
+  converging.t_error = [](const RayQuery&) { return 0.0; };
+  EXPECT_NE(refusal(with_contract(converging)).find("conditions in words"), std::string::npos);
+  EXPECT_EQ(TechniqueRegistry::instance().find("test_bad_contract"), nullptr);
 }
 
 TEST(Registry, ASharedParameterNameMeansOneQuantity) {

@@ -75,4 +75,25 @@ ReferenceHit intersect_heightfield(const ReliefMap& map, const glm::dvec3& origi
   return result;
 }
 
+ReferenceHit intersect_texel_columns(const ReliefMap& map, const glm::dvec3& origin,
+                                     const glm::dvec3& direction, double t_max) {
+  ReferenceHit result;
+  const int w = map.width, h = map.height;
+  // Texel coordinates X = u * w: cell (i, j) is texel (i, j), one column of constant depth.
+  walk_grid_2d(origin.x * w, origin.y * h, direction.x * w, direction.y * h, 0.0, t_max,
+               [&](long i, long j, double t_enter, double t_exit) {
+                 ++result.cells;
+                 const double d = map.depth_texel(int(((i % w) + w) % w), int(((j % h) + h) % h));
+                 const double z_exit = origin.z + direction.z * t_exit;
+                 if (z_exit < d) return false;
+                 const double t_hit = std::max(t_enter, (d - origin.z) / direction.z);
+                 result.hit = true;
+                 result.t = t_hit;
+                 result.uv = glm::dvec2(origin + direction * t_hit);
+                 result.depth = origin.z + direction.z * t_hit;
+                 return true;
+               });
+  return result;
+}
+
 }  // namespace rl

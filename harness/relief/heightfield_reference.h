@@ -36,4 +36,9 @@ double bilinear_patch_hit(double d00, double d10, double d01, double d11, double
 ReferenceHit intersect_heightfield(const ReliefMap& map, const glm::dvec3& origin,
                                    const glm::dvec3& direction, double t_max);
 
+// The same ray against the map sampled with GL_NEAREST: each texel a flat-topped column of its
+// depth (what the multilayer and double-depth searches read, in their single-layer case).
+ReferenceHit intersect_texel_columns(const ReliefMap& map, const glm::dvec3& origin,
+                                     const glm::dvec3& direction, double t_max);
+
 }  // namespace rl

@@ -62,6 +62,7 @@ void check_technique_info(const TechniqueInfo& info) {
       throw std::logic_error(param + ": a bool ranges over [0, 1]");
     if (p.doc.empty()) throw std::logic_error(param + " needs a doc string");
   }
+  check_contract(info.name, info.contract, info.params);
 }
 
 TechniqueRegistry& TechniqueRegistry::instance() {

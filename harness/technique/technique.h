@@ -23,6 +23,7 @@
 #include "gl/render_target.h"
 #include "relief/relief_map.h"
 #include "scene/scene.h"
+#include "technique/contract.h"
 #include "technique/gpu_scene.h"
 #include "technique/object_pass.h"
 
@@ -52,6 +53,8 @@ struct TechniqueInfo {
   // Draws a single-layer heightfield on the planar base only (no curved base, multilayer map or
   // reverse-perspective box): depth slicing, whose slices are planes across the relief's box.
   bool planar_only = false;
+  // What it promises (technique/contract.h), held to by the contract suite.
+  TechniqueContract contract;
 };
 
 // Why a technique cannot render `scene` ("" when it can): effects it does not simulate, a

@@ -22,6 +22,30 @@ std::string effects_cell(const EffectSet& effects) {
   return out.empty() ? "none" : out;
 }
 
+// What it promises (technique/contract.h), as the contract suite holds it to.
+std::string contract_markdown(const TechniqueInfo& info) {
+  const TechniqueContract& c = info.contract;
+  auto finest = [&](const std::string& knob) -> std::string {
+    for (const ParamSpec& p : info.params)
+      if (p.name == knob && c.finest.count(knob))
+        return ", finest " + format_param(p, c.finest.at(knob));
+    return "";
+  };
+  std::string out = "Promise (held by `ctest -L contract`): " + answer_name(c.answer) +
+                    " answer; at most " + c.max_fetches_formula + " fetches per pixel";
+  if (!c.knobs.empty()) {
+    out += "; accuracy knobs: ";
+    for (size_t i = 0; i < c.knobs.size(); ++i) {
+      const AccuracyKnob& k = c.knobs[i];
+      out += (i ? ", `" : "`") + k.param + "` (" + (k.larger_is_finer ? "larger" : "smaller") +
+             " is finer" + finest(k.param) + ")";
+    }
+  }
+  if (!c.accuracy.empty()) out += "; accuracy: " + c.accuracy;
+  if (!c.hits_from_inside && c.ray_probe) out += "; its hit may lie above the surface";
+  return out + ".\n\n";
+}
+
 }  // namespace
 
 std::string techniques_markdown() {
@@ -69,6 +93,7 @@ std::string interface_markdown(const TechniqueInfo& info) {
                 (info.meta_relief ? "its layers combined per fetch, or their bake"
                                   : "their bake (its search needs one map)") +
                 ".\n\n";
+  out += contract_markdown(info);
   if (info.params.empty()) return out + "Parameters: none.\n";
   out += "| parameter | kind | default | range | meaning |\n| --- | --- | ---: | --- | --- |\n";
   for (const ParamSpec& p : info.params) {

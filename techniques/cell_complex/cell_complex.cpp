@@ -1,4 +1,5 @@
 // Relief mapping on cubic cell complexes, ray casting (Apaza & Andujar, Section 3.5.2).
+#include <cmath>
 #include <stdexcept>
 
 #include "relief/cell_complex.h"
@@ -54,7 +55,22 @@ class CellComplexRaycast final : public Described<CellComplexRaycast, Technique>
                         .min_value = 0,
                         .max_value = 32,
                         .doc = "binary search refinements after the linear search"}},
-            .cell_complex = true};
+            .cell_complex = true,
+            .contract = {
+                .answer = Answer::Converging,
+                .max_fetches =
+                    [](const RayQuery& q) {
+                      const double steps =
+                          std::ceil(1.7320508 * q.grid_cells * q.param("steps_per_cell")) + 2;
+                      return 2 * (steps + q.param("binary_steps")) + 2;
+                    },
+                .max_fetches_formula = "2 x (ceil(sqrt(3) x grid cells x steps_per_cell) + 2 + "
+                                       "binary_steps), + 2 to shade",
+                .knobs = {{"steps_per_cell"}, {"binary_steps"}},
+                .finest = {{"steps_per_cell", 64}, {"binary_steps", 16}},
+                .accuracy = "the first entry into the cells' solid to within one step (a cell / "
+                            "steps_per_cell) / 2^binary_steps along the ray, where no part is "
+                            "thinner than a step"}};
   }
 
   void prepare(const ReliefMap& map) override {

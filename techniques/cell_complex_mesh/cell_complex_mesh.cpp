@@ -77,7 +77,15 @@ class CellComplexMesh final : public Described<CellComplexMesh, CellTriangles> {
                     .max_value = 1e6,
                     .doc = "a triangle with an edge longer than this many texels of its level "
                            "is dropped: it would join two sheets across a depth discontinuity"}},
-        .cell_complex = true};
+        .cell_complex = true,
+        .contract = {.answer = Answer::Approximation,
+                     .max_fetches = [](const RayQuery&) { return 0; },
+                     .max_fetches_formula = "0: rasterised triangles, shaded from vertices",
+                     .knobs = {{"lod", false}},
+                     .accuracy = "the distance maps' surface at 2^lod texels per vertex, "
+                                 "interpolated linearly between texels",
+                     .ray_probe = false,
+                     .hits_from_inside = false}};
   }
 
   void prepare(const ReliefMap& map) override {
@@ -98,7 +106,13 @@ class CellSourceMesh final : public Described<CellSourceMesh, CellTriangles> {
         .citation = "Apaza & Andujar, Section 4 (rendering the input model, Table 2's comparison)",
         .effects = {Effect::DepthCorrect},
         .params = {},
-        .cell_complex = true};
+        .cell_complex = true,
+        .contract = {.answer = Answer::Exact,
+                     .max_fetches = [](const RayQuery&) { return 0; },
+                     .max_fetches_formula = "0: rasterised triangles",
+                     .accuracy = "the mesh the truth traces, up to the rasteriser's rounding",
+                     .ray_probe = false,
+                     .hits_from_inside = false}};
   }
 
   void prepare(const ReliefMap& map) override {

@@ -100,6 +100,21 @@ std::vector<std::vector<std::vector<float>>> descending_quadtrees(
 
 }  // namespace
 
+std::vector<float> ratios_safe_under_filtering(const ConeMap& cones) {
+  const int w = cones.width, h = cones.height;
+  std::vector<float> out(cones.ratio.size());
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      float least = cones.ratio[size_t(y) * w + x];
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          least =
+              std::min(least, cones.ratio[size_t((y + dy + h) % h) * w + size_t((x + dx + w) % w)]);
+      out[size_t(y) * w + x] = least;
+    }
+  return out;
+}
+
 ConeMap compute_cone_map(const ReliefMap& map, const ConeMapOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   const DepthSampler depth(map);

@@ -39,6 +39,14 @@ struct ConeMap {
 };
 
 ConeMap compute_cone_map(const ReliefMap& map, const ConeMapOptions& options);
+
+// The ratios the shader reads through GL_LINEAR: each texel's the least over its 3 x 3
+// neighbourhood (wrapping), so the ratio interpolated anywhere in a cell is no wider than the
+// narrowest of the cones at its four corners. Interpolating the raw ratios is not conservative:
+// between a narrow cone next to a cliff and a wide one a texel away the blend is wider than the
+// cone the point needs, and grazing rays stepped over whole walls (up to 100 texels on the
+// contract's tilted planes and saddle, conservative and relaxed cones alike).
+std::vector<float> ratios_safe_under_filtering(const ConeMap& cones);
 // compute_cone_map through the precompute cache (core/precompute_cache.h).
 ConeMap cached_cone_map(const ReliefMap& map, const ConeMapOptions& options);
 

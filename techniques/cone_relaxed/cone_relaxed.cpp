@@ -22,7 +22,7 @@ class ConeRelaxed final : public Described<ConeRelaxed, ShaderTechnique> {
                         .kind = ParamKind::Int,
                         .default_value = 32,
                         .min_value = 1,
-                        .max_value = 1024,
+                        .max_value = 4096,
                         .doc = "cone steps along the ray (most rays stop after a few; the cap is "
                                "for grazing rays "
                                "crawling past features)"},
@@ -44,7 +44,26 @@ class ConeRelaxed final : public Described<ConeRelaxed, ShaderTechnique> {
                         .min_value = 4,
                         .max_value = 256,
                         .doc = "azimuths the cone map precompute scans per texel"}},
-            .box_proxy = true};
+            .box_proxy = true,
+            .contract = {.answer = Answer::Converging,
+                         .max_fetches =
+                             [](const RayQuery& q) {
+                               return q.param("cone_steps") + q.param("binary_steps") + 2;
+                             },
+                         .max_fetches_formula = "cone_steps + binary_steps, + 2 to shade",
+                         .knobs = {{"cone_steps"},
+                                   {"binary_steps"},
+                                   {"directions"},
+                                   {"relaxed", /*larger_is_finer=*/false}},
+                         .finest = {{"cone_steps", 4096},
+                                    {"binary_steps", 16},
+                                    {"directions", 64},
+                                    {"relaxed", 0}},
+                         .accuracy =
+                             "conservative cones (relaxed = 0) never step over the surface, so the "
+                             "steps converge on the first crossing; relaxed cones only promise one "
+                             "crossing per step to rays through the top point above the texel, and "
+                             "a grazing ray can enter and leave the surface within one step"}};
   }
 
   void prepare(const ReliefMap& map) override {
@@ -52,8 +71,9 @@ class ConeRelaxed final : public Described<ConeRelaxed, ShaderTechnique> {
     o.relaxed = param("relaxed") != 0;
     o.directions = int(param("directions"));
     cones_ = cached_cone_map(map, o);
-    std::vector<glm::vec2> texels(cones_.ratio.size());
-    for (size_t i = 0; i < texels.size(); ++i) texels[i] = {map.relief[i].a, cones_.ratio[i]};
+    const std::vector<float> ratio = ratios_safe_under_filtering(cones_);
+    std::vector<glm::vec2> texels(ratio.size());
+    for (size_t i = 0; i < texels.size(); ++i) texels[i] = {map.relief[i].a, ratio[i]};
     if (texture_) glDeleteTextures(1, &texture_);
     glCreateTextures(GL_TEXTURE_2D, 1, &texture_);
     glTextureStorage2D(texture_, 1, GL_RG32F, map.width, map.height);

@@ -144,7 +144,19 @@ class DepthSlicing final : public Described<DepthSlicing, Technique> {
                                "(Figure 5.8)"}},
             .box_proxy = true,
             .heightfield_object = true,
-            .planar_only = true};
+            .planar_only = true,
+            .contract = {
+                .answer = Answer::Converging,
+                .max_fetches = [](const RayQuery& q) { return 2 * q.param("slices") * q.faces; },
+                .max_fetches_formula = "2 x slices (x faces of an object): a depth and a colour "
+                                       "per slice fragment",
+                .knobs = {{"slices"}},
+                .finest = {{"slices", 256}},
+                .t_error = [](const RayQuery& q) { return 1.0 / q.param("slices"); },
+                .accuracy = "the first slice behind the surface: within one slice spacing (1 / "
+                            "slices of depth) along the ray, on surfaces with no feature thinner "
+                            "than a slice",
+                .t_resolution = [](const RayQuery& q) { return 1.0 / q.param("slices"); }}};
   }
   ~DepthSlicing() override {
     if (fragment_count_) glDeleteTextures(1, &fragment_count_);

@@ -1,4 +1,5 @@
 // Relief mapping with double depth values, book chapter 5 (after Angel & Christ).
+#include <cmath>
 #include "technique/shader_technique.h"
 
 namespace rl {
@@ -27,7 +28,26 @@ class DoubleDepth final : public Described<DoubleDepth, ShaderTechnique> {
                         .default_value = 5,
                         .min_value = 0,
                         .max_value = 32,
-                        .doc = "binary search refinements (Listing 5.3: 5)"}}};
+                        .doc = "binary search refinements (Listing 5.3: 5)"}},
+            .contract = {
+                .answer = Answer::Converging,
+                .surface = Surface::TexelColumns,
+                .max_fetches =
+                    [](const RayQuery& q) {
+                      return q.param("linear_steps") + q.param("binary_steps") + 2;
+                    },
+                .max_fetches_formula = "linear_steps + binary_steps, + 2 to shade",
+                .knobs = {{"linear_steps"}, {"binary_steps"}},
+                .finest = {{"linear_steps", 1024}, {"binary_steps", 16}},
+                .t_error =
+                    [](const RayQuery& q) {
+                      return std::ldexp(1.0 / q.param("linear_steps"),
+                                        -int(q.param("binary_steps")));
+                    },
+                .accuracy = "the first entry into the solid between the two depths to within one "
+                            "linear step / 2^binary_steps along the ray, on solids with no part "
+                            "thinner than a linear step",
+                .t_resolution = [](const RayQuery& q) { return 1.0 / q.param("linear_steps"); }}};
   }
 
   // One RGBA texel per texel: the front surface's normal x and y, the front depth (the first

@@ -14,7 +14,15 @@ class MaxMipmap final : public Described<MaxMipmap, QuadtreeTechnique> {
                 "Dynamic Height Field Rendering', I3D 2008",
             .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
             .params = {},
-            .box_proxy = true};
+            .box_proxy = true,
+            .contract = {
+                .answer = Answer::Approximation,
+                .max_fetches = [](const RayQuery& q) { return quadtree_nodes(q) + 2; },
+                .max_fetches_formula = "quadtree nodes entered (2 x cells crossed + 4 per level "
+                                       "+ 3), + 2 to shade",
+                .accuracy = "exact where the bilinear cell is linear along the ray; elsewhere the "
+                            "chord between the ray's entry and exit of the cell",
+                .hits_from_inside = false}};
   }
 
  protected:

@@ -33,7 +33,18 @@ class MultiHeightfield final : public Described<MultiHeightfield, Technique> {
                         .max_value = 32,
                         .doc = "binary search refinements after the linear search"}},
             .heightfield_object = true,
-            .heightfield_object_only = true};
+            .heightfield_object_only = true,
+            .contract = {
+                .answer = Answer::Converging,
+                .max_fetches =
+                    [](const RayQuery& q) {
+                      return q.faces * (q.param("linear_steps") + 1 + q.param("binary_steps")) + 2;
+                    },
+                .max_fetches_formula = "faces x (linear_steps + 1 + binary_steps), + 2 to shade",
+                .knobs = {{"linear_steps"}, {"binary_steps"}},
+                .finest = {{"linear_steps", 1024}, {"binary_steps", 16}},
+                .accuracy = "the first entry into every face's solid to within one linear step "
+                            "(of the cube's diagonal) / 2^binary_steps along the ray"}};
   }
 
   void prepare(const ReliefMap& map) override {

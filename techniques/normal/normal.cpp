@@ -14,7 +14,11 @@ class NormalMapping final : public Described<NormalMapping, ShaderTechnique> {
                 "Chapter 3 bump mapping",
             .effects = {Effect::DepthCorrect, Effect::AmbientOcclusion},
             .params = {},
-            .meta_relief = true};
+            .meta_relief = true,
+            .contract = {.answer = Answer::ShadingOnly,
+                         .max_fetches = [](const RayQuery&) { return 2; },
+                         .max_fetches_formula = "2, to shade",
+                         .hits_from_inside = false}};
   }
 
  protected:

@@ -26,7 +26,19 @@ class ParallaxOcclusion final : public Described<ParallaxOcclusion, ShaderTechni
                         .min_value = 2,
                         .max_value = 1024,
                         .doc = "linear search samples at grazing views"}},
-            .meta_relief = true};
+            .meta_relief = true,
+            .contract = {
+                .answer = Answer::Converging,
+                .max_fetches = [](const RayQuery& q) { return 1 + q.param("max_samples") + 2; },
+                .max_fetches_formula = "1 + max_samples, + 2 to shade",
+                .knobs = {{"min_samples"}, {"max_samples"}},
+                .finest = {{"min_samples", 1024}, {"max_samples", 1024}},
+                .t_error = [](const RayQuery& q) { return 1.0 / q.param("min_samples"); },
+                .accuracy = "the first crossing to within one sample step (at most 1 / "
+                            "min_samples) along the ray, on surfaces with no feature thinner than "
+                            "a step: the secant between the two samples around it",
+                .t_resolution = [](const RayQuery& q) { return 1.0 / q.param("min_samples"); },
+                .hits_from_inside = false}};
   }
   static void validate(const ParamValues& p, const std::string& where) {
     if (p.at("min_samples") > p.at("max_samples"))

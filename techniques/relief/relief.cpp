@@ -1,4 +1,5 @@
 // Relief mapping with linear + binary search, book chapter 5 Listings 5.3 / 5.4.
+#include <cmath>
 #include "technique/shader_technique.h"
 
 namespace rl {
@@ -29,7 +30,23 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
               .max_value = 32,
               .doc = "binary search refinements after the linear search (Listing 5.3: 5)"}},
         .box_proxy = true,
-        .meta_relief = true};
+        .meta_relief = true,
+        .contract = {
+            .answer = Answer::Converging,
+            .max_fetches =
+                [](const RayQuery& q) {
+                  return q.param("linear_steps") - 1 + q.param("binary_steps") + 2;
+                },
+            .max_fetches_formula = "linear_steps - 1 + binary_steps, + 2 to shade",
+            .knobs = {{"linear_steps"}, {"binary_steps"}},
+            .finest = {{"linear_steps", 1024}, {"binary_steps", 16}},
+            .t_error =
+                [](const RayQuery& q) {
+                  return std::ldexp(1.0 / q.param("linear_steps"), -int(q.param("binary_steps")));
+                },
+            .accuracy = "the first crossing to within one linear step / 2^binary_steps along the "
+                        "ray, on surfaces with no feature thinner than a linear step",
+            .t_resolution = [](const RayQuery& q) { return 1.0 / q.param("linear_steps"); }}};
   }
 
  protected:

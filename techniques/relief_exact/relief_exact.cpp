@@ -14,7 +14,15 @@ class ReliefExact final : public Described<ReliefExact, ShaderTechnique> {
                 "(2D Amanatides & Woo 1987)",
             .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
             .params = {},
-            .box_proxy = true};
+            .box_proxy = true,
+            .contract = {
+                .answer = Answer::Approximation,
+                .max_fetches = [](const RayQuery& q) { return 1 + walk_cells(q) + 2; },
+                .max_fetches_formula = "1 + cells walked (centerlines crossed + 1, at most "
+                                       "16384), + 2 to shade",
+                .accuracy = "exact where the bilinear patch is linear along the ray (no twist); "
+                            "elsewhere the chord between two centerline samples",
+                .hits_from_inside = false}};
   }
 
  protected:

@@ -7,14 +7,20 @@ class ReliefExactBilinear final : public Described<ReliefExactBilinear, ShaderTe
  public:
   using Described::Described;
   static TechniqueInfo describe() {
-    return {.name = "relief_exact_bilinear",
-            .title = "Exact bilinear traversal (centerline walk, exact ray-patch solve per cell)",
-            .citation =
-                "Beyond Baboud & Decoret 2006, Section 3.3: solves the saddle case of their "
-                "Figure 3 exactly",
-            .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
-            .params = {},
-            .box_proxy = true};
+    return {
+        .name = "relief_exact_bilinear",
+        .title = "Exact bilinear traversal (centerline walk, exact ray-patch solve per cell)",
+        .citation =
+            "Beyond Baboud & Decoret 2006, Section 3.3: solves the saddle case of their "
+            "Figure 3 exactly",
+        .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
+        .params = {},
+        .box_proxy = true,
+        .contract = {.answer = Answer::Exact,
+                     .max_fetches = [](const RayQuery& q) { return walk_cells(q) + 2; },
+                     .max_fetches_formula = "cells walked (centerlines crossed + 1, at most "
+                                            "16384; one gather each), + 2 to shade",
+                     .accuracy = "the first hit on the bilinear surface, up to float rounding"}};
   }
 
  protected:

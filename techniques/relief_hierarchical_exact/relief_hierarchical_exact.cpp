@@ -15,7 +15,12 @@ class ReliefHierarchicalExact final : public Described<ReliefHierarchicalExact, 
             "over the bilinear cells, with relief_exact_bilinear's exact solve at level 0",
         .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
         .params = {},
-        .box_proxy = true};
+        .box_proxy = true,
+        .contract = {.answer = Answer::Exact,
+                     .max_fetches = [](const RayQuery& q) { return quadtree_nodes(q) + 2; },
+                     .max_fetches_formula = "quadtree nodes entered (2 x cells crossed + 4 per "
+                                            "level + 3), + 2 to shade",
+                     .accuracy = "the first hit on the bilinear surface, up to float rounding"}};
   }
 
  protected:

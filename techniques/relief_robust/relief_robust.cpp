@@ -1,4 +1,6 @@
 // Robust binary search with precomputed safety radii, Baboud & Decoret 2006 Sections 3.4-3.5.
+#include <algorithm>
+#include <cmath>
 #include "safety_radius.h"
 #include "technique/shader_technique.h"
 
@@ -59,7 +61,30 @@ class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
               .doc = "Section 3.5 as written: rays blocked before the texel are ignored; 0 = "
                      "conservative "
                      "radii that also hold for blocked rays"}},
-        .box_proxy = true};
+        .box_proxy = true,
+        .contract = {
+            .answer = Answer::Converging,
+            .max_fetches =
+                [](const RayQuery& q) {
+                  const double major = std::max(q.span_texels.x, q.span_texels.y);
+                  const double minor = std::min(q.span_texels.x, q.span_texels.y);
+                  const double lines = std::min(kWalkCellCap, std::floor(major) + 2);
+                  // A zero radius walks its line's cells exactly: one gather per cell.
+                  const double per_line =
+                      1 + (q.param("exact_zero_radius") != 0
+                               ? std::max(1.0, std::ceil(minor / std::max(major, 1.0)) + 3)
+                               : 1.0);
+                  return lines * per_line + q.param("binary_steps") + 2;
+                },
+            .max_fetches_formula = "(texel lines crossed + 2) x (a radius and a depth, or with "
+                                   "exact_zero_radius the cells of a line), + binary_steps, + 2 to "
+                                   "shade",
+            .knobs = {{"binary_steps"}, {"directions"}},
+            .finest = {{"binary_steps", 32}, {"directions", 64}},
+            .accuracy = "the crossing in a step of at most one safety radius (255 texels), to "
+                        "within that step / 2^(binary_steps + 1): safe radii hold one crossing "
+                        "per step",
+            .hits_from_inside = false}};
   }
 
   void prepare(const ReliefMap& map) override {

@@ -1,0 +1,418 @@
+// The technique contract: every registered technique -- one dropped into techniques/ tomorrow
+// included, with no edit here -- held to what its describe() declares (technique/contract.h).
+// Each clause is one test per technique, named Registry/Contract.<Clause>/<technique>, so a
+// failure says which plugin broke which promise. The cases are in contract_cases.h.
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <optional>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "contract/contract_cases.h"
+#include "relief/heightfield_reference.h"
+
+namespace rl::contract {
+namespace {
+
+// --- Thresholds, each with why. ---
+
+// Exact answers: within this many texels of the closed-form hit (the figure), and the
+// same hit/miss, but for rays whose reference hit is within kTieDepth of the floor (a ray that
+// reaches depth 1 exactly on an empty texel hits or misses on float rounding).
+constexpr double kExactTexels = 0.05;
+constexpr double kTieDepth = 1e-4;
+// A converging search at its finest setting: within its stated t error and this many texels
+// (float rounding, and GL_LINEAR's 8-bit filtering weights on llvmpipe).
+constexpr double kConvergedTexels = 0.05;
+// Without a stated accuracy, a converging search at its finest setting is within this many
+// texels of the reference on smooth maps.
+constexpr double kConvergedUnstatedTexels = 0.5;
+// Raising an accuracy knob must not make the mean error grow by more than this share (and
+// this many texels of noise): a search that gets worse as it is given more work is broken.
+constexpr double kLadderSlack = 0.05, kLadderNoiseTexels = 0.02;
+// A probe disagreement (hit against miss) counts this many texels in the ladder's mean.
+constexpr double kMismatchTexels = 64;
+
+// --- Which technique meets which case: decided by what it declares. ---
+
+// A ray search on a single heightfield map (cell complexes and heightfield objects read other
+// maps; a rasteriser has no ray to probe).
+bool probes_heightfields(const TechniqueInfo& info) {
+  return info.contract.ray_probe && !info.cell_complex && !info.heightfield_object_only;
+}
+
+// Rays that start inside the depth range are its to answer when it draws a box proxy's sides
+// or an impostor.
+std::vector<ProbeRay> rays_for(const TechniqueInfo& info) {
+  return hard_rays(info.box_proxy || info.impostor);
+}
+
+bool searches(const TechniqueInfo& info) {
+  return info.contract.answer == Answer::Exact || info.contract.answer == Answer::Converging;
+}
+
+std::vector<size_t> drawable_cases(const TechniqueInfo& info) {
+  std::vector<size_t> out;
+  for (size_t i = 0; i < render_cases().size(); ++i)
+    if (cannot_render(info, render_cases()[i].scene).empty()) out.push_back(i);
+  return out;
+}
+
+ParamValues finest(const std::string& technique) {
+  return settings(technique, info_of(technique).contract.finest);
+}
+
+bool finite(glm::vec4 v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
+}
+
+double wrapped(double a) {
+  return a - std::floor(a);
+}
+
+// Where a probe hit lies against the ray, in texels: the hit's (u, v) against the ray's point
+// at the hit's t (modulo the tiling).
+double off_the_ray_texels(const ReliefMap& map, const ProbeRay& ray, const ProbeHit& h) {
+  const glm::dvec3 p = glm::dvec3(ray.origin) + double(h.t) * glm::dvec3(ray.direction);
+  const double du = wrapped(p.x - h.uv.x + 0.5) - 0.5, dv = wrapped(p.y - h.uv.y + 0.5) - 0.5;
+  return std::hypot(du * map.width, dv * map.height);
+}
+
+// How far along the ray, in texels, a probe hit is from the reference; kMismatchTexels when
+// one hits and the other does not (a floor tie counts as agreement).
+double probe_error_texels(const ReliefMap& map, const ProbeRay& ray, const ProbeHit& h,
+                          const ReferenceAnswer& ref) {
+  if (h.hit != ref.hit) {
+    const double depth = ray.origin.z + (ref.hit ? ref.t : h.t);
+    return depth >= 1 - kTieDepth ? 0 : kMismatchTexels;
+  }
+  if (!ref.hit) return 0;
+  const glm::dvec3 d(ray.direction);
+  return texel_distance(map, glm::dvec3(0), d * (double(h.t) - ref.t));
+}
+
+// The stated accuracy along one ray, in texels, + kConvergedTexels.
+double converged_tolerance_texels(const TechniqueContract& c, const ParamValues& params,
+                                  const ReliefMap& map, const ProbeRay& ray) {
+  if (!c.t_error) return kConvergedUnstatedTexels;
+  const double ray_texels_per_t = texel_distance(map, glm::dvec3(0), glm::dvec3(ray.direction));
+  return c.t_error(ray_query(params, map, ray)) * ray_texels_per_t + kConvergedTexels;
+}
+
+// A ray and both answers, for a failure message.
+std::string describe(const ProbeRay& ray, const ProbeHit& h, const ReferenceAnswer& ref) {
+  std::ostringstream s;
+  s << " (origin " << ray.origin.x << ", " << ray.origin.y << ", " << ray.origin.z << "; direction "
+    << ray.direction.x << ", " << ray.direction.y << ", 1; technique "
+    << (h.hit ? "t = " + std::to_string(h.t) : std::string("miss")) << ", reference "
+    << (ref.hit ? "t = " + std::to_string(ref.t) : std::string("miss")) << ")";
+  return s.str();
+}
+
+class Contract : public ::testing::TestWithParam<std::string> {
+ protected:
+  const std::string& name() const { return GetParam(); }
+  const TechniqueInfo& info() const { return info_of(name()); }
+  const TechniqueContract& contract() const { return info().contract; }
+};
+
+// --- Fetches. ---
+
+TEST_P(Contract, FetchesNeverExceedTheDeclaredBound) {
+  const TechniqueContract& c = contract();
+  double worst_ratio = 0;
+  std::string worst;
+  auto note = [&](double measured, double bound, const std::string& where) {
+    EXPECT_LE(measured, bound) << name() << " fetched " << measured << " > its bound " << bound
+                               << " (" << c.max_fetches_formula << ") on " << where;
+    if (bound > 0 && measured / bound > worst_ratio) {
+      worst_ratio = measured / bound;
+      worst = std::to_string(int(measured)) + " of " + std::to_string(int(bound)) + " on " + where;
+    }
+  };
+  for (const ParamValues& params : {settings(name()), finest(name())}) {
+    if (probes_heightfields(info()))
+      for (const ProbeMap& m : probe_maps()) {
+        const std::vector<ProbeRay> rays = rays_for(info());
+        const std::vector<ProbeHit> hits = probe(name(), params, m.map, rays);
+        for (size_t i = 0; i < rays.size(); ++i)
+          note(hits[i].fetches, c.max_fetches(ray_query(params, m.map, rays[i])),
+               "probe map " + m.name + " ray " + std::to_string(i));
+      }
+    for (size_t k : drawable_cases(info())) {
+      const Frame f = render(k, name(), params);
+      double most = 0;
+      for (size_t i = 0; i < f.image.size(); ++i) most = std::max(most, double(f.image.hit[i].w));
+      note(most, c.max_fetches(f.query), "frame " + render_cases()[k].name);
+    }
+  }
+  std::cout << "[contract] " << name() << " fetches: worst " << worst << " (bound "
+            << c.max_fetches_formula << ")\n";
+}
+
+// --- Finite output. ---
+
+TEST_P(Contract, OutputsAreFinite) {
+  for (const ParamValues& params : {settings(name()), finest(name())}) {
+    if (probes_heightfields(info()))
+      for (const ProbeMap& m : probe_maps()) {
+        const std::vector<ProbeRay> rays = rays_for(info());
+        const std::vector<ProbeHit> hits = probe(name(), params, m.map, rays);
+        for (size_t i = 0; i < hits.size(); ++i)
+          ASSERT_TRUE(std::isfinite(hits[i].t) && std::isfinite(hits[i].uv.x) &&
+                      std::isfinite(hits[i].uv.y) && std::isfinite(hits[i].depth))
+              << name() << " probe on " << m.name << " ray " << i;
+      }
+    for (size_t k : drawable_cases(info())) {
+      const Frame f = render(k, name(), params);
+      for (size_t i = 0; i < f.image.size(); ++i)
+        ASSERT_TRUE(finite(f.image.color[i]) && finite(f.image.position[i]) &&
+                    finite(f.image.normal[i]) && finite(f.image.hit[i]) && finite(f.image.aux[i]))
+            << name() << " pixel " << i << " of " << render_cases()[k].name;
+      EXPECT_EQ(f.metrics.nonfinite_px, 0) << render_cases()[k].name;
+    }
+  }
+}
+
+// --- Exact answers. ---
+
+TEST_P(Contract, ExactHitsMatchTheClosedForm) {
+  if (contract().answer != Answer::Exact) GTEST_SKIP() << "not exact";
+  const ParamValues params = settings(name());
+  if (probes_heightfields(info()))
+    for (const ProbeMap& m : probe_maps()) {
+      const std::vector<ProbeRay> rays = rays_for(info());
+      const std::vector<ProbeHit> hits = probe(name(), params, m.map, rays);
+      double worst = 0;
+      for (size_t i = 0; i < rays.size(); ++i) {
+        const double e = probe_error_texels(m.map, rays[i], hits[i],
+                                            reference(m.map, rays[i], contract().surface));
+        EXPECT_LE(e, kExactTexels)
+            << name() << " on " << m.name << " ray " << i << (hits[i].hit ? " hit" : " missed");
+        worst = std::max(worst, e);
+      }
+      std::cout << "[contract] " << name() << " on " << m.name << ": worst " << worst
+                << " texels\n";
+    }
+  // Whole frames against a truth of the surface it answers on: every covered pixel's position
+  // within kExactTexels.
+  for (size_t k : drawable_cases(info())) {
+    const RenderCase& rc = render_cases()[k];
+    if (!(probes_heightfields(info()) ? rc.truth_is_the_map : rc.truth_is_the_source_mesh))
+      continue;
+    const Frame f = render(k, name(), params);
+    std::cout << "[contract] " << name() << " frame " << render_cases()[k].name << ": wrong "
+              << f.metrics.wrong_pct << "%, position max " << f.metrics.pos_err_texels.max
+              << " texels\n";
+    if (f.metrics.truth_flagged()) continue;
+    EXPECT_LE(f.metrics.pos_err_texels.max, kExactTexels) << rc.name;
+    // Hit and miss agree but for at most one pixel (a rasteriser's edge rule).
+    EXPECT_LE(f.metrics.missed_pct + f.metrics.false_pct,
+              100.0 / std::max(1L, f.metrics.union_covered_px) + 1e-9)
+        << rc.name;
+  }
+}
+
+// --- Converging answers. ---
+
+// Mean probe error (texels) over the smooth maps and every hard ray.
+double mean_probe_error(const std::string& technique, const ParamValues& params) {
+  const TechniqueInfo& info = info_of(technique);
+  double sum = 0;
+  long n = 0;
+  for (const ProbeMap& m : probe_maps()) {
+    if (!m.smooth) continue;
+    const std::vector<ProbeRay> rays = rays_for(info);
+    const std::vector<ProbeHit> hits = probe(technique, params, m.map, rays);
+    for (size_t i = 0; i < rays.size(); ++i, ++n)
+      sum += probe_error_texels(m.map, rays[i], hits[i],
+                                reference(m.map, rays[i], info.contract.surface));
+  }
+  return sum / std::max(n, 1L);
+}
+
+// Mean frame error over the cases it draws: the wrong pixels' share in texels of a kMismatch
+// each, plus the covered pixels' mean position error.
+double mean_frame_error(const std::string& technique, const ParamValues& params) {
+  double sum = 0;
+  int n = 0;
+  for (size_t k : drawable_cases(info_of(technique))) {
+    const Frame f = render(k, technique, params);
+    sum += f.metrics.wrong_pct / 100 * kMismatchTexels + f.metrics.pos_err_texels.mean;
+    ++n;
+  }
+  return sum / std::max(n, 1);
+}
+
+TEST_P(Contract, ConvergingIsAccurateAtItsFinestSetting) {
+  const TechniqueContract& c = contract();
+  if (c.answer != Answer::Converging) GTEST_SKIP() << "not converging";
+  if (!probes_heightfields(info())) GTEST_SKIP() << "no heightfield probe: see the ladder";
+  const ParamValues params = finest(name());
+  for (const ProbeMap& m : probe_maps()) {
+    if (!m.smooth) continue;
+    const std::vector<ProbeRay> rays = rays_for(info());
+    const std::vector<ProbeHit> hits = probe(name(), params, m.map, rays);
+    double worst = 0;
+    int thin = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      const ReferenceAnswer ref = reference(m.map, rays[i], c.surface);
+      // The stated accuracy's condition: the crossing leads into a stretch the search resolves.
+      if (ref.hit && c.t_resolution) {
+        const double step = c.t_resolution(ray_query(params, m.map, rays[i]));
+        if (inside_stretch(m.map, c.surface, rays[i], ref.t, step) < step) {
+          ++thin;
+          continue;
+        }
+      }
+      const double e = probe_error_texels(m.map, rays[i], hits[i], ref);
+      EXPECT_LE(e, converged_tolerance_texels(c, params, m.map, rays[i]))
+          << name() << " on " << m.name << " ray " << i << describe(rays[i], hits[i], ref);
+      worst = std::max(worst, e);
+    }
+    std::cout << "[contract] " << name() << " finest on " << m.name << ": worst " << worst
+              << " texels (" << thin << " rays graze a stretch thinner than a step)\n";
+  }
+}
+
+// The next value of a knob's ladder towards `to`: doubled (halved for a knob where smaller is
+// finer), whole numbers kept whole; a bool goes straight to its finest value.
+double next_rung(double v, double to, bool larger_is_finer) {
+  if (larger_is_finer) return std::min(to, std::max(v * 2, v + 1));
+  const double half = std::floor(v / 2);
+  return half <= to || v <= 1 ? to : half;
+}
+
+// Each knob from its default to its finest value, doubling (halving for a level of detail),
+// the other knobs at their finest: the mean error never grows.
+TEST_P(Contract, ConvergingNeverGetsWorseAsAKnobIsRaised) {
+  const TechniqueContract& c = contract();
+  if (c.answer != Answer::Converging) GTEST_SKIP() << "not converging";
+  const bool probe_based = probes_heightfields(info());
+  for (const AccuracyKnob& knob : c.knobs) {
+    const double from = settings(name()).at(knob.param), to = c.finest.at(knob.param);
+    std::ostringstream ladder;
+    double previous = INFINITY;
+    for (double v = from;; v = next_rung(v, to, knob.larger_is_finer)) {
+      ParamValues p = c.finest;
+      p[knob.param] = v;
+      // The other knobs at their finest, or at their defaults where validate() refuses that.
+      std::optional<ParamValues> params = valid_settings(name(), p);
+      if (!params) params = valid_settings(name(), {{knob.param, v}});
+      ASSERT_TRUE(params) << name() << ": " << knob.param << " = " << v << " is refused";
+      const double e =
+          probe_based ? mean_probe_error(name(), *params) : mean_frame_error(name(), *params);
+      ladder << " " << v << ":" << e;
+      EXPECT_LE(e, previous * (1 + kLadderSlack) + kLadderNoiseTexels)
+          << name() << " got worse as " << knob.param << " reached " << v;
+      previous = e;
+      if (v == to) break;
+    }
+    std::cout << "[contract] " << name() << " " << knob.param
+              << " ladder (mean texels):" << ladder.str() << "\n";
+  }
+}
+
+// --- Hits on the surface. ---
+
+TEST_P(Contract, HitsLieOnTheRayAndNeverAboveTheSurface) {
+  const TechniqueContract& c = contract();
+  if (!searches(info())) GTEST_SKIP() << "no search: its answer need not lie on the ray";
+  if (!probes_heightfields(info())) GTEST_SKIP() << "no heightfield probe";
+  const ParamValues params = c.answer == Answer::Converging ? finest(name()) : settings(name());
+  for (const ProbeMap& m : probe_maps()) {
+    const std::vector<ProbeRay> rays = rays_for(info());
+    const std::vector<ProbeHit> hits = probe(name(), params, m.map, rays);
+    const double tolerance = filtering_tolerance(m.map) + 1e-4;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      const ProbeHit& h = hits[i];
+      if (!h.hit) continue;
+      EXPECT_LE(off_the_ray_texels(m.map, rays[i], h), kExactTexels)
+          << name() << " on " << m.name << " ray " << i << ": the hit is off its ray";
+      const double t_tolerance = c.t_error ? c.t_error(ray_query(params, m.map, rays[i])) : 0;
+      const double above = surface_depth(m.map, c.surface, h.uv.x, h.uv.y) - h.depth;
+      if (c.hits_from_inside)
+        EXPECT_LE(above, tolerance)
+            << name() << " on " << m.name << " ray " << i << ": the hit is above the surface";
+      else
+        EXPECT_LE(std::abs(above), tolerance + t_tolerance)
+            << name() << " on " << m.name << " ray " << i << ": the hit is off the surface";
+      EXPECT_LE(h.depth, 1 + 1e-4) << name() << " on " << m.name << " ray " << i;
+    }
+  }
+}
+
+// --- Every parameter does something. ---
+
+// A fingerprint of everything a setting produces: probe answers on straight and curved rays,
+// every frame's G-buffer, and its frame columns.
+std::vector<double> fingerprint(const std::string& technique, const ParamValues& params) {
+  std::vector<double> out;
+  const TechniqueInfo& info = info_of(technique);
+  if (probes_heightfields(info)) {
+    std::vector<ProbeRay> rays = hard_rays(info.box_proxy || info.impostor);
+    const std::vector<ProbeRay> curved = curved_rays();
+    rays.insert(rays.end(), curved.begin(), curved.end());
+    for (const ProbeHit& h : probe(technique, params, probe_maps()[3].map, rays))
+      out.insert(out.end(), {h.t, h.uv.x, h.uv.y, h.depth, double(h.hit), double(h.fetches)});
+  }
+  for (size_t k : drawable_cases(info)) {
+    const Frame f = render(k, technique, params);
+    for (size_t i = 0; i < f.image.size(); ++i)
+      for (const glm::vec4& v :
+           {f.image.color[i], f.image.position[i], f.image.normal[i], f.image.hit[i]})
+        out.insert(out.end(), {v.x, v.y, v.z, v.w});
+    for (const auto& [column, value] : f.columns) out.push_back(value);
+  }
+  return out;
+}
+
+TEST_P(Contract, EveryParameterChangesSomething) {
+  const std::vector<double> base = fingerprint(name(), settings(name()));
+  for (const ParamSpec& p : info().params) {
+    const double def = settings(name()).at(p.name);
+    // Either end of its range (the other end of a bool) changes some output.
+    bool changed = false;
+    for (double other : {p.max_value, p.min_value}) {
+      if (other == def || changed) continue;
+      const std::optional<ParamValues> params = valid_settings(name(), {{p.name, other}});
+      changed = params && fingerprint(name(), *params) != base;
+    }
+    EXPECT_TRUE(changed) << name() << ": neither end of " << p.name << "'s range [" << p.min_value
+                         << ", " << p.max_value << "] (default " << def
+                         << ") changes anything it outputs";
+  }
+}
+
+// --- The probe and the frame run one search. ---
+
+TEST_P(Contract, ProbesAgreeWithTheFrame) {
+  if (!probes_heightfields(info())) GTEST_SKIP() << "no heightfield probe";
+  const ParamValues params = settings(name());
+  for (size_t k : drawable_cases(info())) {
+    const RenderCase& rc = render_cases()[k];
+    if (!rc.planar_rays) continue;
+    const Frame f = render(k, name(), params);
+    const std::vector<ProbeHit> hits = probe(name(), params, *f.map, f.pixel_rays, f.depth_aspect);
+    long compared = 0, disagree = 0;
+    for (size_t i = 0; i < hits.size(); ++i) {
+      if (!f.image.covered(i) || !hits[i].hit) continue;
+      ++compared;
+      const glm::dvec2 d(wrapped(hits[i].uv.x - f.image.hit[i].x + 0.5) - 0.5,
+                         wrapped(hits[i].uv.y - f.image.hit[i].y + 0.5) - 0.5);
+      if (glm::length(d * glm::dvec2(f.map->width, f.map->height)) > 0.5) ++disagree;
+    }
+    std::cout << "[contract] " << name() << " probe vs frame on " << rc.name << ": " << disagree
+              << " of " << compared << " pixels differ by > 0.5 texel\n";
+    EXPECT_GT(compared, 0) << rc.name;
+    EXPECT_LE(disagree, compared / 50) << rc.name;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Registry, Contract, ::testing::ValuesIn(technique_names()),
+                         [](const ::testing::TestParamInfo<std::string>& i) { return i.param; });
+
+}  // namespace
+}  // namespace rl::contract
