@@ -21,6 +21,12 @@ namespace {
 // slices run from the top (0) to the floor (1) inclusive, so both plateaus are exact and every
 // column is drawn at least at the floor (one slice: the floor alone, texture mapping without
 // parallax). Over an empty floor or in an object, they are the midpoints of equal slabs.
+// The largest distance between neighbouring slices (or the top and the first): over a solid
+// floor 1 / (slices - 1), in an object 1 / slices.
+double slice_spacing(double slices) {
+  return slices > 1 ? 1.0 / (slices - 1) : 1.0;
+}
+
 std::vector<double> slice_depths(int slices, bool solid_floor) {
   std::vector<double> d(static_cast<size_t>(slices));
   for (int s = 0; s < slices; ++s)
@@ -121,42 +127,48 @@ class DepthSlicing final : public Described<DepthSlicing, Technique> {
  public:
   using Described::Described;
   static TechniqueInfo describe() {
-    return {.name = "depth_slicing",
-            .title = "Relief texture mapping by multi-pass depth slicing",
-            .citation =
-                "Chapter 5, 'RTM - Multi pass for planar objects', Listing 5.2, "
-                "Figures 5.6-5.8",
-            .effects = {Effect::DepthCorrect},
-            .params = {{.name = "slices",
-                        .kind = ParamKind::Int,
-                        .default_value = 32,
-                        .min_value = 1,
-                        .max_value = 256,
-                        .doc = "slice planes (passes per relief texture): the level of detail "
-                               "of Figure 5.7"},
-                       {.name = "view_aligned",
-                        .kind = ParamKind::Bool,
-                        .default_value = 0,
-                        .min_value = 0,
-                        .max_value = 1,
-                        .doc = "slices normal to the view direction across the volume (one set "
-                               "for all faces) instead of parallel to each relief texture "
-                               "(Figure 5.8)"}},
-            .box_proxy = true,
-            .heightfield_object = true,
-            .planar_only = true,
-            .contract = {
-                .answer = Answer::Converging,
-                .max_fetches = [](const RayQuery& q) { return 2 * q.param("slices") * q.faces; },
-                .max_fetches_formula = "2 x slices (x faces of an object): a depth and a colour "
-                                       "per slice fragment",
-                .knobs = {{"slices"}},
-                .finest = {{"slices", 256}},
-                .t_error = [](const RayQuery& q) { return 1.0 / q.param("slices"); },
-                .accuracy = "the first slice behind the surface: within one slice spacing (1 / "
-                            "slices of depth) along the ray, on surfaces with no feature thinner "
-                            "than a slice",
-                .t_resolution = [](const RayQuery& q) { return 1.0 / q.param("slices"); }}};
+    return {
+        .name = "depth_slicing",
+        .title = "Relief texture mapping by multi-pass depth slicing",
+        .citation =
+            "Chapter 5, 'RTM - Multi pass for planar objects', Listing 5.2, "
+            "Figures 5.6-5.8",
+        .effects = {Effect::DepthCorrect},
+        .params = {{.name = "slices",
+                    .kind = ParamKind::Int,
+                    .default_value = 32,
+                    .min_value = 1,
+                    .max_value = 256,
+                    .doc = "slice planes (passes per relief texture): the level of detail "
+                           "of Figure 5.7"},
+                   {.name = "view_aligned",
+                    .kind = ParamKind::Bool,
+                    .default_value = 0,
+                    .min_value = 0,
+                    .max_value = 1,
+                    .doc = "slices normal to the view direction across the volume (one set "
+                           "for all faces) instead of parallel to each relief texture "
+                           "(Figure 5.8)"}},
+        .box_proxy = true,
+        .heightfield_object = true,
+        .planar_only = true,
+        .contract = {
+            .answer = Answer::Converging,
+            .max_fetches =
+                [](const RayQuery& q) {
+                  const double slices = q.param("slices");
+                  return q.faces > 1 ? slices * q.faces * (q.faces + 2) : 2 * slices;
+                },
+            .max_fetches_formula = "2 x slices: a depth and a colour per slice fragment; on "
+                                   "an object, slices x faces fragments, each testing every "
+                                   "face and shading from 2 more",
+            .knobs = {{"slices"}},
+            .finest = {{"slices", 256}},
+            .t_error = [](const RayQuery& q) { return slice_spacing(q.param("slices")); },
+            .accuracy = "the first slice behind the surface: within one slice spacing (1 / "
+                        "(slices - 1) of depth over a solid floor, planes 0 to 1 inclusive) "
+                        "along the ray, on surfaces with no feature thinner than a slice",
+            .t_resolution = [](const RayQuery& q) { return slice_spacing(q.param("slices")); }}};
   }
   ~DepthSlicing() override {
     if (fragment_count_) glDeleteTextures(1, &fragment_count_);
@@ -168,7 +180,7 @@ class DepthSlicing final : public Described<DepthSlicing, Technique> {
     const SceneDesc& s = frame.scene;
     const bool counting = target == RenderTarget::Kind::GBuffer;
     const int slices = int(param("slices"));
-    ProgramDesc d = program(s, slices);
+    ProgramDesc d = program(s, frame.map, slices);
     d.vertex_file = "harness/glsl/texture_space.vert";
     if (counting) {
       d.defines["RL_GBUFFER"] = "1";
@@ -217,7 +229,7 @@ class DepthSlicing final : public Described<DepthSlicing, Technique> {
     // A probe has no scene: a plain map has a solid floor, faces make an object.
     SceneDesc probe_scene;
     probe_scene.relief.faces = map.faces ? map.faces->count() : 0;
-    ProgramDesc d = program(probe_scene, slices);
+    ProgramDesc d = program(probe_scene, map, slices);
     d.vertex_file = "harness/glsl/fullscreen.vert";
     d.defines["RL_PROBE"] = "1";
     const GLuint p = ShaderLibrary::shared().program(d);
@@ -230,11 +242,14 @@ class DepthSlicing final : public Described<DepthSlicing, Technique> {
   }
 
  private:
-  ProgramDesc program(const SceneDesc& s, int slices) const {
+  ProgramDesc program(const SceneDesc& s, const ReliefMap& map, int slices) const {
     ProgramDesc d;
     d.owner = info().name;
     d.fragment_files = {"techniques/depth_slicing/depth_slicing.glsl"};
     d.defines["RL_SLICES"] = std::to_string(slices);
+    // A slice exactly at a stored 8-bit depth counts as behind it whatever the rounding; a float
+    // map needs no slack, which would keep slices above the surface.
+    d.defines["RL_SLICE_SLACK"] = map.quantized ? "(0.5 / 255.0)" : "0.0";
     if (param("view_aligned") != 0) d.defines["RL_VIEW_ALIGNED"] = "1";
     if (s.heightfield_object()) d.defines["RL_FACES"] = "1";
     if (s.empty_floor && !s.heightfield_object()) d.defines["RL_EMPTY_FLOOR"] = "1";

@@ -16,10 +16,10 @@
 layout(binding = 0) uniform sampler2D rl_relief;
 layout(binding = 1) uniform sampler2D rl_color;
 int rl_fetches = 0;
-// As in heightfield_faces.glsl: an empty column (a mesh's bake missed), and the slack that puts
-// a slice exactly at a stored depth inside whatever the 8-bit rounding.
+// As in heightfield_faces.glsl: an empty column (a mesh's bake missed). RL_SLICE_SLACK (from
+// the plugin): on an 8-bit map, the slack that puts a slice exactly at a stored depth inside
+// whatever the rounding.
 const float RL_EMPTY_DEPTH = 1.0 - 0.5 / 255.0;
-const float RL_SLICE_SLACK = 0.5 / 255.0;
 #endif
 #include "harness/glsl/shading.glsl"
 

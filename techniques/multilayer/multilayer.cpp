@@ -139,6 +139,15 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
     return d;
   }
   bool two_pass() const override { return param("two_pass") != 0; }
+  // Section 5's two passes draw the base twice (front faces, then back faces): the image is the
+  // same as one pass's, the rasterised work is not, so the row says how many passes it drew.
+  void render(const FrameInput& frame, RenderTarget::Kind target) override {
+    ShaderTechnique::render(frame, target);
+    base_passes_ = two_pass() && variant_of(frame.scene).two_sided ? 2 : 1;
+  }
+  std::vector<std::pair<std::string, double>> frame_columns() const override {
+    return {{"base_passes", double(base_passes_)}};
+  }
   void bind_resources(GLuint) const override {
     for (int k = 0; k < 4; ++k) glBindTextureUnit(4 + k, textures_[k]);
   }
@@ -154,6 +163,7 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
   GLuint textures_[4] = {0, 0, 0, 0};
   int groups_ = 1;
   Defines floor_;  // RL_LAYERED_FLOOR on a multilayer map
+  int base_passes_ = 1;
   size_t bytes_ = 0;
 };
 

@@ -74,13 +74,21 @@ class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
                       1 + (q.param("exact_zero_radius") != 0
                                ? std::max(1.0, std::ceil(minor / std::max(major, 1.0)) + 3)
                                : 1.0);
-                  return lines * per_line + q.param("binary_steps") + 2;
+                  return lines * per_line + q.param("binary_steps") + 3;
                 },
             .max_fetches_formula = "(texel lines crossed + 2) x (a radius and a depth, or with "
-                                   "exact_zero_radius the cells of a line), + binary_steps, + 2 to "
-                                   "shade",
-            .knobs = {{"binary_steps"}, {"directions"}},
-            .finest = {{"binary_steps", 32}, {"directions", 64}},
+                                   "exact_zero_radius the cells of a line), + binary_steps, + 1 "
+                                   "where the ray enters below depth 0 (a box side), + 2 to shade",
+            .knobs = {{"binary_steps"},
+                      {"directions"},
+                      {"exact_zero_radius"},
+                      {"error_allowed", /*larger_is_finer=*/false},
+                      {"ignore_blocked", /*larger_is_finer=*/false}},
+            .finest = {{"binary_steps", 32},
+                       {"directions", 64},
+                       {"exact_zero_radius", 1},
+                       {"error_allowed", 0},
+                       {"ignore_blocked", 0}},
             .accuracy = "the crossing in a step of at most one safety radius (255 texels), to "
                         "within that step / 2^(binary_steps + 1): safe radii hold one crossing "
                         "per step",

@@ -19,6 +19,9 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   vec2 start = fract(p.xy) * size - 0.5;  // texel-centre coordinates
   vec2 dir = s.xy * size;
   int major = abs(dir.x) >= abs(dir.y) ? 0 : 1;
+  // A ray entering below depth 0 (through a box proxy's side) may start inside the solid:
+  // the side itself is the hit. The safety radii only bound crossings of rays from above.
+  if (p.z > 0.0 && p.z >= RL_FETCH(rl_relief, p.xy).a) return rl_hit_on_ray(p, s, 0.0, true);
   if (dir[major] == 0.0) {
     // A vertical ray meets the surface straight below its entry.
     float d = RL_FETCH(rl_relief, p.xy).a;

@@ -100,10 +100,15 @@ std::vector<ProbeRay> curved_rays() {
 
 ReferenceAnswer reference(const ReliefMap& map, const ProbeRay& ray, Surface surface) {
   const glm::dvec3 o(ray.origin), d(ray.direction);
-  const ReferenceHit h = surface == Surface::Bilinear
-                             ? intersect_heightfield(map, o, d, 1.0 - o.z)
-                             : intersect_texel_columns(map, o, d, 1.0 - o.z);
-  return {h.hit, h.t};
+  if (surface == Surface::Bilinear) {
+    const ReferenceHit h = intersect_heightfield(map, o, d, 1.0 - o.z);
+    return {h.hit, h.t, h.hit, h.t};
+  }
+  // Either side of a boundary the ray may run along, a millionth of a texel away.
+  const glm::dvec3 nudge(1e-6 / map.width, 1e-6 / map.height, 0);
+  const ReferenceHit a = intersect_texel_columns(map, o + nudge, d, 1.0 - o.z);
+  const ReferenceHit b = intersect_texel_columns(map, o - nudge, d, 1.0 - o.z);
+  return {a.hit, a.t, b.hit, b.t};
 }
 
 double surface_depth(const ReliefMap& map, Surface surface, double u, double v) {
@@ -145,6 +150,28 @@ double filtering_tolerance(const ReliefMap& map) {
       jump = std::max({jump, double(std::abs(map.depth_texel(x, y) - map.depth_texel(x + 1, y))),
                        double(std::abs(map.depth_texel(x, y) - map.depth_texel(x, y + 1)))});
   return jump / 256 + 1e-5;
+}
+
+double filtering_tolerance_at(const ReliefMap& map, double u, double v) {
+  const int x0 = int(std::floor(u * map.width - 0.5)), y0 = int(std::floor(v * map.height - 0.5));
+  float lo = 1, hi = 0;
+  for (int y = y0 - 1; y <= y0 + 2; ++y)
+    for (int x = x0 - 1; x <= x0 + 2; ++x) {
+      lo = std::min(lo, map.depth_texel(x, y));
+      hi = std::max(hi, map.depth_texel(x, y));
+    }
+  return (hi - lo) / 256 + 1e-5;
+}
+
+double depth_error_along_ray(const ReliefMap& map, const ProbeRay& ray, double t_hit,
+                             double depth_error) {
+  const glm::dvec3 p = glm::dvec3(ray.origin) + t_hit * glm::dvec3(ray.direction);
+  const double du = 0.25 / map.width, dv = 0.25 / map.height;
+  const glm::dvec2 gradient(
+      (map.sample_depth(p.x + du, p.y) - map.sample_depth(p.x - du, p.y)) / (2 * du),
+      (map.sample_depth(p.x, p.y + dv) - map.sample_depth(p.x, p.y - dv)) / (2 * dv));
+  const double rate = 1 - glm::dot(gradient, glm::dvec2(ray.direction));
+  return depth_error / std::max(0.05, std::abs(rate));
 }
 
 double steepest_slope(const ReliefMap& map) {

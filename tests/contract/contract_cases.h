@@ -44,6 +44,10 @@ std::vector<ProbeRay> curved_rays();
 struct ReferenceAnswer {
   bool hit = false;
   double t = 0;
+  // A ray exactly on a boundary between texel columns may take either (GL_NEAREST decides by
+  // rounding): the answer on the other side; the same as above elsewhere.
+  bool other_hit = false;
+  double other_t = 0;
 };
 ReferenceAnswer reference(const ReliefMap& map, const ProbeRay& ray,
                           Surface surface = Surface::Bilinear);
@@ -68,6 +72,13 @@ double texel_distance(const ReliefMap& map, glm::dvec3 a, glm::dvec3 b);
 // slope in depth per texture unit.
 double filtering_tolerance(const ReliefMap& map);
 double steepest_slope(const ReliefMap& map);
+// The same near (u, v): the largest jump among the 4 x 4 texels around it / 256.
+double filtering_tolerance_at(const ReliefMap& map, double u, double v);
+// How far along t a depth error of `depth_error` moves the crossing of `ray` with the bilinear
+// surface at t_hit: depth_error over the rate at which the ray goes below the surface there
+// (at least 0.05: a ray running along the surface).
+double depth_error_along_ray(const ReliefMap& map, const ProbeRay& ray, double t_hit,
+                             double depth_error);
 
 // Runs `technique` with `params` on `rays` in probe mode on `map`, whose world depth is
 // `depth_aspect` times the world length of a texture unit.

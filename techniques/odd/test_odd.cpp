@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "../techniques/odd/odd_map.h"
 #include "gl/context.h"
+#include "odd_map.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
 #include "technique/gpu_scene.h"
