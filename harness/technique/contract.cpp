@@ -34,6 +34,14 @@ double quadtree_nodes(const RayQuery& q) {
   return std::min(4 * kWalkCellCap, 2 * cells + 4.0 * levels + 3);
 }
 
+double linear_binary_t_error(const RayQuery& q) {
+  return std::ldexp(one_linear_step(q), -int(q.param("binary_steps")));
+}
+
+double one_linear_step(const RayQuery& q) {
+  return 1.0 / q.param("linear_steps");
+}
+
 void check_contract(const std::string& technique, const TechniqueContract& c,
                     const std::vector<ParamSpec>& params) {
   const std::string who = "technique '" + technique + "' contract";

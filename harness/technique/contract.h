@@ -49,6 +49,12 @@ double walk_cells(const RayQuery& q);
 // one fetch each: a monotone ray enters each node of each level at most once.
 double quadtree_nodes(const RayQuery& q);
 
+// A linear search of `linear_steps` over the depth range refined by `binary_steps` bisections
+// (chapter 5's Listing 5.3 and its kin): its stated t error, one step / 2^binary_steps, and
+// the stretch it may step over, one step.
+double linear_binary_t_error(const RayQuery& q);
+double one_linear_step(const RayQuery& q);
+
 // A parameter that trades fetches for accuracy.
 struct AccuracyKnob {
   std::string param;

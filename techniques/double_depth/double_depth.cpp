@@ -29,25 +29,21 @@ class DoubleDepth final : public Described<DoubleDepth, ShaderTechnique> {
                         .min_value = 0,
                         .max_value = 32,
                         .doc = "binary search refinements (Listing 5.3: 5)"}},
-            .contract = {
-                .answer = Answer::Converging,
-                .surface = Surface::TexelColumns,
-                .max_fetches =
-                    [](const RayQuery& q) {
-                      return q.param("linear_steps") + q.param("binary_steps") + 2;
-                    },
-                .max_fetches_formula = "linear_steps + binary_steps, + 2 to shade",
-                .knobs = {{"linear_steps"}, {"binary_steps"}},
-                .finest = {{"linear_steps", 1024}, {"binary_steps", 16}},
-                .t_error =
-                    [](const RayQuery& q) {
-                      return std::ldexp(1.0 / q.param("linear_steps"),
-                                        -int(q.param("binary_steps")));
-                    },
-                .accuracy = "the first entry into the solid between the two depths to within one "
-                            "linear step / 2^binary_steps along the ray, on solids with no part "
-                            "thinner than a linear step",
-                .t_resolution = [](const RayQuery& q) { return 1.0 / q.param("linear_steps"); }}};
+            .contract = {.answer = Answer::Converging,
+                         .surface = Surface::TexelColumns,
+                         .max_fetches =
+                             [](const RayQuery& q) {
+                               return q.param("linear_steps") + q.param("binary_steps") + 2;
+                             },
+                         .max_fetches_formula = "linear_steps + binary_steps, + 2 to shade",
+                         .knobs = {{"linear_steps"}, {"binary_steps"}},
+                         .finest = {{"linear_steps", 1024}, {"binary_steps", 16}},
+                         .t_error = linear_binary_t_error,
+                         .accuracy =
+                             "the first entry into the solid between the two depths to within one "
+                             "linear step / 2^binary_steps along the ray, on solids with no part "
+                             "thinner than a linear step",
+                         .t_resolution = one_linear_step}};
   }
 
   // One RGBA texel per texel: the front surface's normal x and y, the front depth (the first

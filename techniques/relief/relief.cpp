@@ -31,22 +31,19 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
               .doc = "binary search refinements after the linear search (Listing 5.3: 5)"}},
         .box_proxy = true,
         .meta_relief = true,
-        .contract = {
-            .answer = Answer::Converging,
-            .max_fetches =
-                [](const RayQuery& q) {
-                  return q.param("linear_steps") - 1 + q.param("binary_steps") + 2;
-                },
-            .max_fetches_formula = "linear_steps - 1 + binary_steps, + 2 to shade",
-            .knobs = {{"linear_steps"}, {"binary_steps"}},
-            .finest = {{"linear_steps", 1024}, {"binary_steps", 16}},
-            .t_error =
-                [](const RayQuery& q) {
-                  return std::ldexp(1.0 / q.param("linear_steps"), -int(q.param("binary_steps")));
-                },
-            .accuracy = "the first crossing to within one linear step / 2^binary_steps along the "
-                        "ray, on surfaces with no feature thinner than a linear step",
-            .t_resolution = [](const RayQuery& q) { return 1.0 / q.param("linear_steps"); }}};
+        .contract = {.answer = Answer::Converging,
+                     .max_fetches =
+                         [](const RayQuery& q) {
+                           return q.param("linear_steps") - 1 + q.param("binary_steps") + 2;
+                         },
+                     .max_fetches_formula = "linear_steps - 1 + binary_steps, + 2 to shade",
+                     .knobs = {{"linear_steps"}, {"binary_steps"}},
+                     .finest = {{"linear_steps", 1024}, {"binary_steps", 16}},
+                     .t_error = linear_binary_t_error,
+                     .accuracy =
+                         "the first crossing to within one linear step / 2^binary_steps along the "
+                         "ray, on surfaces with no feature thinner than a linear step",
+                     .t_resolution = one_linear_step}};
   }
 
  protected:

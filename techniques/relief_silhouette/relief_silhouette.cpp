@@ -38,23 +38,20 @@ class ReliefSilhouette final : public Described<ReliefSilhouette, ShaderTechniqu
                      "vertical distance of Equation 5.3 (the chapter's 'twofold speedup')"}},
         .box_proxy = false,
         .meta_relief = true,
-        .contract = {
-            .answer = Answer::Converging,
-            .max_fetches =
-                [](const RayQuery& q) {
-                  return q.param("linear_steps") + q.param("binary_steps") + 2;
-                },
-            .max_fetches_formula = "linear_steps + binary_steps, + 2 to shade",
-            .knobs = {{"linear_steps"}, {"binary_steps"}},
-            .finest = {{"linear_steps", 1024}, {"binary_steps", 16}},
-            .t_error =
-                [](const RayQuery& q) {
-                  return std::ldexp(1.0 / q.param("linear_steps"), -int(q.param("binary_steps")));
-                },
-            .accuracy = "on a planar base, the first crossing to within one linear step / "
-                        "2^binary_steps along the ray, on surfaces with no feature thinner than "
-                        "a linear step",
-            .t_resolution = [](const RayQuery& q) { return 1.0 / q.param("linear_steps"); }}};
+        .contract = {.answer = Answer::Converging,
+                     .max_fetches =
+                         [](const RayQuery& q) {
+                           return q.param("linear_steps") + q.param("binary_steps") + 2;
+                         },
+                     .max_fetches_formula = "linear_steps + binary_steps, + 2 to shade",
+                     .knobs = {{"linear_steps"}, {"binary_steps"}},
+                     .finest = {{"linear_steps", 1024}, {"binary_steps", 16}},
+                     .t_error = linear_binary_t_error,
+                     .accuracy =
+                         "on a planar base, the first crossing to within one linear step / "
+                         "2^binary_steps along the ray, on surfaces with no feature thinner than "
+                         "a linear step",
+                     .t_resolution = one_linear_step}};
   }
 
  protected:
