@@ -23,6 +23,10 @@ RenderTarget::RenderTarget(int width, int height, Kind kind)
   const GLenum buffers[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
                              GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
   glNamedFramebufferDrawBuffers(fbo_, attachments_, buffers);
+  if (kind == Kind::GBuffer) {
+    glCreateTextures(GL_TEXTURE_2D, 3, costs_);
+    for (GLuint t : costs_) glTextureStorage2D(t, 1, GL_R32UI, width, height);
+  }
   GLenum status = glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE)
     throw GlError("render target " + std::to_string(width) + "x" + std::to_string(height) +
@@ -33,6 +37,7 @@ RenderTarget::~RenderTarget() {
   glDeleteFramebuffers(1, &fbo_);
   glDeleteTextures(attachments_, color_);
   glDeleteRenderbuffers(1, &depth_);
+  if (kind_ == Kind::GBuffer) glDeleteTextures(3, costs_);
 }
 
 void RenderTarget::bind_and_clear() {
@@ -42,6 +47,12 @@ void RenderTarget::bind_and_clear() {
   for (int i = 0; i < attachments_; ++i) glClearNamedFramebufferfv(fbo_, GL_COLOR, i, zero);
   const float one = 1.0f;
   glClearNamedFramebufferfv(fbo_, GL_DEPTH, 0, &one);
+  if (kind_ != Kind::GBuffer) return;
+  const GLuint zero_u = 0;
+  for (int i = 0; i < 3; ++i) {
+    glClearTexImage(costs_[i], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero_u);
+    glBindImageTexture(5 + i, costs_[i], 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+  }
 }
 
 void RenderTarget::read_back(GBuffer& out) const {
@@ -51,6 +62,16 @@ void RenderTarget::read_back(GBuffer& out) const {
   const GLsizei bytes = static_cast<GLsizei>(out.size() * sizeof(glm::vec4));
   for (int i = 0; i < 5; ++i)
     glGetTextureImage(color_[i], 0, GL_RGBA, GL_FLOAT, bytes, dst[i]->data());
+}
+
+void RenderTarget::read_back_costs(FragmentCounts& out) const {
+  if (kind_ != Kind::GBuffer) throw GlError("read_back_costs needs a G-buffer render target");
+  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  out.resize(width_, height_);
+  std::vector<uint32_t>* dst[3] = {&out.fragments, &out.fetch_sum, &out.fetch_max};
+  const GLsizei bytes = static_cast<GLsizei>(out.fragments.size() * sizeof(uint32_t));
+  for (int i = 0; i < 3; ++i)
+    glGetTextureImage(costs_[i], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, bytes, dst[i]->data());
 }
 
 }  // namespace rl

@@ -1,8 +1,11 @@
 #pragma once
 // Offscreen render targets: the G-buffer (five RGBA32F attachments + depth, matching
-// core/gbuffer.h) for measuring, or a single RGBA8 colour target for timing.
+// core/gbuffer.h) for measuring, or a single RGBA8 colour target for timing. A G-buffer target
+// also counts what every fragment shaded into it fetched (core/fragment_counts.h) on image
+// units 5-7, bound by bind_and_clear().
 #include <epoxy/gl.h>
 
+#include "core/fragment_counts.h"
 #include "core/gbuffer.h"
 
 namespace rl {
@@ -17,6 +20,8 @@ class RenderTarget {
 
   void bind_and_clear();
   void read_back(GBuffer& out) const;  // GBuffer kind only
+  // What the fragments shaded since bind_and_clear() fetched, per pixel (GBuffer kind only).
+  void read_back_costs(FragmentCounts& out) const;
   int width() const { return width_; }
   int height() const { return height_; }
   Kind kind() const { return kind_; }
@@ -26,6 +31,7 @@ class RenderTarget {
   Kind kind_;
   GLuint fbo_ = 0, depth_ = 0;
   GLuint color_[5] = {0, 0, 0, 0, 0};
+  GLuint costs_[3] = {0, 0, 0};  // r32ui: fragments, fetch sum, fetch max
   int attachments_ = 0;
 };
 

@@ -7,3 +7,27 @@ layout(location = 2) out vec4 o_normal;
 layout(location = 3) out vec4 o_hit;
 layout(location = 4) out vec4 o_aux;
 #endif
+
+// The cost a GPU pays (harness/metrics/fragment_cost.h): in the G-buffer render every fragment
+// the technique's passes shade adds itself and its texture fetches to three r32ui images on image
+// units 5-7 (fragments, fetch sum, largest fetch count per pixel) -- kept or discarded, so a
+// missed ray costs what it walked. A technique's main ends with rl_count_fragment(rl_fetches) and
+// discards with RL_DISCARD. The timing render (no RL_GBUFFER) counts nothing.
+#ifdef RL_GBUFFER
+layout(binding = 5, r32ui) uniform coherent uimage2D rl_cost_fragments;
+layout(binding = 6, r32ui) uniform coherent uimage2D rl_cost_fetch_sum;
+layout(binding = 7, r32ui) uniform coherent uimage2D rl_cost_fetch_max;
+void rl_count_fragment(int fetches) {
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  imageAtomicAdd(rl_cost_fragments, px, 1u);
+  imageAtomicAdd(rl_cost_fetch_sum, px, uint(fetches));
+  imageAtomicMax(rl_cost_fetch_max, px, uint(fetches));
+}
+#else
+void rl_count_fragment(int fetches) {}
+#endif
+#define RL_DISCARD \
+  {                \
+    rl_count_fragment(rl_fetches); \
+    discard;       \
+  }

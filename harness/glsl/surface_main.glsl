@@ -64,16 +64,16 @@ void main() {
   // object's middle (depth 0.5) and is seen from either side; the search covers the whole
   // depth range along the ray, downward from the front, upward from behind, and a ray that
   // meets no layer shows what lies behind the impostor.
-  if (tv.z == 0.0) discard;
+  if (tv.z == 0.0) RL_DISCARD;
   vec3 s = tv / abs(tv.z);
   RlHit h = rl_intersect(vec3(v_uv, 0.5) - 0.5 * s, s);
-  if (!h.hit) discard;
+  if (!h.hit) RL_DISCARD;
 #elif defined(RL_TWO_SIDED)
   // A pattern with gaps on a closed base (Policarpo & Oliveira 2006, Figure 1 and Section 5):
   // through a gap the far side shows, its relief seen from inside. A back face's ray crossed
   // the relief from depth 1 up to the base (depth 0) before reaching the fragment, so it is
   // searched upward from there.
-  if (tv.z == 0.0) discard;
+  if (tv.z == 0.0) RL_DISCARD;
   vec3 s = tv / abs(tv.z);
 #ifdef RL_SILHOUETTE
   // Front faces bend their ray through the fragment's quadric (chapter 5 silhouettes, as
@@ -89,9 +89,9 @@ void main() {
 #else
   RlHit h = rl_intersect(tv.z > 0.0 ? vec3(v_uv, 0.0) : vec3(v_uv, 0.0) - s, s);
 #endif
-  if (!h.hit) discard;
+  if (!h.hit) RL_DISCARD;
 #else
-  if (tv.z <= 0.0) discard;  // base seen from below: no relief there
+  if (tv.z <= 0.0) RL_DISCARD;  // base seen from below: no relief there
 #endif
 #if defined(RL_IMPOSTOR) || defined(RL_TWO_SIDED)
 #elif defined(RL_REVERSE_PERSPECTIVE)
@@ -108,7 +108,7 @@ void main() {
   vec3 metric = vec3(length(v_dpdu), length(v_dpdv), rl_depth_scale);
   RlHit h = rl_intersect_curved(vec3(v_uv, 0.0), tv, v_curvature, metric);
   t_is_world = true;
-  if (!h.hit) discard;
+  if (!h.hit) RL_DISCARD;
 #else
   vec3 s = tv / tv.z;
   RlHit h = rl_intersect(vec3(v_uv, v_entry_depth), s);
@@ -116,18 +116,18 @@ void main() {
 #ifdef RL_PROXY_BOX
   // A hit outside the box means the ray left it first (the box is convex, rays straight).
   const float eps = 1e-5;
-  if (any(lessThan(h.uv, vec2(-eps))) || any(greaterThan(h.uv, rl_uv_max + eps))) discard;
+  if (any(lessThan(h.uv, vec2(-eps))) || any(greaterThan(h.uv, rl_uv_max + eps))) RL_DISCARD;
   // Reaching depth 1 is the floor: a hit on a solid floor (a search may end there without
   // a root, by rounding), or leaving the box through an empty one.
   bool on_floor = h.depth >= 1.0 - 1e-4;
 #ifdef RL_EMPTY_FLOOR
-  if (on_floor) discard;
+  if (on_floor) RL_DISCARD;
 #endif
-  if (!h.hit && !on_floor) discard;  // a walk stopped by its cell cap
+  if (!h.hit && !on_floor) RL_DISCARD;  // a walk stopped by its cell cap
 #elif defined(RL_EMPTY_FLOOR) && !defined(RL_IMPOSTOR) && !defined(RL_TWO_SIDED)
   // The base drawn over an empty floor (a non-height-field pattern): a ray that finds no
   // surface, or only the floor, went through the pattern's gaps.
-  if (!h.hit || h.depth >= 1.0 - 1e-4) discard;
+  if (!h.hit || h.depth >= 1.0 - 1e-4) RL_DISCARD;
 #endif
 
   // The point the technique claims: its hit uv at its hit depth, in the base's frame.
@@ -195,4 +195,5 @@ void main() {
   o_hit = vec4(h.uv, float(h.layer), float(rl_fetches));
   o_aux = vec4(rl_ambient_visibility, 0.0, dot(rl_ambient * albedo, vec3(1.0 / 3.0)), 0.0);
 #endif
+  rl_count_fragment(rl_fetches);
 }

@@ -4,6 +4,7 @@
 #include <set>
 
 #include "core/hash.h"
+#include "metrics/fragment_cost.h"
 #include "metrics/metrics.h"
 #include "sweep/config_technique.h"
 #include "technique/technique.h"
@@ -13,8 +14,10 @@ namespace {
 
 // Results change when the harness's measuring changes: bump this when a metric or the truth
 // is redefined, so stale rows are not mistaken for current ones.
-// 2: the exact heightfield truth and its bounds; 3: the bound along the surface's own normal.
-constexpr int kMeasurementVersion = 3;
+// 2: the exact heightfield truth and its bounds; 3: the bound along the surface's own normal;
+// 4: the cost of every shaded fragment (metrics/fragment_cost.h), cone maps safe under
+// filtering, depth slicing without slack on float maps.
+constexpr int kMeasurementVersion = 4;
 
 }  // namespace
 
@@ -24,9 +27,12 @@ const std::vector<std::string>& measured_columns() {
     ImageMetrics every;  // with the columns only some scenes measure (ambient occlusion)
     every.has_ao = true;
     for (const auto& [name, value] : every.named()) n.push_back(name);
+    for (const auto& [name, value] : FragmentCost{}.named()) n.push_back(name);
     for (const char* c : {"elev_min_deg",
                           "elev_max_deg",
                           "frame_ms",
+                          "fps",
+                          "rays_per_s",
                           "frame_ms_min",
                           "frame_ms_iqr",
                           "frames_timed",
@@ -60,7 +66,8 @@ const std::vector<std::string>& measured_columns() {
                           "slice_passes",
                           "fragments_per_pixel",
                           "fragments_max",
-                          "face_count"})
+                          "face_count",
+                          "base_passes"})
       n.push_back(c);
     return n;
   }();

@@ -31,7 +31,9 @@ std::map<std::string, MetricTolerance> default_tolerances() {
           {"psnr_db", {false, 0.25, 0}},
           {"ssim", {false, 0.002, 0}},
           {"ao_err_mean", relative},
-          {"fetches_mean", relative}};
+          {"fetches_mean", relative},
+          {"frag_fetches_mean", relative},
+          {"warp_fetches_mean", relative}};
 }
 
 void read_tolerances(const std::string& path, std::map<std::string, MetricTolerance>& into) {

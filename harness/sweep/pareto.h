@@ -10,8 +10,10 @@
 namespace rl {
 
 struct PlotSpec {
-  std::string x = "fetches_mean";  // cost (lower is better)
-  std::string y = "wrong_pct";     // error (lower is better): the headline error
+  // Cost (lower is better): by default the lockstep cost of every shaded fragment
+  // (metrics/fragment_cost.h), what a GPU would pay; any row column may be chosen.
+  std::string x = "warp_fetches_mean";
+  std::string y = "wrong_pct";  // error (lower is better): the headline error
   std::vector<std::string> group = {"scene", "elevation_deg"};
   bool log_y = true;
 };

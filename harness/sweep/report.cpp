@@ -112,6 +112,8 @@ nlohmann::json report_data(const SweepConfig& config, const std::vector<Row>& ro
                            "normal_err_mean_deg",
                            "psnr_db",
                            "fetches_mean",
+                           "frag_fetches_mean",
+                           "warp_fetches_mean",
                            "frame_ms",
                            "memory_bytes",
                            "ao_err_mean",

@@ -16,6 +16,7 @@
 #include "gl/context.h"
 #include "gl/frame_timer.h"
 #include "gl/render_target.h"
+#include "metrics/fragment_cost.h"
 #include "metrics/metrics.h"
 #include "relief/cell_complex.h"
 #include "relief/heightfield_faces.h"
@@ -399,12 +400,15 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
                      camera, scene.effects, asset->objects.get()};
 
     GBuffer g;
+    FragmentCounts counts;
     {
       RenderTarget target(cell.width, cell.height, RenderTarget::Kind::GBuffer);
       target.bind_and_clear();
       render_frame(technique, frame, RenderTarget::Kind::GBuffer);
       target.read_back(g);
+      target.read_back_costs(counts);
     }
+    const FragmentCost cost = fragment_cost(counts);
     const std::vector<std::pair<std::string, double>> frame_columns = technique.frame_columns();
     const bool ambient_occlusion = scene.effects.has(Effect::AmbientOcclusion);
     const ImageMetrics m =
@@ -446,12 +450,21 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     row["elev_min_deg"] = have_elev ? nlohmann::ordered_json(elev_min) : nlohmann::ordered_json();
     row["elev_max_deg"] = have_elev ? nlohmann::ordered_json(elev_max) : nlohmann::ordered_json();
     row["frame_ms"] = timing.median_ms;
+    // Speed as the papers count it: frames per second (Baboud & Decoret, Policarpo et al.), and
+    // viewport pixels x frames per second (Apaza & Andujar's "rays per second": every pixel of
+    // the viewport, whether or not the relief covers it).
+    row["fps"] = timing.median_ms > 0 ? 1e3 / timing.median_ms : 0.0;
+    row["rays_per_s"] =
+        timing.median_ms > 0 ? double(cell.width) * cell.height / (timing.median_ms * 1e-3) : 0.0;
     row["frame_ms_min"] = timing.min_ms;
     row["frame_ms_iqr"] = timing.iqr_ms;
     row["frames_timed"] = timing.frames;
     row["timing"] = timing.method;
     row["precompute_ms"] = slot.second;
     row["precompute_cached"] = technique.prepared_from_cache();
+    for (const auto& [name, value] : cost.named())
+      row[name] =
+          std::isnan(value) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(value);
     for (const auto& [name, value] : frame_columns) row[name] = value;
     row["memory_bytes"] = double(asset->relief->bytes() + technique.memory_bytes());
     row["truth_subdivision"] = asset->truth->subdivision();

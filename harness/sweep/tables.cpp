@@ -216,7 +216,8 @@ bool best_is_lowest(const std::string& metric, bool& has_best) {
                                                 "face_count",          "truth_bound_texels",
                                                 "truth_uncertain_pct"};
   has_best = !neutral.count(metric);
-  return !(metric == "psnr_db" || metric == "ssim" || metric == "intersections_per_s");
+  return !(metric == "psnr_db" || metric == "ssim" || metric == "intersections_per_s" ||
+           metric == "rays_per_s" || metric == "fps");
 }
 
 std::string format_markdown_table(const std::vector<Row>& rows, const TableSpec& spec) {

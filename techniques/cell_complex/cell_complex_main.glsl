@@ -40,7 +40,7 @@ void main() {
   vec3 o = v_tex * n;
   float t_before;
   float t = rl_cell_search(o, d, t_before);
-  if (t < 0.0) discard;
+  if (t < 0.0) RL_DISCARD;
   vec3 g = o + d * t;
   vec3 hit_tex = g / n;
   vec3 hit_world = (rl_world_from_texture * vec4(hit_tex, 1.0)).xyz;
@@ -71,5 +71,6 @@ void main() {
   o_hit = vec4(hit_tex.xy, 0.0, float(rl_fetches));
   o_aux = vec4(1.0, 0.0, dot(rl_ambient * albedo, vec3(1.0 / 3.0)), 0.0);
 #endif
+  rl_count_fragment(rl_fetches);
 }
 #endif

@@ -144,6 +144,7 @@ void main() {
   imageAtomicAdd(rl_fragment_count, px, 1u);
   imageAtomicAdd(rl_fetch_count, px, uint(rl_fetches));
 #endif
+  rl_count_fragment(rl_fetches);  // every slice fragment, kept or not
   if (!keep) discard;
   vec3 world = (rl_world_from_texture * vec4(v_tex, 1.0)).xyz;
   vec3 V = normalize(world - rl_eye);

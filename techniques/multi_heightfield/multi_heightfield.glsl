@@ -82,7 +82,7 @@ void main() {
   vec3 d = normalize(v_tex - rl_eye_texture);
   float t;
   int surface;
-  if (!rl_object_search(v_tex, d, rl_cube_exit(v_tex, d), t, surface)) discard;
+  if (!rl_object_search(v_tex, d, rl_cube_exit(v_tex, d), t, surface)) RL_DISCARD;
   vec3 hit_tex = v_tex + d * t;
   vec3 hit_world = (rl_world_from_texture * vec4(hit_tex, 1.0)).xyz;
   vec4 hit_clip = rl_view_projection * vec4(hit_world, 1.0);
@@ -102,5 +102,6 @@ void main() {
   o_hit = vec4(hit_tex.xy, float(surface), float(rl_fetches));
   o_aux = vec4(1.0, 0.0, dot(rl_ambient * albedo, vec3(1.0 / 3.0)), 0.0);
 #endif
+  rl_count_fragment(rl_fetches);
 }
 #endif

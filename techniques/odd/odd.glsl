@@ -107,7 +107,7 @@ void main() {
   vec3 T = normalize(v_dpdu), B = normalize(v_dpdv), N = normalize(v_normal);
   vec3 V = normalize(v_world - rl_eye);
   float down = -dot(V, N);  // > 0 for a fragment of the base seen from above
-  if (down <= 0.0) discard;
+  if (down <= 0.0) RL_DISCARD;
   vec3 v = vec3(dot(V, T), dot(V, B), down);
   vec4 texel = rl_odd_lookup(rl_odd_spatial_coord(v_uv), rl_odd_angles(v) *
                                                              float(rl_odd_directions));
@@ -129,5 +129,6 @@ void main() {
   o_hit = vec4(hit_uv, 0.0, float(rl_fetches));
   o_aux = vec4(1.0, 0.0, dot(rl_ambient * albedo, vec3(1.0 / 3.0)), 0.0);
 #endif
+  rl_count_fragment(rl_fetches);
 }
 #endif

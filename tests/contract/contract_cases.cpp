@@ -320,6 +320,7 @@ Frame render(size_t index, const std::string& technique, const ParamValues& para
   target.bind_and_clear();
   render_frame(*t, input, RenderTarget::Kind::GBuffer);
   target.read_back(f.image);
+  target.read_back_costs(f.counts);
   const int res = c.scene.relief.native.longer();
   f.metrics = compare_gbuffers(f.image, f.truth, c.scene.depth, texel_world(c.scene, res),
                                c.scene.effects.has(Effect::AmbientOcclusion));

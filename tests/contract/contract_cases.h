@@ -102,6 +102,7 @@ const std::vector<RenderCase>& render_cases();
 
 struct Frame {
   GBuffer image, truth;
+  FragmentCounts counts;  // every fragment shaded, discarded ones included
   ImageMetrics metrics;
   RayQuery query;  // the case's map, with the longest lateral span of any pixel's ray
   std::vector<std::pair<std::string, double>> columns;  // the technique's frame_columns()

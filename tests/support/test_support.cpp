@@ -65,6 +65,7 @@ Measured measure(const SceneDesc& scene, const std::string& technique, const Par
   target.bind_and_clear();
   render_frame(*t, frame, RenderTarget::Kind::GBuffer);
   target.read_back(m.technique);
+  target.read_back_costs(m.counts);
   m.metrics = compare_gbuffers(m.technique, m.truth, scene.depth, texel_world(scene, res),
                                scene.effects.has(Effect::AmbientOcclusion));
   return m;

@@ -6,6 +6,7 @@
 
 #include "core/gbuffer.h"
 #include "core/triangle_mesh.h"
+#include "metrics/fragment_cost.h"
 #include "metrics/metrics.h"
 #include "relief/relief_map.h"
 #include "scene/scene.h"
@@ -29,6 +30,7 @@ struct Measured {
   GBuffer truth;
   ImageMetrics metrics;
   TruthStats truth_stats;
+  FragmentCounts counts;  // every fragment the technique shaded (metrics/fragment_cost.h)
 };
 
 // Renders `technique` with `params` on `scene` at `view` into a size x size G-buffer and
