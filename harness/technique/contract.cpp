@@ -42,6 +42,10 @@ double one_linear_step(const RayQuery& q) {
   return 1.0 / q.param("linear_steps");
 }
 
+double linear_binary_fetches_shaded(const RayQuery& q) {
+  return q.param("linear_steps") + q.param("binary_steps") + 2;
+}
+
 void check_contract(const std::string& technique, const TechniqueContract& c,
                     const std::vector<ParamSpec>& params) {
   const std::string who = "technique '" + technique + "' contract";

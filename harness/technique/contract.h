@@ -54,6 +54,8 @@ double quadtree_nodes(const RayQuery& q);
 // the stretch it may step over, one step.
 double linear_binary_t_error(const RayQuery& q);
 double one_linear_step(const RayQuery& q);
+// Its most fetches, linear_steps + binary_steps, + 2 to shade (normal and colour).
+double linear_binary_fetches_shaded(const RayQuery& q);
 
 // A parameter that trades fetches for accuracy.
 struct AccuracyKnob {

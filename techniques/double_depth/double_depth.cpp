@@ -31,10 +31,7 @@ class DoubleDepth final : public Described<DoubleDepth, ShaderTechnique> {
                         .doc = "binary search refinements (Listing 5.3: 5)"}},
             .contract = {.answer = Answer::Converging,
                          .surface = Surface::TexelColumns,
-                         .max_fetches =
-                             [](const RayQuery& q) {
-                               return q.param("linear_steps") + q.param("binary_steps") + 2;
-                             },
+                         .max_fetches = linear_binary_fetches_shaded,
                          .max_fetches_formula = "linear_steps + binary_steps, + 2 to shade",
                          .knobs = {{"linear_steps"}, {"binary_steps"}},
                          .finest = {{"linear_steps", 1024}, {"binary_steps", 16}},

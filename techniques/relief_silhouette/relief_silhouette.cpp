@@ -39,10 +39,7 @@ class ReliefSilhouette final : public Described<ReliefSilhouette, ShaderTechniqu
         .box_proxy = false,
         .meta_relief = true,
         .contract = {.answer = Answer::Converging,
-                     .max_fetches =
-                         [](const RayQuery& q) {
-                           return q.param("linear_steps") + q.param("binary_steps") + 2;
-                         },
+                     .max_fetches = linear_binary_fetches_shaded,
                      .max_fetches_formula = "linear_steps + binary_steps, + 2 to shade",
                      .knobs = {{"linear_steps"}, {"binary_steps"}},
                      .finest = {{"linear_steps", 1024}, {"binary_steps", 16}},
