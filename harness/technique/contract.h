@@ -67,8 +67,9 @@ struct TechniqueContract {
   Answer answer = Answer::Approximation;
   // What an exact or converging answer is exact on, or converges to, at its finest setting.
   Surface surface = Surface::Bilinear;
-  // The most texture fetches one pixel of a plain render (no shadow, no ambient occlusion) can
-  // cost -- its search and its shading -- and one probe ray (its search); null: undeclared.
+  // The most texture fetches one fragment of a plain render (no shadow, no ambient occlusion)
+  // can cost, kept or discarded -- its search and its shading -- and one probe ray (its
+  // search); null: undeclared.
   std::function<double(const RayQuery&)> max_fetches{};
   std::string max_fetches_formula{};  // the same, in words ("linear_steps - 1 + binary_steps + 2")
   std::vector<AccuracyKnob> knobs{};
