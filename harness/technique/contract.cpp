@@ -46,6 +46,14 @@ double linear_binary_fetches_shaded(const RayQuery& q) {
   return q.param("linear_steps") + q.param("binary_steps") + 2;
 }
 
+std::vector<AccuracyKnob> linear_binary_knobs() {
+  return {{"linear_steps"}, {"binary_steps"}};
+}
+
+ParamValues linear_binary_finest() {
+  return {{"linear_steps", 1024}, {"binary_steps", 16}};
+}
+
 void check_contract(const std::string& technique, const TechniqueContract& c,
                     const std::vector<ParamSpec>& params) {
   const std::string who = "technique '" + technique + "' contract";

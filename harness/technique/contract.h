@@ -63,6 +63,11 @@ struct AccuracyKnob {
   bool larger_is_finer = true;  // false: accuracy grows as the value falls (a level of detail)
 };
 
+// A linear + binary search's knobs (both larger is finer) and their finest values: 1024 steps
+// refined 16 times.
+std::vector<AccuracyKnob> linear_binary_knobs();
+ParamValues linear_binary_finest();
+
 struct TechniqueContract {
   Answer answer = Answer::Approximation;
   // What an exact or converging answer is exact on, or converges to, at its finest setting.

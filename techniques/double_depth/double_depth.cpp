@@ -33,8 +33,8 @@ class DoubleDepth final : public Described<DoubleDepth, ShaderTechnique> {
                          .surface = Surface::TexelColumns,
                          .max_fetches = linear_binary_fetches_shaded,
                          .max_fetches_formula = "linear_steps + binary_steps, + 2 to shade",
-                         .knobs = {{"linear_steps"}, {"binary_steps"}},
-                         .finest = {{"linear_steps", 1024}, {"binary_steps", 16}},
+                         .knobs = linear_binary_knobs(),
+                         .finest = linear_binary_finest(),
                          .t_error = linear_binary_t_error,
                          .accuracy =
                              "the first entry into the solid between the two depths to within one "

@@ -62,8 +62,8 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
                     },
                 .max_fetches_formula = "(linear_steps + binary_steps + 1) x layer groups, + 3 "
                                        "to shade",
-                .knobs = {{"linear_steps"}, {"binary_steps"}},
-                .finest = {{"linear_steps", 1024}, {"binary_steps", 16}},
+                .knobs = linear_binary_knobs(),
+                .finest = linear_binary_finest(),
                 .t_error = linear_binary_t_error,
                 .accuracy = "the first entry into the solid to within one linear step / "
                             "2^binary_steps along the ray, on solids with no part or gap thinner "

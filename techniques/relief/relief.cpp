@@ -37,8 +37,8 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
                            return q.param("linear_steps") - 1 + q.param("binary_steps") + 2;
                          },
                      .max_fetches_formula = "linear_steps - 1 + binary_steps, + 2 to shade",
-                     .knobs = {{"linear_steps"}, {"binary_steps"}},
-                     .finest = {{"linear_steps", 1024}, {"binary_steps", 16}},
+                     .knobs = linear_binary_knobs(),
+                     .finest = linear_binary_finest(),
                      .t_error = linear_binary_t_error,
                      .accuracy =
                          "the first crossing to within one linear step / 2^binary_steps along the "

@@ -41,8 +41,8 @@ class ReliefSilhouette final : public Described<ReliefSilhouette, ShaderTechniqu
         .contract = {.answer = Answer::Converging,
                      .max_fetches = linear_binary_fetches_shaded,
                      .max_fetches_formula = "linear_steps + binary_steps, + 2 to shade",
-                     .knobs = {{"linear_steps"}, {"binary_steps"}},
-                     .finest = {{"linear_steps", 1024}, {"binary_steps", 16}},
+                     .knobs = linear_binary_knobs(),
+                     .finest = linear_binary_finest(),
                      .t_error = linear_binary_t_error,
                      .accuracy =
                          "on a planar base, the first crossing to within one linear step / "
