@@ -1,6 +1,7 @@
 // The cost a GPU would pay (metrics/fragment_cost.h): fetches per shaded fragment, discarded
 // ones included, and the lockstep cost of 2 x 2 quads and 8 x 4 warps, pinned on counts with
-// closed-form answers and on frames whose every lane is known.
+// closed-form answers and on frames whose every lane is known; and the search iterations beside
+// them.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -62,6 +63,19 @@ TEST(FragmentCost, PassesPoolPerPixelAndEmptyPixelsCostNothing) {
   EXPECT_DOUBLE_EQ(cost.quad_fetches_mean, (2 * 8 + 1 * 3) / 3.0);
 }
 
+TEST(FragmentCost, IterationsAreCountedPerShadedFragment) {
+  // Two pixels: one shaded twice (passes of 6 and 2 iterations), one once with 9; a third
+  // never shaded keeps stale-looking counts that must not count.
+  FragmentCounts c;
+  c.resize(4, 1);
+  c.fragments[0] = 2, c.iteration_sum[0] = 8, c.iteration_max[0] = 6;
+  c.fragments[1] = 1, c.iteration_sum[1] = 9, c.iteration_max[1] = 9;
+  c.iteration_sum[2] = 100, c.iteration_max[2] = 100;
+  const FragmentCost cost = fragment_cost(c);
+  EXPECT_DOUBLE_EQ(cost.iterations_mean, 17 / 3.0);
+  EXPECT_EQ(cost.iterations_max, 9);
+}
+
 TEST(FragmentCost, NothingShadedIsNotMeasured) {
   FragmentCounts c;
   c.resize(8, 4);
@@ -69,6 +83,8 @@ TEST(FragmentCost, NothingShadedIsNotMeasured) {
   EXPECT_EQ(cost.fragments, 0);
   EXPECT_TRUE(std::isnan(cost.frag_fetches_mean));
   EXPECT_TRUE(std::isnan(cost.warp_fetches_mean));
+  EXPECT_TRUE(std::isnan(cost.iterations_mean));
+  EXPECT_TRUE(std::isnan(cost.iterations_max));
 }
 
 TEST(FragmentCost, AFlatMapCostsEveryLaneTheSame) {
@@ -85,6 +101,18 @@ TEST(FragmentCost, AFlatMapCostsEveryLaneTheSame) {
   // Listing 5.3 at its defaults (10 linear, 5 binary): depth 0.5 is reached at step 5, then 5
   // bisections, + normal and colour.
   EXPECT_EQ(cost.frag_fetches_mean, 5 + 5 + 2);
+  // Iterations: the same 5 linear and 5 binary steps; the shading fetches are no iteration.
+  EXPECT_EQ(cost.iterations_mean, 5 + 5);
+  EXPECT_EQ(cost.iterations_max, 5 + 5);
+}
+
+TEST(FragmentCost, ATechniqueWithoutASearchIteratesNothing) {
+  SceneDesc scene = test::procedural_scene("domes", 32, 0.08, false);
+  const test::Measured m = test::measure(scene, "normal", {}, View{45, 0}, 32);
+  const FragmentCost cost = fragment_cost(m.counts);
+  ASSERT_GT(cost.fragments, 0);
+  EXPECT_EQ(cost.iterations_max, 0);
+  EXPECT_GT(cost.frag_fetches_mean, 0);
 }
 
 TEST(FragmentCost, MissedRaysUnderABoxProxyAreCharged) {

@@ -24,7 +24,7 @@ RenderTarget::RenderTarget(int width, int height, Kind kind)
                              GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
   glNamedFramebufferDrawBuffers(fbo_, attachments_, buffers);
   if (kind == Kind::GBuffer) {
-    glCreateTextures(GL_TEXTURE_2D, 3, costs_);
+    glCreateTextures(GL_TEXTURE_2D, kCostImages, costs_);
     for (GLuint t : costs_) glTextureStorage2D(t, 1, GL_R32UI, width, height);
   }
   GLenum status = glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER);
@@ -37,7 +37,7 @@ RenderTarget::~RenderTarget() {
   glDeleteFramebuffers(1, &fbo_);
   glDeleteTextures(attachments_, color_);
   glDeleteRenderbuffers(1, &depth_);
-  if (kind_ == Kind::GBuffer) glDeleteTextures(3, costs_);
+  if (kind_ == Kind::GBuffer) glDeleteTextures(kCostImages, costs_);
 }
 
 void RenderTarget::bind_and_clear() {
@@ -49,9 +49,9 @@ void RenderTarget::bind_and_clear() {
   glClearNamedFramebufferfv(fbo_, GL_DEPTH, 0, &one);
   if (kind_ != Kind::GBuffer) return;
   const GLuint zero_u = 0;
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < kCostImages; ++i) {
     glClearTexImage(costs_[i], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero_u);
-    glBindImageTexture(5 + i, costs_[i], 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(kFirstCostImageUnit + i, costs_[i], 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   }
 }
 
@@ -68,9 +68,10 @@ void RenderTarget::read_back_costs(FragmentCounts& out) const {
   if (kind_ != Kind::GBuffer) throw GlError("read_back_costs needs a G-buffer render target");
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   out.resize(width_, height_);
-  std::vector<uint32_t>* dst[3] = {&out.fragments, &out.fetch_sum, &out.fetch_max};
+  std::vector<uint32_t>* dst[kCostImages] = {&out.fragments, &out.fetch_sum, &out.fetch_max,
+                                             &out.iteration_sum, &out.iteration_max};
   const GLsizei bytes = static_cast<GLsizei>(out.fragments.size() * sizeof(uint32_t));
-  for (int i = 0; i < 3; ++i)
+  for (int i = 0; i < kCostImages; ++i)
     glGetTextureImage(costs_[i], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, bytes, dst[i]->data());
 }
 

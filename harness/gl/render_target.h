@@ -2,7 +2,7 @@
 // Offscreen render targets: the G-buffer (five RGBA32F attachments + depth, matching
 // core/gbuffer.h) for measuring, or a single RGBA8 colour target for timing. A G-buffer target
 // also counts what every fragment shaded into it fetched (core/fragment_counts.h) on image
-// units 5-7, bound by bind_and_clear().
+// units 3-7 (gbuffer_outputs.glsl), bound by bind_and_clear().
 #include <epoxy/gl.h>
 
 #include "core/fragment_counts.h"
@@ -31,7 +31,9 @@ class RenderTarget {
   Kind kind_;
   GLuint fbo_ = 0, depth_ = 0;
   GLuint color_[5] = {0, 0, 0, 0, 0};
-  GLuint costs_[3] = {0, 0, 0};  // r32ui: fragments, fetch sum, fetch max
+  // r32ui: fragments, fetch sum, fetch max, iteration sum, iteration max.
+  static constexpr int kCostImages = 5, kFirstCostImageUnit = 3;
+  GLuint costs_[kCostImages] = {};
   int attachments_ = 0;
 };
 

@@ -61,6 +61,7 @@ bool rl_bilinear_walk(vec3 p, vec3 s, float t0, float t1, out float t_hit) {
   const float t_end = t1 - t0;
   float t_enter = 0.0;
   for (int n = 0; n < RL_MAX_CELLS; n++) {
+    RL_ITERATE;
     float t_exit = min(min(w.next.x, w.next.y), t_end);
     vec2 local = w.start + w.dir * t_enter - vec2(w.cell);
     float tau = rl_patch_first_hit(rl_cell_corners(w.cell), local, w.dir, q.z + t_enter,

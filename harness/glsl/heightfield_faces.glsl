@@ -16,7 +16,7 @@ const float RL_FACE_EMPTY = 1.0 - 0.5 / 255.0;
 // depth counts as inside whatever the rounding.
 const float RL_FACE_SLACK = 0.5 / 255.0;
 
-int rl_fetches = 0;
+#include "harness/glsl/search_cost.glsl"
 
 // Cube point -> face k's texture space (ReverseProjection::texture_from_affine).
 vec3 rl_face_texture(int k, vec3 c) {

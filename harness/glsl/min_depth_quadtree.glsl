@@ -80,6 +80,7 @@ bool rl_quadtree_search(vec3 p, vec3 s, float t_end, out float t_hit) {
   ivec2 cell = ivec2(floor(start));
   float t = 0.0;
   for (int n = 0; n < RL_MAX_NODES; n++) {
+    RL_ITERATE;
     ivec2 node = cell >> level;  // arithmetic shift: floor division, also below 0
     ivec2 lo = node << level, hi = (node + 1) << level;
     // t at which the ray leaves the node along each axis.

@@ -11,16 +11,17 @@ layout(binding = 1) uniform sampler2D rl_color;
 // rl_probe_depth_aspect in ray-probe mode.
 vec2 rl_depth_aspect = vec2(1.0);
 
-// Every texture read of a technique goes through RL_FETCH, so fetch counts compare across
-// techniques. Level 0 explicitly: searches run in non-uniform control flow, where implicit
-// derivatives are undefined, and the truth reconstructs the level-0 bilinear surface.
-int rl_fetches = 0;
+// rl_fetches, rl_iterations
+#include "harness/glsl/search_cost.glsl"
 
 #ifdef RL_PROBE
 // Probe rays may carry a base quadric (A, B) for techniques that bend rays (chapter 5
 // silhouettes); zero for the planar tangent space.
 vec2 rl_probe_quadric = vec2(0.0);
 #endif
+// Every texture read of a technique goes through RL_FETCH, so fetch counts compare across
+// techniques. Level 0 explicitly: searches run in non-uniform control flow, where implicit
+// derivatives are undefined, and the truth reconstructs the level-0 bilinear surface.
 #define RL_FETCH(tex, uv) (rl_fetches++, textureLod(tex, uv, 0.0))
 
 // normalize(rgb * 2 - 1); a texel that encodes the zero vector (quantised mid-grey) gives the

@@ -195,5 +195,5 @@ void main() {
   o_hit = vec4(h.uv, float(h.layer), float(rl_fetches));
   o_aux = vec4(rl_ambient_visibility, 0.0, dot(rl_ambient * albedo, vec3(1.0 / 3.0)), 0.0);
 #endif
-  rl_count_fragment(rl_fetches);
+  rl_count_fragment();
 }

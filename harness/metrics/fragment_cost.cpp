@@ -24,18 +24,24 @@ double lockstep_fetches_mean(const FragmentCounts& c, int tile_w, int tile_h) {
 
 FragmentCost fragment_cost(const FragmentCounts& c) {
   FragmentCost out;
-  double fetches = 0;
+  double fetches = 0, iterations = 0;
   for (size_t i = 0; i < c.fragments.size(); ++i) {
+    if (!c.fragments[i]) continue;
     out.fragments += c.fragments[i];
     fetches += c.fetch_sum[i];
-    if (c.fragments[i])
-      out.frag_fetches_max = std::max(out.frag_fetches_max, double(c.fetch_max[i]));
+    iterations += c.iteration_sum[i];
+    out.frag_fetches_max = std::max(out.frag_fetches_max, double(c.fetch_max[i]));
+    out.iterations_max = std::max(out.iterations_max, double(c.iteration_max[i]));
   }
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  out.frag_fetches_mean = out.fragments > 0 ? fetches / out.fragments : nan;
   out.quad_fetches_mean = lockstep_fetches_mean(c, 2, 2);
   out.warp_fetches_mean = lockstep_fetches_mean(c, kWarpTileWidth, kWarpTileHeight);
-  if (out.fragments == 0) out.frag_fetches_max = nan;
+  if (out.fragments == 0) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    out.frag_fetches_mean = out.frag_fetches_max = out.iterations_mean = out.iterations_max = nan;
+  } else {
+    out.frag_fetches_mean = fetches / out.fragments;
+    out.iterations_mean = iterations / out.fragments;
+  }
   return out;
 }
 
@@ -44,7 +50,9 @@ std::vector<std::pair<std::string, double>> FragmentCost::named() const {
           {"frag_fetches_mean", frag_fetches_mean},
           {"frag_fetches_max", frag_fetches_max},
           {"quad_fetches_mean", quad_fetches_mean},
-          {"warp_fetches_mean", warp_fetches_mean}};
+          {"warp_fetches_mean", warp_fetches_mean},
+          {"iterations_mean", iterations_mean},
+          {"iterations_max", iterations_max}};
 }
 
 }  // namespace rl

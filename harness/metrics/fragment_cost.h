@@ -15,6 +15,10 @@
 //   fragments. quad_fetches_mean: the same for 2 x 2 quads, the smallest group any GPU shades.
 //   The passes of a multi-pass technique are pooled per tile: their fragments share one largest
 //   count, which bounds the sum of each pass's own groups from above.
+// - iterations_mean / iterations_max: search-loop iterations per shaded fragment
+//   (harness/glsl/search_cost.glsl), over the same fragments. They part from the fetch counts
+//   where a step reads several textures (multilayer groups, cube faces: fewer iterations) or a
+//   step reads none (a quadtree's level change, a DDA cell decided from its entry: more).
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,6 +31,7 @@ struct FragmentCost {
   double fragments = 0;
   double frag_fetches_mean = 0, frag_fetches_max = 0;
   double quad_fetches_mean = 0, warp_fetches_mean = 0;
+  double iterations_mean = 0, iterations_max = 0;
   // (name, value) in rows.csv's column order; means NaN when no fragment was shaded.
   std::vector<std::pair<std::string, double>> named() const;
 };

@@ -17,7 +17,7 @@ namespace {
 // 2: the exact heightfield truth and its bounds; 3: the bound along the surface's own normal;
 // 4: the cost of every shaded fragment (metrics/fragment_cost.h), cone maps safe under
 // filtering, depth slicing without slack on float maps.
-constexpr int kMeasurementVersion = 4;
+constexpr int kMeasurementVersion = 5;
 
 }  // namespace
 

@@ -33,7 +33,8 @@ std::map<std::string, MetricTolerance> default_tolerances() {
           {"ao_err_mean", relative},
           {"fetches_mean", relative},
           {"frag_fetches_mean", relative},
-          {"warp_fetches_mean", relative}};
+          {"warp_fetches_mean", relative},
+          {"iterations_mean", relative}};
 }
 
 void read_tolerances(const std::string& path, std::map<std::string, MetricTolerance>& into) {

@@ -16,7 +16,7 @@ uniform int rl_cell_n;      // N
 uniform int rl_cell_res;    // texels per face side
 uniform int rl_cell_tiles;  // faces per array layer along each side
 
-int rl_fetches = 0;
+#include "harness/glsl/search_cost.glsl"
 
 const uint RL_WHITE = 0u, RL_GREY = 1u, RL_BLACK = 2u;
 
@@ -158,6 +158,7 @@ float rl_cell_search(vec3 o, vec3 d, out float t_before) {
   t_before = 0.0;
   bool found = false;
   for (int i = 0; i < max_steps && t <= t_end; ++i) {
+    RL_ITERATE;
     int inside = rl_cell_inside(o + d * t);
 #ifndef RL_PROBE
     if (inside < 0 && i > 0) break;
@@ -172,6 +173,7 @@ float rl_cell_search(vec3 o, vec3 d, out float t_before) {
   if (!found) return -1.0;
   float t_in = t;
   for (int i = 0; i < RL_BINARY_STEPS; ++i) {
+    RL_ITERATE;
     float mid = 0.5 * (t_out + t_in);
     if (rl_cell_inside(o + d * mid) == 1)
       t_in = mid;

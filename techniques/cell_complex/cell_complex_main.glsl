@@ -71,6 +71,6 @@ void main() {
   o_hit = vec4(hit_tex.xy, 0.0, float(rl_fetches));
   o_aux = vec4(1.0, 0.0, dot(rl_ambient * albedo, vec3(1.0 / 3.0)), 0.0);
 #endif
-  rl_count_fragment(rl_fetches);
+  rl_count_fragment();
 }
 #endif

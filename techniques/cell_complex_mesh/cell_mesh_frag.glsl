@@ -24,5 +24,5 @@ void main() {
   o_hit = vec4(v_tex.xy, 0.0, 0.0);
   o_aux = vec4(1.0, 0.0, dot(rl_ambient * v_color, vec3(1.0 / 3.0)), 0.0);
 #endif
-  rl_count_fragment(0);  // a rasterised triangle: no fetch
+  rl_count_fragment();  // a rasterised triangle: no fetch, no search
 }

@@ -18,6 +18,7 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   float t = 0.0, t_prev = 0.0;
   bool reached = false;
   for (int i = 0; i < RL_CONE_STEPS; i++) {
+    RL_ITERATE;
     vec2 cone = RL_FETCH_CONE(p.xy + s.xy * t);
     float gap = cone.x - (p.z + t);  // surface depth below the ray's point
     if (gap <= 0.0) {                // in or on the surface
@@ -40,6 +41,7 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   // the search converges to t: the ray stops short, as the published method does).
   float lo = t_prev, hi = t;
   for (int i = 0; i < RL_BINARY_STEPS; i++) {
+    RL_ITERATE;
     float mid = 0.5 * (lo + hi);
     if (p.z + mid >= RL_FETCH(rl_relief, p.xy + s.xy * mid).a) hi = mid;
     else lo = mid;

@@ -10,12 +10,13 @@
 // Otherwise the scene's single map on units 0 (relief) and 1 (colour), repeating.
 // RL_COUNT_FRAGMENTS: every fragment adds itself and its fetches to two r32ui images, so the
 // cost per pixel counts all slices' fragments, not only the one kept.
+// Outside the #ifdef: the shader library inlines each file once, wherever it is first included.
+#include "harness/glsl/search_cost.glsl"
 #ifdef RL_FACES
 #include "harness/glsl/heightfield_faces.glsl"
 #else
 layout(binding = 0) uniform sampler2D rl_relief;
 layout(binding = 1) uniform sampler2D rl_color;
-int rl_fetches = 0;
 // As in heightfield_faces.glsl: an empty column (a mesh's bake missed). RL_SLICE_SLACK (from
 // the plugin): on an 8-bit map, the slack that puts a slice exactly at a stored depth inside
 // whatever the rounding.
@@ -97,6 +98,7 @@ void main() {
   float t_end = max(0.0, min(min(far.x, far.y), far.z));
 #ifdef RL_VIEW_ALIGNED
   for (int s = 0; s < RL_SLICES && best > 1e29; ++s) {
+    RL_ITERATE;
     float t = t_end * (float(s) + 0.5) / float(RL_SLICES);
     if (rl_slice_keeps(o + d * t, nw, albedo, layer)) best = t, best_layer = layer;
   }
@@ -105,6 +107,7 @@ void main() {
     vec3 a0 = rl_face_from_cube[k] * (o - 0.5) + 0.5;
     float dz = (rl_face_from_cube[k] * d).z;
     for (int s = 0; s < RL_SLICES; ++s) {
+      RL_ITERATE;
       // The slice's affine depth (ReverseProjection::affine_from_texture).
       float z = rl_slice_depth[s];
       if (rl_face_cop > 1.0) z = z * rl_face_cop / (rl_face_cop - 1.0 + z);
@@ -119,11 +122,13 @@ void main() {
   // Tangent space, direction.z = 1 (t counts depth units), down to the floor.
 #ifdef RL_VIEW_ALIGNED
   for (int s = 0; s < RL_SLICES && best > 1e29; ++s) {
+    RL_ITERATE;
     float t = (1.0 - o.z) * (float(s) + 1.0) / float(RL_SLICES);
     if (rl_slice_keeps(o + d * t, nw, albedo, layer)) best = t;
   }
 #else
   for (int s = 0; s < RL_SLICES && best > 1e29; ++s) {
+    RL_ITERATE;
     float t = rl_slice_depth[s] - o.z;
     if (t < 0.0) continue;
     if (rl_slice_keeps(o + d * t, nw, albedo, layer)) best = t;
@@ -144,7 +149,7 @@ void main() {
   imageAtomicAdd(rl_fragment_count, px, 1u);
   imageAtomicAdd(rl_fetch_count, px, uint(rl_fetches));
 #endif
-  rl_count_fragment(rl_fetches);  // every slice fragment, kept or not
+  rl_count_fragment();  // every slice fragment, kept or not
   if (!keep) discard;
   vec3 world = (rl_world_from_texture * vec4(v_tex, 1.0)).xyz;
   vec3 V = normalize(world - rl_eye);

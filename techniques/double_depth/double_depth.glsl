@@ -20,6 +20,7 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   float t = 0.0;
   bool found = false;
   for (int i = 1; i <= RL_LINEAR_STEPS; i++) {
+    RL_ITERATE;
     t = size * float(i);
     if (rl_inside_double(p.xy + s.xy * t, p.z + t)) {
       found = true;
@@ -33,6 +34,7 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   }
   float lo = t - size, hi = t;
   for (int i = 0; i < RL_BINARY_STEPS; i++) {
+    RL_ITERATE;
     float mid = 0.5 * (lo + hi);
     if (rl_inside_double(p.xy + s.xy * mid, p.z + mid))
       hi = mid;

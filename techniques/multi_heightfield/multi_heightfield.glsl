@@ -22,6 +22,7 @@ bool rl_object_search(vec3 o, vec3 d, float t_end, out float t, out int surface)
   float t_out = 0.0;
   bool found = false;
   for (int i = 0; i <= RL_LINEAR_STEPS; ++i) {
+    RL_ITERATE;
     float ti = dt * float(i);
     int s;
     if (rl_faces_inside(o + d * ti, s)) {
@@ -35,6 +36,7 @@ bool rl_object_search(vec3 o, vec3 d, float t_end, out float t, out int surface)
   if (!found) return false;
   if (t == 0.0) return true;  // the object touches the cube's face here
   for (int i = 0; i < RL_BINARY_STEPS; ++i) {
+    RL_ITERATE;
     float mid = 0.5 * (t_out + t);
     int s;
     if (rl_faces_inside(o + d * mid, s)) {
@@ -102,6 +104,6 @@ void main() {
   o_hit = vec4(hit_tex.xy, float(surface), float(rl_fetches));
   o_aux = vec4(1.0, 0.0, dot(rl_ambient * albedo, vec3(1.0 / 3.0)), 0.0);
 #endif
-  rl_count_fragment(rl_fetches);
+  rl_count_fragment();
 }
 #endif

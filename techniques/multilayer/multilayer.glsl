@@ -58,6 +58,7 @@ RlHit rl_layer_search(vec3 p, vec3 s, float t_max, bool bent, vec2 quadric, vec3
   int used_in = 0, used_out = -1;
   bool found = false;
   for (int i = 1; i <= RL_LINEAR_STEPS; i++) {
+    RL_ITERATE;
     t = size * float(i);
     ivec2 c = rl_layer_counts(p.xy + s.xy * t, rl_ray_depth(p, s, t, bent, quadric, metric));
     if ((c.x & 1) == 1) {
@@ -76,6 +77,7 @@ RlHit rl_layer_search(vec3 p, vec3 s, float t_max, bool bent, vec2 quadric, vec3
   // Algorithm 2: bisect between the last outside and the first inside sample.
   float lo = t - size, hi = t;
   for (int i = 0; i < RL_BINARY_STEPS; i++) {
+    RL_ITERATE;
     float mid = 0.5 * (lo + hi);
     ivec2 c = rl_layer_counts(p.xy + s.xy * mid, rl_ray_depth(p, s, mid, bent, quadric, metric));
     if ((c.x & 1) == 1) {

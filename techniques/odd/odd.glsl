@@ -15,7 +15,7 @@ layout(binding = 4) uniform sampler2D rl_odd;
 uniform int rl_odd_spatial;     // X = Y: super pixels per tile side
 uniform int rl_odd_directions;  // A = B: directions per angle
 
-int rl_fetches = 0;
+#include "harness/glsl/search_cost.glsl"
 const float RL_PI = 3.14159265358979;
 
 // (a, b) / pi of a direction (z into the surface) by the chapter's formulas, the cosines
@@ -129,6 +129,6 @@ void main() {
   o_hit = vec4(hit_uv, 0.0, float(rl_fetches));
   o_aux = vec4(1.0, 0.0, dot(rl_ambient * albedo, vec3(1.0 / 3.0)), 0.0);
 #endif
-  rl_count_fragment(rl_fetches);
+  rl_count_fragment();
 }
 #endif

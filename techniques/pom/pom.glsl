@@ -15,6 +15,7 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   float gap_prev = rl_relief_depth(p.xy) - p.z;
   float t_prev = 0.0;
   for (int i = 1; i <= RL_MAX_SAMPLES; i++) {
+    RL_ITERATE;
     if (i > samples) break;
     float t = size * float(i);
     float gap = rl_relief_depth(p.xy + s.xy * t) - (p.z + t);

@@ -16,6 +16,7 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   float t = 0.0;
   float best = 1.0 - p.z;  // no inside point found: the bottom
   for (int i = 0; i < linear_steps - 1; i++) {
+    RL_ITERATE;
     t += size;
     if (p.z + t >= rl_relief_depth(p.xy + s.xy * t)) {
       best = t;
@@ -24,6 +25,7 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   }
   t = best;
   for (int i = 0; i < binary_steps; i++) {
+    RL_ITERATE;
     size *= 0.5;
     if (p.z + t >= rl_relief_depth(p.xy + s.xy * t)) {
       best = t;

@@ -15,6 +15,7 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   float g_prev = RL_FETCH(rl_relief, p.xy).a - p.z;
   if (g_prev <= 0.0) return rl_hit_on_ray(p, s, 0.0, true);
   for (int n = 0; n < RL_MAX_CELLS; n++) {
+    RL_ITERATE;
     float t = min(min(w.next.x, w.next.y), t_end);
     float g = RL_FETCH(rl_relief, rl_walk_uv(w, w.start + w.dir * t)).a - (p.z + t);
     if (g <= 0.0) {

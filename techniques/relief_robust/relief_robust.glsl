@@ -32,6 +32,7 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   float line0 = dir[major] > 0.0 ? floor(start[major]) : ceil(start[major]);
   float t = (line0 - start[major]) / dir[major];
   for (int n = 0; n < RL_MAX_CELLS; n++) {
+    RL_ITERATE;
     // The crossing lies within texel (i, j) of the nearest centre.
     ivec2 texel = ivec2(floor(start + dir * t + 0.5));
     // Wrap into the map; not with %, undefined in GLSL for negative operands (llvmpipe wrapped
@@ -61,6 +62,7 @@ RlHit rl_intersect(vec3 p, vec3 s) {
       // Exactly one crossing in (t, t_next]: binary search, then the middle of the last interval.
       float lo = max(t, 0.0), hi = t_next;
       for (int i = 0; i < RL_BINARY_STEPS; i++) {
+        RL_ITERATE;
         float mid = 0.5 * (lo + hi);
         if (p.z + mid >= RL_FETCH(rl_relief, p.xy + s.xy * mid).a) hi = mid;
         else lo = mid;

@@ -53,6 +53,7 @@ RlHit rl_intersect_curved(vec3 p, vec3 s, vec2 quadric, vec3 metric) {
   float t = 0.0;
   float best = -1.0;
   for (int i = 0; i < linear_steps; i++) {
+    RL_ITERATE;
     t += size;
     if (rl_bent_depth(Vw * t, quadric, u_dir, a_u, metric.z) >=
         rl_relief_depth(p.xy + s.xy * t)) {
@@ -63,6 +64,7 @@ RlHit rl_intersect_curved(vec3 p, vec3 s, vec2 quadric, vec3 metric) {
   if (best < 0.0) return miss;  // left the relief volume: outside the silhouette
   t = best - size;              // last outside sample; refine between it and the first inside
   for (int i = 0; i < binary_steps; i++) {
+    RL_ITERATE;
     size *= 0.5;
     if (rl_bent_depth(Vw * (t + size), quadric, u_dir, a_u, metric.z) >=
         rl_relief_depth(p.xy + s.xy * (t + size)))
