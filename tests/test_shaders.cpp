@@ -21,11 +21,14 @@ TEST(Compose, ExpandsIncludesOnceWithLineDirectives) {
                                   {{"RL_LINEAR_STEPS", "8"}, {"RL_BINARY_STEPS", "3"}});
   EXPECT_EQ(s.text.rfind("#version 450 core\n", 0), 0u);
   EXPECT_NE(s.text.find("#define RL_LINEAR_STEPS 8"), std::string::npos);
-  // relief_common.glsl is included by both files but appears once; probe_main.glsl brings the
-  // probe pass's inputs and outputs (probe_io.glsl).
-  ASSERT_EQ(s.files.size(), 4u);
+  // relief_common.glsl is included by both files but appears once (with the search counters it
+  // includes, search_cost.glsl); probe_main.glsl brings the probe pass's inputs and outputs
+  // (probe_io.glsl).
+  ASSERT_EQ(s.files.size(), 5u);
   EXPECT_EQ(s.files[1], "harness/glsl/relief_common.glsl");
   EXPECT_NE(std::find(s.files.begin(), s.files.end(), "harness/glsl/probe_io.glsl"), s.files.end());
+  EXPECT_NE(std::find(s.files.begin(), s.files.end(), "harness/glsl/search_cost.glsl"),
+            s.files.end());
   const std::string marker = "int rl_fetches = 0;";
   EXPECT_EQ(s.text.find(marker), s.text.rfind(marker));
   EXPECT_NE(s.text.find("#line 1 1\n"), std::string::npos);
