@@ -38,10 +38,14 @@ TEST(Markdown, LaysOutRowsColumnsAndValues) {
   spec.columns = {"technique"};
   spec.values = {"artifact_pct", "frame_ms"};
   const std::string md = format_markdown_table(sample_rows(), spec);
+  // Columns in plain words, the full key on hover.
   EXPECT_NE(
-      md.find("| elevation_deg | technique=relief<br>artifact_pct | technique=relief<br>frame_ms | "
-              "technique=parallax<br>artifact_pct | technique=parallax<br>frame_ms |"),
+      md.find("| elevation_deg | <span title=\"technique=relief\">relief</span><br>artifact_pct "
+              "| <span title=\"technique=relief\">relief</span><br>frame_ms | "),
       std::string::npos)
+      << md;
+  EXPECT_NE(md.find("<span title=\"technique=parallax\">parallax</span><br>frame_ms |"),
+            std::string::npos)
       << md;
   EXPECT_NE(md.find("| 45 | 1.25 | 2 | 1.25 | 2 |"), std::string::npos) << md;
   EXPECT_NE(md.find("| 20 | 12.5 | 2 | 12.5 | 2 |"), std::string::npos) << md;
@@ -49,6 +53,35 @@ TEST(Markdown, LaysOutRowsColumnsAndValues) {
   spec.columns.clear();
   EXPECT_NE(format_markdown_table(sample_rows(), spec).find("2 rows share a table cell"),
             std::string::npos);
+}
+
+TEST(Markdown, ColumnKeysReadAsAPersonWritesThem) {
+  EXPECT_EQ(
+      plain_column_label({"technique", "linear_steps", "binary_steps"}, {"relief", "32", "6"}),
+      "relief 32+6");
+  // Unset settings are left out; booleans read by name.
+  EXPECT_EQ(plain_column_label({"technique", "ignore_blocked"}, {"relief_exact", "-"}),
+            "relief_exact");
+  EXPECT_EQ(plain_column_label({"technique", "linear_steps", "binary_steps", "exact_distance"},
+                               {"relief_silhouette", "16", "6", "0"}),
+            "relief_silhouette 16+6 no exact distance");
+  EXPECT_EQ(
+      plain_column_label({"technique", "slices", "view_aligned"}, {"depth_slicing", "32", "1"}),
+      "depth_slicing slices 32 view aligned");
+  EXPECT_EQ(plain_column_label({"scene", "linear_steps"}, {"bricks", "8"}),
+            "scene bricks linear steps 8");
+}
+
+TEST(Markdown, TwoKeysThatReadAlikeKeepTheirFullKeys) {
+  TableSpec spec;
+  spec.columns = {"technique", "note"};
+  spec.values = {"frame_ms"};
+  std::vector<Row> rows = sample_rows();
+  rows[0]["note"] = "-";
+  rows[1]["note"] = "";
+  const TableLayout t = lay_out_table({rows[0], rows[1]}, spec);
+  ASSERT_EQ(t.value_columns.size(), 2u);
+  EXPECT_NE(t.value_columns[0].label, t.value_columns[1].label);
 }
 
 TEST(Markdown, AggregatesRowsThatShareACell) {

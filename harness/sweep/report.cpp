@@ -55,10 +55,14 @@ nlohmann::json report_data(const SweepConfig& config, const std::vector<Row>& ro
     const TableLayout t = lay_out_table(rows, spec);
     nlohmann::json table;
     table["title"] = t.title.empty() ? spec.file : t.title;
-    std::vector<std::string> fields = t.row_fields;
-    for (const auto& c : t.value_columns)
-      fields.push_back(c.group.empty() ? c.metric : c.group + " " + c.metric);
+    // Each column in plain words, its full key on hover.
+    std::vector<std::string> fields = t.row_fields, keys = t.row_fields;
+    for (const auto& c : t.value_columns) {
+      fields.push_back(c.group.empty() ? c.metric : c.label + " " + c.metric);
+      keys.push_back(c.group.empty() ? c.metric : c.group + " " + c.metric);
+    }
     table["fields"] = fields;
+    table["field_keys"] = keys;
     table["footnote"] = t.footnote;
     table["rows"] = nlohmann::json::array();
     for (const TableLine& line : t.lines) {
@@ -179,7 +183,7 @@ pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px
     var head = el('tr');
     var body = el('tbody');
     t.fields.forEach(function (f, i) {
-      var th = el('th', {}, f);
+      var th = el('th', {title: (t.field_keys || [])[i] || f}, f);
       th.onclick = function () {
         var rows = Array.prototype.slice.call(body.rows);
         var up = th.getAttribute('data-order') !== 'up';

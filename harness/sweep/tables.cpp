@@ -1,6 +1,7 @@
 #include "sweep/tables.h"
 
 #include "metrics/metrics.h"
+#include "technique/technique.h"
 
 #include <algorithm>
 #include <cmath>
@@ -166,10 +167,13 @@ TableLayout lay_out_table(const std::vector<Row>& rows, const TableSpec& spec) {
   TableLayout t;
   t.title = spec.title;
   t.row_fields = spec.rows;
+  std::set<std::string> labels;
   for (const auto& ck : col_keys) {
     std::string group;
     for (size_t i = 0; i < ck.size(); ++i) group += (i ? " " : "") + spec.columns[i] + "=" + ck[i];
-    for (const auto& v : spec.values) t.value_columns.push_back({group, v});
+    std::string label = plain_column_label(spec.columns, ck);
+    if (!labels.insert(label).second) label = group;  // two keys read alike: keep the full one
+    for (const auto& v : spec.values) t.value_columns.push_back({group, label, v});
   }
   for (const auto& rk : row_keys) {
     TableLine line;
@@ -201,6 +205,50 @@ TableLayout lay_out_table(const std::vector<Row>& rows, const TableSpec& spec) {
   return t;
 }
 
+namespace {
+
+bool is_bool_parameter(const std::string& name) {
+  const TechniqueRegistry& registry = TechniqueRegistry::instance();
+  for (const std::string& t : registry.names())
+    for (const ParamSpec& p : registry.find(t)->info.params)
+      if (p.name == name) return p.kind == ParamKind::Bool;  // one kind per name (registry.h)
+  return false;
+}
+
+std::string in_words(std::string name) {
+  std::replace(name.begin(), name.end(), '_', ' ');
+  return name;
+}
+
+}  // namespace
+
+std::string plain_column_label(const std::vector<std::string>& fields,
+                               const std::vector<std::string>& values) {
+  std::map<std::string, std::string> set;
+  for (size_t i = 0; i < fields.size() && i < values.size(); ++i)
+    if (!values[i].empty() && values[i] != "-" && values[i] != "–") set[fields[i]] = values[i];
+  std::vector<std::string> words;
+  for (const std::string& f : fields) {
+    auto it = set.find(f);
+    if (it == set.end()) continue;
+    const std::string& v = it->second;
+    if (f == "technique") {
+      words.push_back(v);
+    } else if (f == "linear_steps" && set.count("binary_steps")) {
+      words.push_back(v + "+" + set["binary_steps"]);
+    } else if (f == "binary_steps" && set.count("linear_steps")) {
+      continue;  // shown with the linear steps
+    } else if (is_bool_parameter(f) && (v == "0" || v == "1")) {
+      words.push_back((v == "1" ? "" : "no ") + in_words(f));
+    } else {
+      words.push_back(in_words(f) + " " + v);
+    }
+  }
+  std::string label;
+  for (const std::string& w : words) label += (label.empty() ? "" : " ") + w;
+  return label;
+}
+
 bool best_is_lowest(const std::string& metric, bool& has_best) {
   // Columns with no better or worse (sizes, counts, settings of the run) get no bold.
   static const std::set<std::string> neutral = {"covered_px",          "union_px",
@@ -226,7 +274,9 @@ std::string format_markdown_table(const std::vector<Row>& rows, const TableSpec&
   if (!t.title.empty()) out += "### " + t.title + "\n\n";
   std::vector<std::string> header = t.row_fields;
   for (const auto& c : t.value_columns)
-    header.push_back(c.group.empty() ? c.metric : c.group + "<br>" + c.metric);
+    header.push_back(c.group.empty()
+                         ? c.metric
+                         : "<span title=\"" + c.group + "\">" + c.label + "</span><br>" + c.metric);
   out += "|";
   for (const auto& h : header) out += " " + h + " |";
   out += "\n|";
@@ -274,7 +324,7 @@ std::string format_latex_table(const std::vector<Row>& rows, const TableSpec& sp
   std::vector<std::string> header;
   for (const auto& r : t.row_fields) header.push_back(latex_escape(r));
   for (const auto& c : t.value_columns)
-    header.push_back(latex_escape(c.group.empty() ? c.metric : c.group + " " + c.metric));
+    header.push_back(latex_escape(c.group.empty() ? c.metric : c.label + " " + c.metric));
   for (size_t i = 0; i < header.size(); ++i) out += (i ? " & " : "") + header[i];
   out += " \\\\\n\\midrule\n";
   for (const TableLine& line : t.lines) {

@@ -21,6 +21,7 @@ std::string format_csv(const std::vector<Row>& rows, const std::vector<std::stri
 // where several rows share a table cell (then the footnote says so).
 struct TableValueColumn {
   std::string group;   // the column key, "field=value ..." ("" when the table has no columns)
+  std::string label;   // the column key in plain words (plain_column_label), unique per table
   std::string metric;  // the value's column in the rows
 };
 struct TableLine {
@@ -46,6 +47,12 @@ struct TableLayout {
   long flagged_values = 0;  // values resting on a truth_flagged row
 };
 TableLayout lay_out_table(const std::vector<Row>& rows, const TableSpec& spec);
+// A column key as a person writes it: the technique bare, linear + binary steps as "32+6", a
+// boolean parameter by its name ("exact distance" / "no exact distance"), other fields as
+// "name value", unset settings ("-") left out: "relief 32+6" for technique=relief
+// linear_steps=32 binary_steps=6. Tables show it with the full key on hover.
+std::string plain_column_label(const std::vector<std::string>& fields,
+                               const std::vector<std::string>& values);
 
 std::string format_markdown_table(const std::vector<Row>& rows, const TableSpec& spec);
 // The same table as a LaTeX booktabs tabular in a table float (the title as its caption), the
