@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include <glm/glm.hpp>
+
 #include "core/elapsed.h"
 #include "core/parallel.h"
 #include "core/precompute_cache.h"
@@ -12,33 +14,120 @@
 namespace rl {
 namespace {
 
-// Heights in texel units (top = height_texels), laid out like the map's texels, and bilinear
-// samples of them at texel coordinates (texel centre i at i), wrapping like GL_REPEAT.
-struct HeightGrid {
-  const ReliefMap& map;  // its layout and wrapping (ReliefMap::index)
-  std::vector<float> h;
-  float at(int x, int y) const { return h[map.index(x, y)]; }
+int floor_mod(long a, int n) {
+  const long r = a % n;
+  return int(r < 0 ? r + n : r);
+}
+
+// Heights in texel units (top = height_texels) with a pyramid of block maxima, for a horizon
+// search that skips, whole, the stretches of a profile that cannot rise above the horizon found
+// so far. Level 0 is the map repeated into a power-of-two grid with room for a block past the
+// map's far edge (so a box that starts inside the map is read without wrapping again); level l
+// holds the maximum of each 2^l x 2^l block.
+class HeightPyramid {
+ public:
+  static constexpr int kTop = 9;  // blocks of up to 512 texels: segments of up to 256 samples
+
+  HeightPyramid(const ReliefMap& map, double height_texels) : w_(map.width), h_(map.height) {
+    auto pow2_above = [](int n) {
+      int p = 1;
+      while (p < n + (1 << kTop)) p <<= 1;
+      return p;
+    };
+    levels_.resize(kTop + 1);
+    sizes_.resize(kTop + 1);
+    sizes_[0] = {pow2_above(w_), pow2_above(h_)};
+    std::vector<float>& base = levels_[0];
+    base.resize(size_t(sizes_[0].x) * sizes_[0].y);
+    for (int y = 0; y < sizes_[0].y; ++y)
+      for (int x = 0; x < sizes_[0].x; ++x)
+        base[size_t(y) * sizes_[0].x + x] =
+            float((1.0 - double(map.relief[map.index(x, y)].a)) * height_texels);
+    highest_ = *std::max_element(base.begin(), base.end());
+    for (int l = 1; l <= kTop; ++l) {
+      const glm::ivec2 below = sizes_[l - 1];
+      sizes_[l] = below / 2;
+      levels_[l].resize(size_t(sizes_[l].x) * sizes_[l].y);
+      for (int y = 0; y < sizes_[l].y; ++y)
+        for (int x = 0; x < sizes_[l].x; ++x) {
+          const float* r0 = &levels_[l - 1][size_t(2 * y) * below.x + 2 * x];
+          const float* r1 = r0 + below.x;
+          levels_[l][size_t(y) * sizes_[l].x + x] = std::max({r0[0], r0[1], r1[0], r1[1]});
+        }
+    }
+  }
+
+  double highest() const { return highest_; }
+  float at(int x, int y) const { return levels_[0][size_t(y) * sizes_[0].x + x]; }
+
+  // Bilinear sample at texel coordinates (texel centre i at i), wrapping like GL_REPEAT; the
+  // same arithmetic as sampling the map itself.
   double sample(double x, double y) const {
     const double fx = std::floor(x), fy = std::floor(y);
-    const int x0 = int(fx), y0 = int(fy);
+    const int x0 = floor_mod(long(fx), w_), y0 = floor_mod(long(fy), h_);
     const double a = x - fx, b = y - fy;
     const double top = at(x0, y0) * (1 - a) + at(x0 + 1, y0) * a;
     const double bottom = at(x0, y0 + 1) * (1 - a) + at(x0 + 1, y0 + 1) * a;
     return top * (1 - b) + bottom * b;
   }
+
+  // The highest height any bilinear sample in the box [x0, x1] x [y0, y1] (texel coordinates,
+  // x0 <= x1, y0 <= y1, each side spanning fewer than 2^level - 1 texels) can take: the
+  // maximum over the level's blocks the box's texels fall in (at most 2 x 2 of them).
+  float box_max(double x0, double x1, double y0, double y1, int level) const {
+    const long fx = long(std::floor(x0)), fy = long(std::floor(y0));
+    const int lx = floor_mod(fx, w_), ly = floor_mod(fy, h_);
+    const int hx = lx + int(long(std::floor(x1)) - fx) + 1;  // + 1: the bilinear neighbour
+    const int hy = ly + int(long(std::floor(y1)) - fy) + 1;
+    const std::vector<float>& m = levels_[level];
+    const int stride = sizes_[level].x;
+    float best = m[size_t(ly >> level) * stride + (lx >> level)];
+    best = std::max(best, m[size_t(ly >> level) * stride + (hx >> level)]);
+    best = std::max(best, m[size_t(hy >> level) * stride + (lx >> level)]);
+    return std::max(best, m[size_t(hy >> level) * stride + (hx >> level)]);
+  }
+
+ private:
+  int w_, h_;
+  std::vector<std::vector<float>> levels_;
+  std::vector<glm::ivec2> sizes_;
+  double highest_ = 0;
 };
 
 // Squared cosine of the horizon's elevation along (dx, dy) from texel (x, y): r^2 of the
 // polygon vertex on the unit hemisphere, 1 where nothing rises above the horizontal.
-double horizon_cos2(const HeightGrid& g, int x, int y, double dx, double dy, double highest,
-                    int max_steps) {
+//
+// The profile is sampled at steps k = 1, 2, ...; a segment of 2^(l-1) steps is skipped whole when
+// the highest point of the blocks under it, seen from its nearest step, is no steeper than the
+// horizon so far: no sample in it could raise the horizon, so the answer is the one the plain
+// march gives, bit for bit (tests/test_ambient_occlusion.cpp). A skip tries a longer segment
+// next; a segment that cannot be skipped is halved, down to single samples.
+double horizon_cos2(const HeightPyramid& g, int x, int y, double dx, double dy, int max_steps) {
   const double h0 = g.at(x, y);
+  const double reach = g.highest() - h0;
   double best = 0;  // tan of the horizon elevation; below the horizontal does not count
-  for (int k = 1; k <= max_steps; ++k) {
+  int level = 2;
+  for (int k = 1; k <= max_steps;) {
     // Nothing from here on can rise above the horizon found so far.
-    if ((highest - h0) <= best * k) break;
+    if (reach <= best * k) break;
+    if (level >= 2) {
+      const int last = std::min(k + (1 << (level - 1)) - 1, max_steps);
+      const double ax = x + dx * k, bx = x + dx * last, ay = y + dy * k, by = y + dy * last;
+      const double top =
+          g.box_max(std::min(ax, bx), std::max(ax, bx), std::min(ay, by), std::max(ay, by), level);
+      // The margin covers a bilinear sample's rounding above its texels' maximum.
+      if (top - h0 + 1e-9 <= best * k) {
+        k = last + 1;
+        level = std::min(level + 1, HeightPyramid::kTop);
+      } else {
+        --level;
+      }
+      continue;
+    }
     const double rise = g.sample(x + dx * k, y + dy * k) - h0;
     best = std::max(best, rise / k);
+    ++k;
+    level = 2;
   }
   return 1.0 / (1.0 + best * best);
 }
@@ -47,11 +136,7 @@ double horizon_cos2(const HeightGrid& g, int x, int y, double dx, double dy, dou
 
 AoMap compute_ao_map(const ReliefMap& map, const AoMapOptions& o) {
   const auto start = std::chrono::steady_clock::now();
-  HeightGrid g{map, {}};
-  g.h.resize(map.relief.size());
-  for (size_t i = 0; i < g.h.size(); ++i)
-    g.h[i] = float((1.0 - double(map.relief[i].a)) * o.height_texels);
-  const double highest = *std::max_element(g.h.begin(), g.h.end());
+  const HeightPyramid g(map, o.height_texels);
   const int n = std::max(3, o.directions);
   const int max_steps = 2 * std::max(map.width, map.height);
   std::vector<double> cx(n), sy(n);
@@ -63,15 +148,15 @@ AoMap compute_ao_map(const ReliefMap& map, const AoMapOptions& o) {
   AoMap out;
   out.width = map.width;
   out.height = map.height;
-  out.visibility.assign(g.h.size(), 1.0f);
+  out.visibility.assign(map.relief.size(), 1.0f);
   parallel_for(
-      g.h.size(),
+      out.visibility.size(),
       [&](size_t begin, size_t end) {
         std::vector<double> r(n);
         for (size_t i = begin; i < end; ++i) {
           const int x = int(i % map.width), y = int(i / map.width);
           for (int j = 0; j < n; ++j)
-            r[j] = std::sqrt(horizon_cos2(g, x, y, cx[j], sy[j], highest, max_steps));
+            r[j] = std::sqrt(horizon_cos2(g, x, y, cx[j], sy[j], max_steps));
           // Polygon area sum_j 1/2 r_j r_j+1 sin(2 pi / n) over that of an open sky.
           double area = 0;
           for (int j = 0; j < n; ++j) area += r[j] * r[(j + 1) % n];
