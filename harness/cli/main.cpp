@@ -20,6 +20,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "claims/claims.h"
 #include "core/atomic_write.h"
 #include "core/error.h"
 #include "relief/pattern_mesh.h"
@@ -169,6 +170,16 @@ int main(int argc, char** argv) {
                       "TOML file: [tolerances] metric = { abs = ..., rel = ..., "
                       "lower_is_better = ... } overriding or adding to the defaults");
 
+  std::vector<std::string> verify_dirs;
+  bool verify_write = false;
+  CLI::App* verify = app.add_subcommand(
+      "verify",
+      "Check each result folder's claims (claims.toml) against its rows.csv and its README's "
+      "generated verdict section; exit status 1 naming every claim that no longer holds");
+  verify->add_option("dirs", verify_dirs, "Result folders, e.g. results/*")->required();
+  verify->add_flag("--write", verify_write,
+                   "Rewrite the README verdict sections from the claims (failures still fail)");
+
   CLI11_PARSE(app, argc, argv);
 
   try {
@@ -201,6 +212,22 @@ int main(int argc, char** argv) {
       const rl::Comparison c = rl::compare_runs(base_dir, new_dir, tolerances);
       std::fputs(rl::format_comparison(c).c_str(), stdout);
       return c.regressed() ? 1 : 0;
+    }
+    if (app.got_subcommand("verify")) {
+      int failures = 0, checked = 0;
+      std::string report;
+      for (const std::string& dir : verify_dirs) {
+        if (!std::filesystem::exists(dir + "/claims.toml")) {
+          std::printf("%s: no claims.toml: its verdicts are not checked\n", dir.c_str());
+          continue;
+        }
+        failures += rl::verify_result_folder(dir, verify_write, report);
+        ++checked;
+      }
+      std::fputs(report.c_str(), stdout);
+      std::printf("relieflab: %d folder(s) with claims checked, %d failure(s)\n", checked,
+                  failures);
+      return failures ? 1 : 0;
     }
     if (app.got_subcommand("docs")) {
       std::printf("%d file(s) updated\n", update_docs(docs_root));

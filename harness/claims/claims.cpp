@@ -1,0 +1,153 @@
+#include "claims/claims.h"
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+#include "sweep/config_toml.h"
+
+namespace rl {
+namespace {
+
+const std::set<std::string> kVerdicts = {"confirmed", "partly confirmed", "not confirmed",
+                                         "refuted", "measured"};
+const std::set<std::string> kOperators = {"<", "<=", ">", ">=", "=="};
+
+std::vector<std::string> words(const std::string& s) {
+  std::istringstream in(s);
+  std::vector<std::string> out;
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
+}
+
+bool parse_number(const std::string& s, double& out) {
+  if (s.empty()) return false;
+  char* end = nullptr;
+  out = std::strtod(s.c_str(), &end);
+  return end == s.c_str() + s.size() && std::isfinite(out);
+}
+
+// The {name}s of a sentence.
+std::vector<std::string> placeholders(const std::string& text) {
+  std::vector<std::string> names;
+  for (size_t at = text.find('{'); at != std::string::npos; at = text.find('{', at + 1)) {
+    const size_t end = text.find('}', at);
+    if (end == std::string::npos) break;
+    names.push_back(text.substr(at + 1, end - at - 1));
+  }
+  return names;
+}
+
+ClaimValue parse_value(const std::string& name, const toml::node& n, const Src& src) {
+  const toml::table* t = n.as_table();
+  if (!t) fail(src.at(n), "value '" + name + "' must be a table { where = ..., column = ... }");
+  check_keys(*t, {"where", "column", "of", "ratio", "difference", "digits"}, src,
+             "value '" + name + "'");
+  ClaimValue v;
+  v.name = name;
+  for (const char* derive : {"ratio", "difference"})
+    if (const toml::node* d = t->get(derive)) {
+      const std::vector<std::string> ab = string_list(*d, src, derive);
+      if (ab.size() != 2) fail(src.at(*d), std::string("'") + derive + "' names two values");
+      v.derive = derive, v.a = ab[0], v.b = ab[1];
+    }
+  if (v.derive.empty()) {
+    if (!t->get("where") || !t->get("column"))
+      fail(src.at(n),
+           "value '" + name + "' needs 'where' and 'column' (or 'ratio' / 'difference')");
+    v.where = string_of(*t->get("where"), src, "where");
+    v.column = string_of(*t->get("column"), src, "column");
+    if (const toml::node* of = t->get("of")) v.of = string_of(*of, src, "of");
+    if (!v.of.empty() && v.of != "mean" && v.of != "min" && v.of != "max")
+      fail(src.at(*t->get("of")), "'of' must be \"mean\", \"min\" or \"max\"");
+  }
+  if (const toml::node* d = t->get("digits")) v.digits = positive_int(*d, src, "digits", 1, 9);
+  return v;
+}
+
+// Every name a claim uses is one of its values (or a number, in a check).
+void check_names(const Claim& c, const toml::node& n, const Src& src) {
+  std::set<std::string> known;
+  for (const ClaimValue& v : c.values) known.insert(v.name);
+  auto need = [&](const std::string& name, const std::string& where) {
+    double number;
+    if (!known.count(name) && !parse_number(name, number))
+      fail(src.at(n), "claim '" + c.id + "': " + where + " names no value '" + name + "'");
+  };
+  for (const ClaimValue& v : c.values)
+    if (!v.derive.empty()) need(v.a, "value '" + v.name + "'"), need(v.b, "value '" + v.name + "'");
+  for (const std::string& p : placeholders(c.text)) need(p, "the text");
+  for (const std::string& check : c.checks) {
+    const std::vector<std::string> w = words(check);
+    const bool compare = w.size() == 3 && kOperators.count(w[1]);
+    const bool between = w.size() == 5 && w[1] == "between" && w[3] == "and";
+    if (!compare && !between)
+      fail(src.at(n), "claim '" + c.id + "': check '" + check +
+                          "' is neither 'A op B' (op: < <= > >= ==) nor 'A between B and C'");
+    for (size_t i = 0; i < w.size(); i += 2) need(w[i], "check '" + check + "'");
+  }
+}
+
+Claim parse_claim(const toml::node& n, const Src& src) {
+  const toml::table* t = n.as_table();
+  if (!t) fail(src.at(n), "each [[claim]] is a table");
+  check_keys(*t, {"id", "judges", "verdict", "text", "values", "check"}, src, "[[claim]]");
+  Claim c;
+  c.where = src.at(n);
+  for (const char* key : {"id", "judges", "verdict", "text"})
+    if (!t->get(key)) fail(src.at(n), std::string("[[claim]] needs '") + key + "'");
+  c.id = string_of(*t->get("id"), src, "id");
+  c.judges = string_of(*t->get("judges"), src, "judges");
+  c.verdict = string_of(*t->get("verdict"), src, "verdict");
+  c.text = string_of(*t->get("text"), src, "text");
+  if (!kVerdicts.count(c.verdict))
+    fail(src.at(*t->get("verdict")), "claim '" + c.id + "': verdict '" + c.verdict +
+                                         "' is not one of confirmed, partly confirmed, not "
+                                         "confirmed, refuted, measured");
+  if (const toml::table* values = t->get_as<toml::table>("values"))
+    for (const auto& [name, v] : *values)
+      c.values.push_back(parse_value(std::string(name), v, src));
+  if (const toml::node* checks = t->get("check")) {
+    const toml::array* a = checks->as_array();
+    if (!a) fail(src.at(*checks), "checks are given as [[claim.check]] that = \"...\"");
+    for (const toml::node& cn : *a) {
+      const toml::table* ct = cn.as_table();
+      if (!ct || !ct->get("that")) fail(src.at(cn), "[[claim.check]] needs 'that'");
+      check_keys(*ct, {"that"}, src, "[[claim.check]]");
+      c.checks.push_back(string_of(*ct->get("that"), src, "that"));
+    }
+  }
+  if (c.checks.empty()) fail(src.at(n), "claim '" + c.id + "' has no [[claim.check]]");
+  check_names(c, n, src);
+  return c;
+}
+
+}  // namespace
+
+ClaimsFile load_claims(const std::string& path) {
+  const Src src{path};
+  if (!std::filesystem::is_regular_file(path)) throw ConfigError(path + ": cannot read");
+  toml::table root;
+  try {
+    root = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw ConfigError(path + ":" + std::to_string(e.source().begin.line) +
+                      ": TOML syntax error: " + std::string(e.description()));
+  }
+  check_keys(root, {"claim"}, src, "the claims file");
+  ClaimsFile file;
+  file.path = path;
+  const toml::array* claims = root.get_as<toml::array>("claim");
+  if (!claims) throw ConfigError(path + ": no [[claim]]");
+  std::set<std::string> ids;
+  for (const toml::node& n : *claims) {
+    file.claims.push_back(parse_claim(n, src));
+    if (!ids.insert(file.claims.back().id).second)
+      fail(src.at(n), "claim id '" + file.claims.back().id + "' is used twice");
+  }
+  return file;
+}
+
+}  // namespace rl

@@ -1,0 +1,76 @@
+#pragma once
+// A reproduction's verdicts as data (results/<name>/claims.toml), checked against its rows.csv
+// so that a sentence can never drift from its table.
+//
+// A claim names the paper statement it judges, its verdict, and a sentence whose {value}s are
+// filled in from the rows. Values are read from rows picked by a filter, or derived from other
+// values; checks are comparisons that must hold for the verdict to stand:
+//
+//   [[claim]]
+//   id = "fetches-fall"
+//   judges = "Figure 12: allowing error buys larger safety radii"
+//   verdict = "confirmed"
+//   text = "Fetches fall {ratio}x on the panel at 45 degrees as error_allowed goes 0 to 0.2."
+//   [claim.values]
+//   at0 = { where = "scene=panel elevation_deg=45 error_allowed=0", column = "fetches_mean" }
+//   at2 = { where = "scene=panel elevation_deg=45 error_allowed=0.2", column = "fetches_mean" }
+//   ratio = { ratio = ["at0", "at2"], digits = 2 }
+//   [[claim.check]]
+//   that = "ratio > 4"
+//
+// A filter's field=value pairs match a row's cells as numbers when both are numbers, else as
+// text; a value reads exactly one row unless it names an aggregate (of = "mean", "min", "max").
+// Checks: "A op B" (op one of < <= > >= ==) or "A between B and C", with A, B, C value names or
+// numbers. `relieflab verify` checks every claim and that the README's generated verdict
+// section (between the kClaimsBegin / kClaimsEnd markers) says what the claims say now.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "claims/rows_csv.h"
+
+namespace rl {
+
+struct ClaimValue {
+  std::string name;
+  // A column read from rows (where / column / of), or a ratio or difference of two values.
+  std::string where, column, of;  // of: "" (exactly one row), "mean", "min" or "max"
+  std::string derive;             // "", "ratio" or "difference"
+  std::string a, b;
+  int digits = 3;  // significant digits in the sentence
+};
+
+struct Claim {
+  std::string id, judges, verdict, text;
+  std::vector<ClaimValue> values;
+  std::vector<std::string> checks;
+  std::string where;  // "claims.toml:LINE", for messages
+};
+
+struct ClaimsFile {
+  std::string path;
+  std::vector<Claim> claims;
+};
+
+// Throws ConfigError naming file, line and key on a malformed file.
+ClaimsFile load_claims(const std::string& path);
+
+struct ClaimResult {
+  std::string id;
+  std::string sentence;               // the text with the measured values filled in
+  std::vector<std::string> failures;  // each check that does not hold, or a value not found
+  bool holds() const { return failures.empty(); }
+};
+std::vector<ClaimResult> check_claims(const ClaimsFile& file, const std::vector<CsvRow>& rows);
+
+inline constexpr const char* kClaimsBegin = "<!-- claims: generated from claims.toml -->";
+inline constexpr const char* kClaimsEnd = "<!-- claims: end -->";
+// The README's verdict section: one numbered item per claim.
+std::string claims_markdown(const ClaimsFile& file, const std::vector<ClaimResult>& results);
+
+// Checks each folder's claims.toml against its rows.csv and its README's generated section
+// (with `write`, rewrites that section instead of comparing it). Appends a line per failure to
+// `report` ("DIR/claims.toml:LINE: claim ID: ..."); returns the number of failures.
+int verify_result_folder(const std::string& dir, bool write, std::string& report);
+
+}  // namespace rl

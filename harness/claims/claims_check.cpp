@@ -1,0 +1,229 @@
+// Claims evaluated against rows.csv, written into the README, verified (claims/claims.h).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "claims/claims.h"
+#include "core/atomic_write.h"
+#include "core/error.h"
+
+namespace rl {
+namespace {
+
+bool as_number(const std::string& s, double& out) {
+  if (s.empty()) return false;
+  char* end = nullptr;
+  out = std::strtod(s.c_str(), &end);
+  return end == s.c_str() + s.size();
+}
+
+// Does `cell` say `wanted`? As numbers when both are, else as text.
+bool cell_matches(const std::string& cell, const std::string& wanted) {
+  double a, b;
+  if (as_number(cell, a) && as_number(wanted, b)) return a == b;
+  return cell == wanted;
+}
+
+std::vector<const CsvRow*> select(const std::vector<CsvRow>& rows, const std::string& where) {
+  std::vector<std::pair<std::string, std::string>> terms;
+  std::istringstream in(where);
+  for (std::string term; in >> term;) {
+    const size_t eq = term.find('=');
+    terms.emplace_back(term.substr(0, eq), eq == std::string::npos ? "" : term.substr(eq + 1));
+  }
+  std::vector<const CsvRow*> out;
+  for (const CsvRow& r : rows) {
+    bool all = true;
+    for (const auto& [field, value] : terms) {
+      auto it = r.find(field);
+      all = all && it != r.end() && cell_matches(it->second, value);
+    }
+    if (all) out.push_back(&r);
+  }
+  return out;
+}
+
+// Values of one claim, computed on demand; a value that cannot be read says why.
+class ClaimValues {
+ public:
+  ClaimValues(const Claim& c, const std::vector<CsvRow>& rows) : claim_(c), rows_(rows) {}
+
+  bool get(const std::string& name, double& out, std::string& why) {
+    if (as_number(name, out)) return true;
+    if (auto it = done_.find(name); it != done_.end()) return out = it->second, true;
+    if (depth_ > 16) return why = "values refer to each other in a cycle", false;
+    auto v = std::find_if(claim_.values.begin(), claim_.values.end(),
+                          [&](const ClaimValue& x) { return x.name == name; });
+    ++depth_;
+    const bool ok = v->derive.empty() ? read(*v, out, why) : derive(*v, out, why);
+    --depth_;
+    if (ok) done_[name] = out;
+    return ok;
+  }
+
+ private:
+  bool read(const ClaimValue& v, double& out, std::string& why) {
+    const std::vector<const CsvRow*> picked = select(rows_, v.where);
+    std::vector<double> xs;
+    for (const CsvRow* r : picked) {
+      auto it = r->find(v.column);
+      double x;
+      if (it == r->end()) return why = "rows.csv has no column '" + v.column + "'", false;
+      if (as_number(it->second, x)) xs.push_back(x);
+    }
+    if (xs.empty())
+      return why = "value '" + v.name + "': no row with a number in '" + v.column + "' where " +
+                   v.where,
+             false;
+    if (v.of.empty() && picked.size() != 1)
+      return why = "value '" + v.name + "': " + std::to_string(picked.size()) + " rows where " +
+                   v.where + " (name an aggregate, or narrow the filter)",
+             false;
+    if (v.of == "min")
+      out = *std::min_element(xs.begin(), xs.end());
+    else if (v.of == "max")
+      out = *std::max_element(xs.begin(), xs.end());
+    else {
+      out = 0;
+      for (double x : xs) out += x;
+      out /= double(xs.size());
+    }
+    return true;
+  }
+
+  bool derive(const ClaimValue& v, double& out, std::string& why) {
+    double a, b;
+    if (!get(v.a, a, why) || !get(v.b, b, why)) return false;
+    out = v.derive == "ratio" ? a / b : a - b;
+    if (!std::isfinite(out)) return why = "value '" + v.name + "' is not finite", false;
+    return true;
+  }
+
+  const Claim& claim_;
+  const std::vector<CsvRow>& rows_;
+  std::map<std::string, double> done_;
+  int depth_ = 0;
+};
+
+// A value as a sentence shows it: `digits` significant digits, no exponent below 1e7.
+std::string format_claim_number(double v, int digits) {
+  char buf[64];
+  if (std::abs(v) >= std::pow(10.0, digits) && std::abs(v) < 1e7)
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+  else
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+
+bool compare(double a, const std::string& op, double b) {
+  if (op == "<") return a < b;
+  if (op == "<=") return a <= b;
+  if (op == ">") return a > b;
+  if (op == ">=") return a >= b;
+  return a == b;
+}
+
+ClaimResult check_claim(const Claim& c, const std::vector<CsvRow>& rows) {
+  ClaimResult r;
+  r.id = c.id;
+  ClaimValues values(c, rows);
+  std::string why;
+  for (const std::string& check : c.checks) {
+    std::istringstream in(check);
+    std::vector<std::string> w;
+    for (std::string s; in >> s;) w.push_back(s);
+    double x[3] = {0, 0, 0};
+    bool ok = true;
+    for (size_t i = 0; i < w.size(); i += 2) ok = ok && values.get(w[i], x[i / 2], why);
+    if (!ok) {
+      r.failures.push_back(why);
+      continue;
+    }
+    const bool holds = w[1] == "between" ? x[0] >= x[1] && x[0] <= x[2] : compare(x[0], w[1], x[1]);
+    if (!holds) {
+      std::string measured;
+      for (size_t i = 0; i < w.size(); i += 2)
+        measured += (i ? ", " : "") + w[i] + " = " + format_claim_number(x[i / 2], 6);
+      r.failures.push_back("check '" + check + "' does not hold: " + measured);
+    }
+  }
+  r.sentence = c.text;
+  for (size_t at = r.sentence.find('{'); at != std::string::npos; at = r.sentence.find('{', at)) {
+    const size_t end = r.sentence.find('}', at);
+    const std::string name = r.sentence.substr(at + 1, end - at - 1);
+    double v = 0;
+    std::string shown = "?";
+    auto spec = std::find_if(c.values.begin(), c.values.end(),
+                             [&](const ClaimValue& x) { return x.name == name; });
+    if (values.get(name, v, why))
+      shown = format_claim_number(v, spec->digits);
+    else
+      r.failures.push_back(why);
+    r.sentence.replace(at, end - at + 1, shown);
+    at += shown.size();
+  }
+  return r;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+std::vector<ClaimResult> check_claims(const ClaimsFile& file, const std::vector<CsvRow>& rows) {
+  std::vector<ClaimResult> out;
+  for (const Claim& c : file.claims) out.push_back(check_claim(c, rows));
+  return out;
+}
+
+std::string claims_markdown(const ClaimsFile& file, const std::vector<ClaimResult>& results) {
+  std::string md = std::string(kClaimsBegin) + "\n";
+  for (size_t i = 0; i < file.claims.size(); ++i) {
+    const Claim& c = file.claims[i];
+    md += std::to_string(i + 1) + ". **" + c.judges + "** — *" + c.verdict + "*. " +
+          results[i].sentence + "\n";
+  }
+  return md + kClaimsEnd;
+}
+
+int verify_result_folder(const std::string& dir, bool write, std::string& report) {
+  const ClaimsFile file = load_claims(dir + "/claims.toml");
+  const std::vector<ClaimResult> results = check_claims(file, read_rows_csv(dir + "/rows.csv"));
+  int failures = 0;
+  for (size_t i = 0; i < results.size(); ++i)
+    for (const std::string& f : results[i].failures) {
+      report += file.claims[i].where + ": claim " + results[i].id + ": " + f + "\n";
+      ++failures;
+    }
+  const std::string readme_path = dir + "/README.md";
+  std::string readme = read_file(readme_path);
+  const size_t begin = readme.find(kClaimsBegin), end = readme.find(kClaimsEnd);
+  if (begin == std::string::npos || end == std::string::npos || end < begin) {
+    report += readme_path + ": no generated verdict section (the lines '" + kClaimsBegin +
+              "' and '" + kClaimsEnd + "')\n";
+    return failures + 1;
+  }
+  const std::string generated = claims_markdown(file, results);
+  const std::string now = readme.substr(begin, end + std::string(kClaimsEnd).size() - begin);
+  if (now == generated) return failures;
+  if (write) {
+    readme.replace(begin, now.size(), generated);
+    write_text_atomic(readme_path, readme);
+    report += readme_path + ": verdict section rewritten from claims.toml\n";
+    return failures;
+  }
+  report += readme_path +
+            ": the verdict section differs from what claims.toml and rows.csv "
+            "give now (relieflab verify --write " +
+            dir + ")\n";
+  return failures + 1;
+}
+
+}  // namespace rl

@@ -1,0 +1,80 @@
+#include "claims/rows_csv.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace rl {
+namespace {
+
+// The next record's cells; false at the end of the text.
+bool next_record(const std::string& text, size_t& at, int& line, std::vector<std::string>& cells,
+                 const std::string& where) {
+  cells.clear();
+  if (at >= text.size()) return false;
+  std::string cell;
+  bool quoted = false;
+  const int first_line = line;
+  for (; at < text.size(); ++at) {
+    const char c = text[at];
+    if (quoted) {
+      if (c == '"' && at + 1 < text.size() && text[at + 1] == '"') {
+        cell += '"';
+        ++at;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        if (c == '\n') ++line;
+        cell += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      cells.push_back(std::move(cell));
+      cell.clear();
+    } else if (c == '\n') {
+      ++at;
+      ++line;
+      break;
+    } else if (c != '\r') {
+      cell += c;
+    }
+  }
+  if (quoted)
+    throw ConfigError(where + ":" + std::to_string(first_line) + ": unclosed quote in rows.csv");
+  cells.push_back(std::move(cell));
+  return true;
+}
+
+}  // namespace
+
+std::vector<CsvRow> parse_rows_csv(const std::string& text, const std::string& where) {
+  size_t at = 0;
+  int line = 1;
+  std::vector<std::string> header, cells;
+  if (!next_record(text, at, line, header, where))
+    throw ConfigError(where + ": rows.csv is empty (no header)");
+  std::vector<CsvRow> rows;
+  for (int record_line = line; next_record(text, at, line, cells, where); record_line = line) {
+    if (cells.size() == 1 && cells[0].empty()) continue;  // a trailing newline
+    if (cells.size() != header.size())
+      throw ConfigError(where + ":" + std::to_string(record_line) + ": " +
+                        std::to_string(cells.size()) + " cells, the header has " +
+                        std::to_string(header.size()));
+    CsvRow row;
+    for (size_t i = 0; i < header.size(); ++i) row[header[i]] = cells[i];
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+std::vector<CsvRow> read_rows_csv(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(path + ": cannot read");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_rows_csv(text.str(), path);
+}
+
+}  // namespace rl

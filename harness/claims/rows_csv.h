@@ -1,0 +1,17 @@
+#pragma once
+// rows.csv read back (sweep/tables.h writes it): one map per row, column -> the cell's text, so
+// a claim filters on exactly what the file says.
+#include <map>
+#include <string>
+#include <vector>
+
+namespace rl {
+
+using CsvRow = std::map<std::string, std::string>;
+
+// RFC 4180: commas, quoted cells with "" for a quote, newlines inside quotes. Throws
+// ConfigError naming the file and line on a ragged row or an unclosed quote.
+std::vector<CsvRow> read_rows_csv(const std::string& path);
+std::vector<CsvRow> parse_rows_csv(const std::string& text, const std::string& where);
+
+}  // namespace rl

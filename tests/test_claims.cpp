@@ -1,0 +1,169 @@
+// Claims as data (claims/claims.h): rows.csv read back, values and checks evaluated, the README's
+// verdict section generated and verified, and malformed claims refused with file and line.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "claims/claims.h"
+#include "core/error.h"
+#include "support/test_support.h"
+
+namespace rl {
+namespace {
+
+const char* kRows =
+    "technique,scene,elevation_deg,fetches_mean,wrong_pct,note\n"
+    "relief,panel,45,30.5,2.5,\"a, \"\"quoted\"\"\n note\"\n"
+    "relief,panel,20,40,4.0,\n"
+    "relief_exact,panel,45,10,0.5,\n"
+    "relief_exact,panel,20,20,0.25,\n";
+
+const char* kClaims = R"(
+[[claim]]
+id = "exact-cheaper"
+judges = "Table 1: the exact search costs less"
+verdict = "confirmed"
+text = "relief takes {ratio}x the exact search's fetches at 45 degrees ({relief} against {exact})."
+[claim.values]
+relief = { where = "technique=relief elevation_deg=45.0", column = "fetches_mean" }
+exact = { where = "technique=relief_exact elevation_deg=45", column = "fetches_mean" }
+ratio = { ratio = ["relief", "exact"], digits = 2 }
+[[claim.check]]
+that = "ratio > 2"
+[[claim.check]]
+that = "exact between 5 and 15"
+
+[[claim]]
+id = "grazing-worse"
+judges = "Section 5: error grows at grazing angles"
+verdict = "partly confirmed"
+text = "The mean wrong % over both techniques grows from {steep} to {grazing}."
+[claim.values]
+steep = { where = "elevation_deg=45", column = "wrong_pct", of = "mean" }
+grazing = { where = "elevation_deg=20", column = "wrong_pct", of = "mean" }
+[[claim.check]]
+that = "grazing > steep"
+)";
+
+std::string write(const std::string& path, const std::string& text) {
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string folder_with(const std::string& name, const std::string& rows, const std::string& claims,
+                        const std::string& readme) {
+  const std::string dir = test::scratch_dir(name);
+  std::filesystem::create_directories(dir);
+  write(dir + "/rows.csv", rows);
+  write(dir + "/claims.toml", claims);
+  write(dir + "/README.md", readme);
+  return dir;
+}
+
+TEST(RowsCsv, ReadsQuotedCellsAndRefusesRaggedRows) {
+  const std::vector<CsvRow> rows = parse_rows_csv(kRows, "rows.csv");
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows[0].at("note"), "a, \"quoted\"\n note");
+  EXPECT_EQ(rows[1].at("note"), "");
+  EXPECT_EQ(rows[3].at("wrong_pct"), "0.25");
+  try {
+    parse_rows_csv("a,b\n1,2\n3\n", "x/rows.csv");
+    FAIL() << "a ragged row was read";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("x/rows.csv:3: 1 cells, the header has 2"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(Claims, HoldingClaimsFillTheirSentencesFromTheRows) {
+  const std::string dir = folder_with("claims_hold", kRows, kClaims, "");
+  const ClaimsFile file = load_claims(dir + "/claims.toml");
+  const std::vector<ClaimResult> r = check_claims(file, read_rows_csv(dir + "/rows.csv"));
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_TRUE(r[0].holds()) << r[0].failures[0];
+  EXPECT_EQ(r[0].sentence,
+            "relief takes 3x the exact search's fetches at 45 degrees (30.5 against 10).");
+  EXPECT_TRUE(r[1].holds());
+  EXPECT_EQ(r[1].sentence, "The mean wrong % over both techniques grows from 1.5 to 2.12.");
+}
+
+TEST(Claims, AMovedNumberFailsNamingTheClaimAndWhatWasMeasured) {
+  std::string rows = kRows;
+  rows.replace(rows.find("relief_exact,panel,45,10,"), 25, "relief_exact,panel,45,20,");
+  const std::string dir = folder_with("claims_fail", rows, kClaims, "");
+  const std::vector<ClaimResult> r =
+      check_claims(load_claims(dir + "/claims.toml"), read_rows_csv(dir + "/rows.csv"));
+  ASSERT_EQ(r[0].failures.size(), 2u);
+  EXPECT_EQ(r[0].failures[0], "check 'ratio > 2' does not hold: ratio = 1.525, 2 = 2");
+  EXPECT_EQ(r[0].failures[1],
+            "check 'exact between 5 and 15' does not hold: exact = 20, 5 = 5, 15 = 15");
+  EXPECT_TRUE(r[1].holds());
+}
+
+TEST(Claims, AFilterThatPicksSeveralRowsNeedsAnAggregate) {
+  std::string claims = kClaims;
+  claims.replace(claims.find("technique=relief elevation_deg=45.0"), 35, "technique=relief");
+  const std::string dir = folder_with("claims_ambiguous", kRows, claims, "");
+  const std::vector<ClaimResult> r =
+      check_claims(load_claims(dir + "/claims.toml"), read_rows_csv(dir + "/rows.csv"));
+  ASSERT_FALSE(r[0].holds());
+  EXPECT_NE(r[0].failures[0].find("value 'relief': 2 rows where technique=relief"),
+            std::string::npos)
+      << r[0].failures[0];
+}
+
+TEST(Claims, MalformedClaimsAreRefusedWithFileAndLine) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"verdict = \"confirmed\"", "verdict = \"sort of\""},
+      {"text = \"relief takes {ratio}x", "text = \"relief takes {ratoi}x"},
+      {"that = \"ratio > 2\"", "that = \"ratio is big\""},
+      {"ratio = { ratio = [\"relief\", \"exact\"], digits = 2 }",
+       "ratio = { ratio = [\"relief\", \"exact\"], digts = 2 }"},
+  };
+  const std::vector<std::string> expected = {
+      "claims.toml:5: claim 'exact-cheaper': verdict 'sort of'", "the text names no value 'ratoi'",
+      "check 'ratio is big' is neither", "unknown key 'digts'"};
+  for (size_t i = 0; i < cases.size(); ++i) {
+    std::string claims = kClaims;
+    claims.replace(claims.find(cases[i].first), cases[i].first.size(), cases[i].second);
+    const std::string dir = folder_with("claims_bad_" + std::to_string(i), kRows, claims, "");
+    try {
+      load_claims(dir + "/claims.toml");
+      ADD_FAILURE() << "accepted: " << cases[i].second;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected[i]), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(Claims, VerifyChecksTheReadmeSectionAndWriteRegeneratesIt) {
+  const std::string readme = std::string("# Result\n\nIntro.\n\n") + kClaimsBegin + "\nstale\n" +
+                             kClaimsEnd + "\n\nMore.\n";
+  const std::string dir = folder_with("claims_readme", kRows, kClaims, readme);
+  std::string report;
+  EXPECT_EQ(verify_result_folder(dir, false, report), 1);
+  EXPECT_NE(report.find("the verdict section differs"), std::string::npos) << report;
+  report.clear();
+  EXPECT_EQ(verify_result_folder(dir, true, report), 0) << report;
+  report.clear();
+  EXPECT_EQ(verify_result_folder(dir, false, report), 0) << report;
+  std::ifstream in(dir + "/README.md");
+  const std::string now((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(now.find("1. **Table 1: the exact search costs less** — *confirmed*. relief takes 3x"),
+            std::string::npos)
+      << now;
+  EXPECT_NE(now.find("\n\nMore.\n"), std::string::npos) << "text around the section is kept";
+  // A folder whose rows moved fails in the CLI, naming the claim.
+  write(dir + "/rows.csv",
+        std::string(kRows).replace(std::string(kRows).find(",40,4.0,"), 8, ",40,0.1,"));
+  std::string output;
+  EXPECT_EQ(test::run_cli("verify " + dir, output), 1) << output;
+  EXPECT_NE(output.find("claim grazing-worse: check 'grazing > steep' does not hold"),
+            std::string::npos)
+      << output;
+}
+
+}  // namespace
+}  // namespace rl
