@@ -42,8 +42,14 @@ text = "The mean wrong % over both techniques grows from {steep} to {grazing}."
 [claim.values]
 steep = { where = "elevation_deg=45", column = "wrong_pct", of = "mean" }
 grazing = { where = "elevation_deg=20", column = "wrong_pct", of = "mean" }
+worst = { max_of = ["steep", "grazing"] }
+best = { min_of = ["steep", "grazing", "5"] }
 [[claim.check]]
 that = "grazing > steep"
+[[claim.check]]
+that = "worst == grazing"
+[[claim.check]]
+that = "best == steep"
 )";
 
 std::string write(const std::string& path, const std::string& text) {

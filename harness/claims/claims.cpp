@@ -43,15 +43,18 @@ std::vector<std::string> placeholders(const std::string& text) {
 ClaimValue parse_value(const std::string& name, const toml::node& n, const Src& src) {
   const toml::table* t = n.as_table();
   if (!t) fail(src.at(n), "value '" + name + "' must be a table { where = ..., column = ... }");
-  check_keys(*t, {"where", "column", "of", "ratio", "difference", "digits"}, src,
-             "value '" + name + "'");
+  check_keys(*t, {"where", "column", "of", "ratio", "difference", "min_of", "max_of", "digits"},
+             src, "value '" + name + "'");
   ClaimValue v;
   v.name = name;
-  for (const char* derive : {"ratio", "difference"})
+  for (const char* derive : {"ratio", "difference", "min_of", "max_of"})
     if (const toml::node* d = t->get(derive)) {
-      const std::vector<std::string> ab = string_list(*d, src, derive);
-      if (ab.size() != 2) fail(src.at(*d), std::string("'") + derive + "' names two values");
-      v.derive = derive, v.a = ab[0], v.b = ab[1];
+      v.derive = derive;
+      v.args = string_list(*d, src, derive);
+      const bool pair = v.derive == "ratio" || v.derive == "difference";
+      if (pair ? v.args.size() != 2 : v.args.empty())
+        fail(src.at(*d),
+             std::string("'") + derive + (pair ? "' names two values" : "' names values"));
     }
   if (v.derive.empty()) {
     if (!t->get("where") || !t->get("column"))
@@ -77,7 +80,7 @@ void check_names(const Claim& c, const toml::node& n, const Src& src) {
       fail(src.at(n), "claim '" + c.id + "': " + where + " names no value '" + name + "'");
   };
   for (const ClaimValue& v : c.values)
-    if (!v.derive.empty()) need(v.a, "value '" + v.name + "'"), need(v.b, "value '" + v.name + "'");
+    for (const std::string& arg : v.args) need(arg, "value '" + v.name + "'");
   for (const std::string& p : placeholders(c.text)) need(p, "the text");
   for (const std::string& check : c.checks) {
     const std::vector<std::string> w = words(check);

@@ -4,7 +4,8 @@
 //
 // A claim names the paper statement it judges, its verdict, and a sentence whose {value}s are
 // filled in from the rows. Values are read from rows picked by a filter, or derived from other
-// values; checks are comparisons that must hold for the verdict to stand:
+// values (ratio / difference of two, min_of / max_of several); checks are comparisons that must
+// hold for the verdict to stand:
 //
 //   [[claim]]
 //   id = "fetches-fall"
@@ -33,10 +34,11 @@ namespace rl {
 
 struct ClaimValue {
   std::string name;
-  // A column read from rows (where / column / of), or a ratio or difference of two values.
+  // A column read from rows (where / column / of), or derived from other values: the ratio or
+  // difference of two, or the least or greatest of several.
   std::string where, column, of;  // of: "" (exactly one row), "mean", "min" or "max"
-  std::string derive;             // "", "ratio" or "difference"
-  std::string a, b;
+  std::string derive;             // "", "ratio", "difference", "min_of" or "max_of"
+  std::vector<std::string> args;
   int digits = 3;  // significant digits in the sentence
 };
 

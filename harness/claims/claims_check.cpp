@@ -95,9 +95,17 @@ class ClaimValues {
   }
 
   bool derive(const ClaimValue& v, double& out, std::string& why) {
-    double a, b;
-    if (!get(v.a, a, why) || !get(v.b, b, why)) return false;
-    out = v.derive == "ratio" ? a / b : a - b;
+    std::vector<double> xs(v.args.size());
+    for (size_t i = 0; i < xs.size(); ++i)
+      if (!get(v.args[i], xs[i], why)) return false;
+    if (v.derive == "ratio")
+      out = xs[0] / xs[1];
+    else if (v.derive == "difference")
+      out = xs[0] - xs[1];
+    else if (v.derive == "min_of")
+      out = *std::min_element(xs.begin(), xs.end());
+    else
+      out = *std::max_element(xs.begin(), xs.end());
     if (!std::isfinite(out)) return why = "value '" + v.name + "' is not finite", false;
     return true;
   }
