@@ -43,6 +43,7 @@ text = "The mean wrong % over both techniques grows from {steep} to {grazing}."
 steep = { where = "elevation_deg=45", column = "wrong_pct", of = "mean" }
 grazing = { where = "elevation_deg=20", column = "wrong_pct", of = "mean" }
 worst = { max_of = ["steep", "grazing"] }
+per_view = { per_row_ratio = ["technique=relief", "technique=relief_exact"], match = ["elevation_deg"], where = "scene=panel|tiles", column = "fetches_mean", of = "min" }
 best = { min_of = ["steep", "grazing", "5"] }
 [[claim.check]]
 that = "grazing > steep"
@@ -50,6 +51,8 @@ that = "grazing > steep"
 that = "worst == grazing"
 [[claim.check]]
 that = "best == steep"
+[[claim.check]]
+that = "per_view between 1.5 and 2"
 )";
 
 std::string write(const std::string& path, const std::string& text) {

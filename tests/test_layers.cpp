@@ -1,6 +1,7 @@
 // The harness's folders form layers, each including only those below it: core; gl, relief and
-// metrics on core; scene on relief; truth and technique on scene; sweep on all of those; the
-// CLI on top. A cycle (relief <-> scene once did) fails here, naming the file and include.
+// metrics on core; scene on relief; truth and technique on scene; sweep on all of those; claims
+// (verdicts checked against a sweep's rows) on sweep's config reading; the CLI on top. A cycle
+// (relief <-> scene once did) fails here, naming the file and include.
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -24,7 +25,9 @@ TEST(Layers, HarnessFoldersIncludeOnlyTheLayersBelowThem) {
       {"truth", {"core", "relief", "scene", "truth"}},
       {"technique", {"core", "gl", "relief", "scene", "technique"}},
       {"sweep", {"core", "gl", "relief", "scene", "metrics", "truth", "technique", "sweep"}},
-      {"cli", {"core", "gl", "relief", "scene", "metrics", "truth", "technique", "sweep"}},
+      {"claims", {"core", "sweep", "claims"}},
+      {"cli",
+       {"core", "gl", "relief", "scene", "metrics", "truth", "technique", "sweep", "claims"}},
   };
   const fs::path harness = fs::path(RELIEFLAB_SOURCE_DIR) / "harness";
   const std::regex include(R"re(^\s*#\s*include\s+"([a-z_]+)/)re");

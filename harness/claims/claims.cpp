@@ -43,7 +43,9 @@ std::vector<std::string> placeholders(const std::string& text) {
 ClaimValue parse_value(const std::string& name, const toml::node& n, const Src& src) {
   const toml::table* t = n.as_table();
   if (!t) fail(src.at(n), "value '" + name + "' must be a table { where = ..., column = ... }");
-  check_keys(*t, {"where", "column", "of", "ratio", "difference", "min_of", "max_of", "digits"},
+  check_keys(*t,
+             {"where", "column", "of", "ratio", "difference", "min_of", "max_of", "per_row_ratio",
+              "match", "digits"},
              src, "value '" + name + "'");
   ClaimValue v;
   v.name = name;
@@ -56,16 +58,25 @@ ClaimValue parse_value(const std::string& name, const toml::node& n, const Src& 
         fail(src.at(*d),
              std::string("'") + derive + (pair ? "' names two values" : "' names values"));
     }
-  if (v.derive.empty()) {
+  if (const toml::node* p = t->get("per_row_ratio")) {
+    v.args = string_list(*p, src, "per_row_ratio");
+    if (v.args.size() != 2) fail(src.at(*p), "'per_row_ratio' names two filters");
+    if (!t->get("match") || !t->get("column") || !t->get("of"))
+      fail(src.at(n), "value '" + name + "': per_row_ratio needs 'match', 'column' and 'of'");
+    v.match = string_list(*t->get("match"), src, "match");
+    if (const toml::node* w = t->get("where")) v.where = string_of(*w, src, "where");
+    v.column = string_of(*t->get("column"), src, "column");
+    v.of = string_of(*t->get("of"), src, "of");
+  } else if (v.derive.empty()) {
     if (!t->get("where") || !t->get("column"))
       fail(src.at(n),
            "value '" + name + "' needs 'where' and 'column' (or 'ratio' / 'difference')");
     v.where = string_of(*t->get("where"), src, "where");
     v.column = string_of(*t->get("column"), src, "column");
     if (const toml::node* of = t->get("of")) v.of = string_of(*of, src, "of");
-    if (!v.of.empty() && v.of != "mean" && v.of != "min" && v.of != "max")
-      fail(src.at(*t->get("of")), "'of' must be \"mean\", \"min\" or \"max\"");
   }
+  if (!v.of.empty() && v.of != "mean" && v.of != "min" && v.of != "max")
+    fail(src.at(*t->get("of")), "'of' must be \"mean\", \"min\" or \"max\"");
   if (const toml::node* d = t->get("digits")) v.digits = positive_int(*d, src, "digits", 1, 9);
   return v;
 }
@@ -80,7 +91,8 @@ void check_names(const Claim& c, const toml::node& n, const Src& src) {
       fail(src.at(n), "claim '" + c.id + "': " + where + " names no value '" + name + "'");
   };
   for (const ClaimValue& v : c.values)
-    for (const std::string& arg : v.args) need(arg, "value '" + v.name + "'");
+    if (v.match.empty())
+      for (const std::string& arg : v.args) need(arg, "value '" + v.name + "'");
   for (const std::string& p : placeholders(c.text)) need(p, "the text");
   for (const std::string& check : c.checks) {
     const std::vector<std::string> w = words(check);

@@ -20,7 +20,8 @@
 //   that = "ratio > 4"
 //
 // A filter's field=value pairs match a row's cells as numbers when both are numbers, else as
-// text; a value reads exactly one row unless it names an aggregate (of = "mean", "min", "max").
+// text (value "a|b" matches either); a value reads exactly one row unless it names an aggregate
+// (of = "mean", "min", "max").
 // Checks: "A op B" (op one of < <= > >= ==) or "A between B and C", with A, B, C value names or
 // numbers. `relieflab verify` checks every claim and that the README's generated verdict
 // section (between the kClaimsBegin / kClaimsEnd markers) says what the claims say now.
@@ -39,6 +40,10 @@ struct ClaimValue {
   std::string where, column, of;  // of: "" (exactly one row), "mean", "min" or "max"
   std::string derive;             // "", "ratio", "difference", "min_of" or "max_of"
   std::vector<std::string> args;
+  // per_row_ratio = [NUMERATOR, DENOMINATOR]: filters; each numerator row (within `where`) is
+  // paired with the denominator row that has the same `match` fields, their `column`s divided,
+  // and the ratios aggregated by `of` (a paper table's "ML / HF per matching row").
+  std::vector<std::string> match;
   int digits = 3;  // significant digits in the sentence
 };
 

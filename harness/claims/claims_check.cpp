@@ -22,9 +22,19 @@ bool as_number(const std::string& s, double& out) {
 
 // Does `cell` say `wanted`? As numbers when both are, else as text.
 bool cell_matches(const std::string& cell, const std::string& wanted) {
+  if (const size_t bar = wanted.find('|'); bar != std::string::npos)
+    return cell_matches(cell, wanted.substr(0, bar)) || cell_matches(cell, wanted.substr(bar + 1));
   double a, b;
   if (as_number(cell, a) && as_number(wanted, b)) return a == b;
   return cell == wanted;
+}
+
+double aggregate(const std::vector<double>& xs, const std::string& of) {
+  if (of == "min") return *std::min_element(xs.begin(), xs.end());
+  if (of == "max") return *std::max_element(xs.begin(), xs.end());
+  double sum = 0;
+  for (double x : xs) sum += x;
+  return sum / double(xs.size());
 }
 
 std::vector<const CsvRow*> select(const std::vector<CsvRow>& rows, const std::string& where) {
@@ -58,7 +68,9 @@ class ClaimValues {
     auto v = std::find_if(claim_.values.begin(), claim_.values.end(),
                           [&](const ClaimValue& x) { return x.name == name; });
     ++depth_;
-    const bool ok = v->derive.empty() ? read(*v, out, why) : derive(*v, out, why);
+    const bool ok = !v->match.empty()   ? per_row_ratio(*v, out, why)
+                    : v->derive.empty() ? read(*v, out, why)
+                                        : derive(*v, out, why);
     --depth_;
     if (ok) done_[name] = out;
     return ok;
@@ -82,15 +94,34 @@ class ClaimValues {
       return why = "value '" + v.name + "': " + std::to_string(picked.size()) + " rows where " +
                    v.where + " (name an aggregate, or narrow the filter)",
              false;
-    if (v.of == "min")
-      out = *std::min_element(xs.begin(), xs.end());
-    else if (v.of == "max")
-      out = *std::max_element(xs.begin(), xs.end());
-    else {
-      out = 0;
-      for (double x : xs) out += x;
-      out /= double(xs.size());
+    out = aggregate(xs, v.of);
+    return true;
+  }
+
+  // Each numerator row paired with the denominator row that agrees on every `match` field.
+  bool per_row_ratio(const ClaimValue& v, double& out, std::string& why) {
+    const std::vector<const CsvRow*> num = select(rows_, v.where + " " + v.args[0]);
+    const std::vector<const CsvRow*> den = select(rows_, v.where + " " + v.args[1]);
+    std::vector<double> ratios;
+    if (!rows_.empty() && !rows_.front().count(v.column))
+      return why = "rows.csv has no column '" + v.column + "'", false;
+    for (const CsvRow* a : num) {
+      const CsvRow* partner = nullptr;
+      for (const CsvRow* b : den)
+        if (std::all_of(v.match.begin(), v.match.end(), [&](const std::string& f) {
+              return a->count(f) && b->count(f) && a->at(f) == b->at(f);
+            }))
+          partner = b;
+      double x, y;
+      if (!partner || !as_number(a->at(v.column), x) || !as_number(partner->at(v.column), y))
+        return why = "value '" + v.name + "': a row where " + v.args[0] +
+                     " has no partner with a number in '" + v.column + "' where " + v.args[1],
+               false;
+      ratios.push_back(x / y);
     }
+    if (ratios.empty())
+      return why = "value '" + v.name + "': no row where " + v.where + " " + v.args[0], false;
+    out = aggregate(ratios, v.of);
     return true;
   }
 
