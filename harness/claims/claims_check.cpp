@@ -67,6 +67,7 @@ class ClaimValues {
     if (depth_ > 16) return why = "values refer to each other in a cycle", false;
     auto v = std::find_if(claim_.values.begin(), claim_.values.end(),
                           [&](const ClaimValue& x) { return x.name == name; });
+    if (v == claim_.values.end()) return why = "no value '" + name + "'", false;
     ++depth_;
     const bool ok = !v->match.empty()   ? per_row_ratio(*v, out, why)
                     : v->derive.empty() ? read(*v, out, why)
@@ -198,7 +199,7 @@ ClaimResult check_claim(const Claim& c, const std::vector<CsvRow>& rows) {
     auto spec = std::find_if(c.values.begin(), c.values.end(),
                              [&](const ClaimValue& x) { return x.name == name; });
     if (values.get(name, v, why))
-      shown = format_claim_number(v, spec->digits);
+      shown = format_claim_number(v, spec == c.values.end() ? 3 : spec->digits);
     else
       r.failures.push_back(why);
     r.sentence.replace(at, end - at + 1, shown);
