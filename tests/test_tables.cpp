@@ -70,6 +70,8 @@ TEST(Markdown, ColumnKeysReadAsAPersonWritesThem) {
       "depth_slicing slices 32 view aligned");
   EXPECT_EQ(plain_column_label({"scene", "linear_steps"}, {"bricks", "8"}),
             "scene bricks linear steps 8");
+  EXPECT_EQ(plain_column_label({"elevation_deg", "azimuth_deg"}, {"5", "30"}),
+            "elevation 5° azimuth 30°");
 }
 
 TEST(Markdown, TwoKeysThatReadAlikeKeepTheirFullKeys) {

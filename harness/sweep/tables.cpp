@@ -238,6 +238,8 @@ std::string plain_column_label(const std::vector<std::string>& fields,
       words.push_back(v + "+" + set["binary_steps"]);
     } else if (f == "binary_steps" && set.count("linear_steps")) {
       continue;  // shown with the linear steps
+    } else if (f.size() > 4 && f.compare(f.size() - 4, 4, "_deg") == 0) {
+      words.push_back(in_words(f.substr(0, f.size() - 4)) + " " + v + "°");  // "elevation 5°"
     } else if (is_bool_parameter(f) && (v == "0" || v == "1")) {
       words.push_back((v == "1" ? "" : "no ") + in_words(f));
     } else {

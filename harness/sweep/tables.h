@@ -48,7 +48,8 @@ struct TableLayout {
 };
 TableLayout lay_out_table(const std::vector<Row>& rows, const TableSpec& spec);
 // A column key as a person writes it: the technique bare, linear + binary steps as "32+6", a
-// boolean parameter by its name ("exact distance" / "no exact distance"), other fields as
+// boolean parameter by its name ("exact distance" / "no exact distance"), an angle in degrees
+// as "elevation 5°", other fields as
 // "name value", unset settings ("-") left out: "relief 32+6" for technique=relief
 // linear_steps=32 binary_steps=6. Tables show it with the full key on hover.
 std::string plain_column_label(const std::vector<std::string>& fields,
