@@ -22,13 +22,6 @@ std::vector<std::string> words(const std::string& s) {
   return out;
 }
 
-bool parse_number(const std::string& s, double& out) {
-  if (s.empty()) return false;
-  char* end = nullptr;
-  out = std::strtod(s.c_str(), &end);
-  return end == s.c_str() + s.size() && std::isfinite(out);
-}
-
 // The {name}s of a sentence.
 std::vector<std::string> placeholders(const std::string& text) {
   std::vector<std::string> names;

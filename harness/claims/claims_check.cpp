@@ -13,19 +13,12 @@
 namespace rl {
 namespace {
 
-bool as_number(const std::string& s, double& out) {
-  if (s.empty()) return false;
-  char* end = nullptr;
-  out = std::strtod(s.c_str(), &end);
-  return end == s.c_str() + s.size();
-}
-
 // Does `cell` say `wanted`? As numbers when both are, else as text.
 bool cell_matches(const std::string& cell, const std::string& wanted) {
   if (const size_t bar = wanted.find('|'); bar != std::string::npos)
     return cell_matches(cell, wanted.substr(0, bar)) || cell_matches(cell, wanted.substr(bar + 1));
   double a, b;
-  if (as_number(cell, a) && as_number(wanted, b)) return a == b;
+  if (parse_number(cell, a) && parse_number(wanted, b)) return a == b;
   return cell == wanted;
 }
 
@@ -62,7 +55,7 @@ class ClaimValues {
   ClaimValues(const Claim& c, const std::vector<CsvRow>& rows) : claim_(c), rows_(rows) {}
 
   bool get(const std::string& name, double& out, std::string& why) {
-    if (as_number(name, out)) return true;
+    if (parse_number(name, out)) return true;
     if (auto it = done_.find(name); it != done_.end()) return out = it->second, true;
     if (depth_ > 16) return why = "values refer to each other in a cycle", false;
     auto v = std::find_if(claim_.values.begin(), claim_.values.end(),
@@ -85,7 +78,7 @@ class ClaimValues {
       auto it = r->find(v.column);
       double x;
       if (it == r->end()) return why = "rows.csv has no column '" + v.column + "'", false;
-      if (as_number(it->second, x)) xs.push_back(x);
+      if (parse_number(it->second, x)) xs.push_back(x);
     }
     if (xs.empty())
       return why = "value '" + v.name + "': no row with a number in '" + v.column + "' where " +
@@ -114,7 +107,7 @@ class ClaimValues {
             }))
           partner = b;
       double x, y;
-      if (!partner || !as_number(a->at(v.column), x) || !as_number(partner->at(v.column), y))
+      if (!partner || !parse_number(a->at(v.column), x) || !parse_number(partner->at(v.column), y))
         return why = "value '" + v.name + "': a row where " + v.args[0] +
                      " has no partner with a number in '" + v.column + "' where " + v.args[1],
                false;

@@ -1,5 +1,7 @@
 #include "claims/rows_csv.h"
 
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -48,6 +50,13 @@ bool next_record(const std::string& text, size_t& at, int& line, std::vector<std
 }
 
 }  // namespace
+
+bool parse_number(const std::string& text, double& out) {
+  if (text.empty()) return false;
+  char* end = nullptr;
+  out = std::strtod(text.c_str(), &end);
+  return end == text.c_str() + text.size() && std::isfinite(out);
+}
 
 std::vector<CsvRow> parse_rows_csv(const std::string& text, const std::string& where) {
   size_t at = 0;
