@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <map>
 #include <random>
+#include <tuple>
 
 #include "../techniques/cone_relaxed/cone_map.h"
 #include "relief/heightfield_reference.h"
@@ -176,6 +177,57 @@ TEST(ConeMap, RelaxedConesContainTheConservativeOnesAndAreCached) {
   EXPECT_TRUE(second.from_cache);
   EXPECT_EQ(first.ratio, second.ratio);
   ::unsetenv("RELIEFLAB_CACHE_DIR");
+}
+
+// Brute force over every texel centre of the tiled map: the conservative cone at a texel may hold
+// no texel centre above its apex, ratio <= distance / (apex depth - depth) (texels across per
+// unit depth, stored per longer side). A cone the shader reads (3 x 3 erosion included) that is
+// wider than that lets a ray step over a feature. Small non-square 8-bit maps of every kind.
+TEST(ConeMap, ConservativeConesAreNeverWiderThanBruteForce) {
+  // (Before the scan held out the near texel centres, 8 of the 32 x 24 domes' 768 texels had
+  // cones up to 0.11 texels per unit depth too wide, each limited by its diagonal neighbour.)
+  for (const auto& [kind, w, h] :
+       std::vector<std::tuple<const char*, int, int>>{{"pyramids", 32, 24},
+                                                      {"domes", 32, 24},
+                                                      {"sines", 32, 24},
+                                                      {"bricks", 32, 24},
+                                                      {"walls", 32, 24},
+                                                      {"domes", 64, 40},
+                                                      {"pyramids", 64, 40}}) {
+    SCOPED_TRACE(std::string(kind) + " " + std::to_string(w) + "x" + std::to_string(h));
+    ReliefMap map = resample(make_procedural(kind, std::max(w, h), {}, 10.0, "test"), w, h);
+    quantize_8bit(map);
+    ConeMapOptions o;
+    o.relaxed = false;
+    const ConeMap cones = compute_cone_map(map, o);
+    const std::vector<float> read = ratios_safe_under_filtering(cones);
+    const int side = std::max(w, h);
+    int wider = 0;
+    double worst = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const double apex = map.depth_texel(x, y);
+        double brute = o.max_ratio, at = 0;
+        // Every texel centre within the cap's reach, wrapping (the map tiles).
+        const int reach = int(std::ceil(o.max_ratio * side)) + 1;
+        for (int dy = -reach; dy <= reach; ++dy)
+          for (int dx = -reach; dx <= reach; ++dx) {
+            const double rise = apex - map.depth_texel(x + dx, y + dy);
+            if (rise <= 0 || (dx == 0 && dy == 0)) continue;
+            if (std::hypot(dx, dy) / (rise * side) < brute) at = std::hypot(dx, dy);
+            brute = std::min(brute, std::hypot(dx, dy) / (rise * side));
+          }
+        const double got = read[size_t(y) * w + x];
+        if (got > brute + 1e-5) {
+          std::printf("texel %d %d got %g brute %g at distance %g apex %g\n", x, y, got * side,
+                      brute * side, at, apex);
+          ++wider;
+          worst = std::max(worst, (got - brute) * side);
+        }
+      }
+    EXPECT_EQ(wider, 0) << wider << " texels' cones wider than brute force, by up to " << worst
+                        << " texels per unit depth";
+  }
 }
 
 // Cone stepping converges on the first hit as steps are added: on smooth 256^2 maps, 60 steps

@@ -98,6 +98,30 @@ std::vector<std::vector<std::vector<float>>> descending_quadtrees(
   return out;
 }
 
+// The scan samples each direction at whole steps from the texel's centre, so off its axes it
+// never lands on a texel centre: the diagonal neighbour lies at sqrt 2, between steps 1 and 2,
+// and the bilinear samples there are lower than that texel. A conservative cone may hold no
+// surface point, so every texel centre within kNearTexels is held out exactly as well (the
+// brute-force test found the misses only at the diagonal neighbours).
+void hold_out_near_texel_centres(const ReliefMap& map, int side, std::vector<float>& ratio) {
+  constexpr int kNearTexels = 3;
+  parallel_for(
+      ratio.size(),
+      [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+          const int x = int(i % map.width), y = int(i / map.width);
+          const double apex = map.depth_texel(x, y);
+          for (int dy = -kNearTexels; dy <= kNearTexels; ++dy)
+            for (int dx = -kNearTexels; dx <= kNearTexels; ++dx) {
+              const double rise = apex - map.depth_texel(x + dx, y + dy);
+              if (rise <= 0) continue;  // not above the apex (the apex itself included)
+              ratio[i] = std::min(ratio[i], float(std::hypot(dx, dy) / (rise * side)));
+            }
+        }
+      },
+      256);
+}
+
 }  // namespace
 
 std::vector<float> ratios_safe_under_filtering(const ConeMap& cones) {
@@ -230,13 +254,14 @@ ConeMap compute_cone_map(const ReliefMap& map, const ConeMapOptions& o) {
         }
       },
       256);
+  if (!o.relaxed) hold_out_near_texel_centres(map, side, out.ratio);
   out.compute_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 
 ConeMap cached_cone_map(const ReliefMap& map, const ConeMapOptions& o) {
-  constexpr int kAlgorithmVersion = 2;  // bump when compute_cone_map changes its answers
+  constexpr int kAlgorithmVersion = 3;  // bump when compute_cone_map changes its answers
   char options[128];
   std::snprintf(options, sizeof options, "v%d|%d|%d|%.9g|", kAlgorithmVersion, int(o.relaxed),
                 o.directions, o.max_ratio);
