@@ -70,6 +70,11 @@ std::string folder_with(const std::string& name, const std::string& rows, const 
   return dir;
 }
 
+// The claims of a folder checked against its rows.
+std::vector<ClaimResult> checked(const std::string& dir) {
+  return check_claims(load_claims(dir + "/claims.toml"), read_rows_csv(dir + "/rows.csv"));
+}
+
 TEST(RowsCsv, ReadsQuotedCellsAndRefusesRaggedRows) {
   const std::vector<CsvRow> rows = parse_rows_csv(kRows, "rows.csv");
   ASSERT_EQ(rows.size(), 4u);
@@ -102,8 +107,7 @@ TEST(Claims, AMovedNumberFailsNamingTheClaimAndWhatWasMeasured) {
   std::string rows = kRows;
   rows.replace(rows.find("relief_exact,panel,45,10,"), 25, "relief_exact,panel,45,20,");
   const std::string dir = folder_with("claims_fail", rows, kClaims, "");
-  const std::vector<ClaimResult> r =
-      check_claims(load_claims(dir + "/claims.toml"), read_rows_csv(dir + "/rows.csv"));
+  const std::vector<ClaimResult> r = checked(dir);
   ASSERT_EQ(r[0].failures.size(), 2u);
   EXPECT_EQ(r[0].failures[0], "check 'ratio > 2' does not hold: ratio = 1.525, 2 = 2");
   EXPECT_EQ(r[0].failures[1],
@@ -115,8 +119,7 @@ TEST(Claims, AFilterThatPicksSeveralRowsNeedsAnAggregate) {
   std::string claims = kClaims;
   claims.replace(claims.find("technique=relief elevation_deg=45.0"), 35, "technique=relief");
   const std::string dir = folder_with("claims_ambiguous", kRows, claims, "");
-  const std::vector<ClaimResult> r =
-      check_claims(load_claims(dir + "/claims.toml"), read_rows_csv(dir + "/rows.csv"));
+  const std::vector<ClaimResult> r = checked(dir);
   ASSERT_FALSE(r[0].holds());
   EXPECT_NE(r[0].failures[0].find("value 'relief': 2 rows where technique=relief"),
             std::string::npos)
