@@ -32,4 +32,6 @@ cp "$run"/report.html "$dest/" && rm -rf "$dest/report_assets" && cp -r "$run"/r
 cp -r "$run"/plots "$dest/"
 cp "$run"/run.log "$dest/run.log"
 if $images; then rm -rf "$dest/images" && cp -r "$run"/images "$dest/"; fi
+# Verdicts kept as claims: the README's section and the report's panel, from the new rows.
+if [ -f "$dest/claims.toml" ]; then ./build/relieflab verify --write "$dest" || true; fi
 echo "$dest regenerated from $run"

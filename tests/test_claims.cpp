@@ -167,6 +167,22 @@ TEST(Claims, VerifyChecksTheReadmeSectionAndWriteRegeneratesIt) {
             std::string::npos)
       << now;
   EXPECT_NE(now.find("\n\nMore.\n"), std::string::npos) << "text around the section is kept";
+  // The report's verdict panel is filled from the claims, and checked like the README.
+  write(dir + "/report.html", std::string("<html><script type=\"application/json\" ") +
+                                  "id=\"rl-verdicts\">[]</script></html>");
+  report.clear();
+  EXPECT_EQ(verify_result_folder(dir, false, report), 1);
+  EXPECT_NE(report.find("the verdict panel differs"), std::string::npos) << report;
+  report.clear();
+  EXPECT_EQ(verify_result_folder(dir, true, report), 0) << report;
+  std::ifstream page_in(dir + "/report.html");
+  const std::string page((std::istreambuf_iterator<char>(page_in)),
+                         std::istreambuf_iterator<char>());
+  EXPECT_NE(page.find("{\"holds\":true,\"judges\":\"Table 1: the exact search costs less\""),
+            std::string::npos)
+      << page;
+  report.clear();
+  EXPECT_EQ(verify_result_folder(dir, false, report), 0) << report;
   // A folder whose rows moved fails in the CLI, naming the claim.
   write(dir + "/rows.csv",
         std::string(kRows).replace(std::string(kRows).find(",40,4.0,"), 8, ",40,0.1,"));

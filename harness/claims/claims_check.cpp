@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include "claims/claims.h"
 #include "core/atomic_write.h"
 #include "core/error.h"
+#include "sweep/report.h"
 
 namespace rl {
 namespace {
@@ -226,37 +228,67 @@ std::string claims_markdown(const ClaimsFile& file, const std::vector<ClaimResul
   return md + kClaimsEnd;
 }
 
+namespace {
+
+// The README's generated section: checked, or rewritten with `write`. Returns the failures.
+int verify_readme(const std::string& dir, const std::string& generated, bool write,
+                  std::string& report) {
+  const std::string path = dir + "/README.md";
+  std::string readme = read_file(path);
+  const size_t begin = readme.find(kClaimsBegin), end = readme.find(kClaimsEnd);
+  if (begin == std::string::npos || end == std::string::npos || end < begin) {
+    report += path + ": no generated verdict section (the lines '" + kClaimsBegin + "' and '" +
+              kClaimsEnd + "')\n";
+    return 1;
+  }
+  const std::string now = readme.substr(begin, end + std::string(kClaimsEnd).size() - begin);
+  if (now == generated) return 0;
+  if (!write) {
+    report += path + ": the verdict section differs from what claims.toml and rows.csv give now " +
+              "(relieflab verify --write " + dir + ")\n";
+    return 1;
+  }
+  readme.replace(begin, now.size(), generated);
+  write_text_atomic(path, readme);
+  report += path + ": verdict section rewritten from claims.toml\n";
+  return 0;
+}
+
+// The report's verdict panel (sweep/report.h), where the folder has a report.
+int verify_report_panel(const std::string& dir, const nlohmann::json& verdicts, bool write,
+                        std::string& report) {
+  const std::string path = dir + "/report.html";
+  if (!std::filesystem::exists(path)) return 0;
+  std::string page = read_file(path);
+  if (report_verdicts(page) == verdicts) return 0;
+  if (!write || !set_report_verdicts(page, verdicts)) {
+    report += path + ": the verdict panel differs from the claims (relieflab verify --write " +
+              dir + "; a report from before the panel needs scripts/reproduce.sh)\n";
+    return 1;
+  }
+  write_text_atomic(path, page);
+  report += path + ": verdict panel rewritten from claims.toml\n";
+  return 0;
+}
+
+}  // namespace
+
 int verify_result_folder(const std::string& dir, bool write, std::string& report) {
   const ClaimsFile file = load_claims(dir + "/claims.toml");
   const std::vector<ClaimResult> results = check_claims(file, read_rows_csv(dir + "/rows.csv"));
   int failures = 0;
-  for (size_t i = 0; i < results.size(); ++i)
-    for (const std::string& f : results[i].failures) {
+  nlohmann::json panel = nlohmann::json::array();
+  for (size_t i = 0; i < results.size(); ++i) {
+    for (const std::string& f : results[i].failures)
       report += file.claims[i].where + ": claim " + results[i].id + ": " + f + "\n";
-      ++failures;
-    }
-  const std::string readme_path = dir + "/README.md";
-  std::string readme = read_file(readme_path);
-  const size_t begin = readme.find(kClaimsBegin), end = readme.find(kClaimsEnd);
-  if (begin == std::string::npos || end == std::string::npos || end < begin) {
-    report += readme_path + ": no generated verdict section (the lines '" + kClaimsBegin +
-              "' and '" + kClaimsEnd + "')\n";
-    return failures + 1;
+    failures += int(results[i].failures.size());
+    panel.push_back({{"judges", file.claims[i].judges},
+                     {"verdict", file.claims[i].verdict},
+                     {"sentence", results[i].sentence},
+                     {"holds", results[i].holds()}});
   }
-  const std::string generated = claims_markdown(file, results);
-  const std::string now = readme.substr(begin, end + std::string(kClaimsEnd).size() - begin);
-  if (now == generated) return failures;
-  if (write) {
-    readme.replace(begin, now.size(), generated);
-    write_text_atomic(readme_path, readme);
-    report += readme_path + ": verdict section rewritten from claims.toml\n";
-    return failures;
-  }
-  report += readme_path +
-            ": the verdict section differs from what claims.toml and rows.csv "
-            "give now (relieflab verify --write " +
-            dir + ")\n";
-  return failures + 1;
+  failures += verify_readme(dir, claims_markdown(file, results), write, report);
+  return failures + verify_report_panel(dir, panel, write, report);
 }
 
 }  // namespace rl

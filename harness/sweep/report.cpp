@@ -154,11 +154,13 @@ pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px
 </style>
 <script src="report_assets/d3.min.js"></script></head>
 <body><h1 id="rl-title"></h1><p id="rl-source"></p>
+<div id="rl-verdicts-box" hidden><h2>Verdicts</h2><p>Generated from the result folder's claims.toml with the numbers of rows.csv (<code>relieflab verify</code>).</p><ol id="rl-verdicts-list"></ol></div>
 <h2>Tables</h2><div id="rl-tables"></div>
 <h2>Error against cost</h2><p>Each point is a cell (hover: its setting; click: its pictures); the dashed line is the Pareto front.</p><div id="rl-plots" class="rl-plots"></div>
 <h2>Cells</h2><p>Render, truth and error heat map of each cell. Heat map: position error from 0 to <span id="rl-scale"></span> texels, <span style="color:#e0e">magenta</span> missed, <span style="color:#0cc">cyan</span> false hit.</p><div class="rl-legend"></div><div id="rl-cells"></div>
 <h2>Config</h2><pre id="rl-config"></pre><h2>run.log</h2><pre id="rl-log"></pre>
 <script type="application/json" id="rl-data">@DATA@</script>
+<script type="application/json" id="rl-verdicts">[]</script>
 <script>
 (function () {
   var data = JSON.parse(document.getElementById('rl-data').textContent);
@@ -174,6 +176,18 @@ pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px
   document.getElementById('rl-scale').textContent = data.heat_map_scale;
   document.getElementById('rl-config').textContent = data.config;
   document.getElementById('rl-log').textContent = data.log;
+  var verdicts = JSON.parse(document.getElementById('rl-verdicts').textContent);
+  if (verdicts.length) {
+    document.getElementById('rl-verdicts-box').hidden = false;
+    verdicts.forEach(function (v) {
+      var li = el('li', v.holds ? {} : {'class': 'rl-flagged'});
+      li.appendChild(el('strong', {}, v.judges));
+      li.appendChild(document.createTextNode(' — '));
+      li.appendChild(el('em', {}, v.verdict + (v.holds ? '' : ' (no longer holds)')));
+      li.appendChild(document.createTextNode('. ' + v.sentence.replace(/[*`]/g, '')));  // Markdown marks
+      document.getElementById('rl-verdicts-list').appendChild(li);
+    });
+  }
   (data.tables || []).forEach(function (t) {
     var box = document.getElementById('rl-tables');
     box.appendChild(el('h3', {}, t.title));
@@ -314,12 +328,40 @@ pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px
 
 }  // namespace
 
-bool write_report(const SweepConfig& config, const std::vector<Row>& rows,
-                  const std::vector<std::string>& parameter_columns, const std::string& out_dir) {
-  std::string json = report_data(config, rows, parameter_columns, out_dir).dump();
-  // The data sits in a <script> element: a "</" inside (a config's text) must not end it.
+namespace {
+
+// JSON for a <script> element: a "</" inside (a config's text) must not end it.
+std::string script_json(const nlohmann::json& value) {
+  std::string json = value.dump();
   for (size_t at = 0; (at = json.find("</", at)) != std::string::npos; at += 3)
     json.replace(at, 2, "<\\/");
+  return json;
+}
+
+const char* const kVerdictsOpen = "<script type=\"application/json\" id=\"rl-verdicts\">";
+
+}  // namespace
+
+bool set_report_verdicts(std::string& page, const nlohmann::json& verdicts) {
+  const size_t open = page.find(kVerdictsOpen);
+  if (open == std::string::npos) return false;
+  const size_t begin = open + std::string(kVerdictsOpen).size();
+  const size_t end = page.find("</script>", begin);
+  page.replace(begin, end - begin, script_json(verdicts));
+  return true;
+}
+
+nlohmann::json report_verdicts(const std::string& page) {
+  const size_t open = page.find(kVerdictsOpen);
+  if (open == std::string::npos) return nullptr;
+  const size_t begin = open + std::string(kVerdictsOpen).size();
+  return nlohmann::json::parse(page.substr(begin, page.find("</script>", begin) - begin), nullptr,
+                               false);
+}
+
+bool write_report(const SweepConfig& config, const std::vector<Row>& rows,
+                  const std::vector<std::string>& parameter_columns, const std::string& out_dir) {
+  const std::string json = script_json(report_data(config, rows, parameter_columns, out_dir));
   std::string page = kPage;
   page.replace(page.find("@DATA@"), 6, json);
   bool have_d3 = fs::exists(d3_script_path());

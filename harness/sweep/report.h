@@ -25,4 +25,12 @@ std::string d3_script_path();
 bool write_report(const SweepConfig& config, const std::vector<Row>& rows,
                   const std::vector<std::string>& parameter_columns, const std::string& out_dir);
 
+// The report's verdict panel: a JSON array of {judges, verdict, sentence, holds} in its own
+// script element, empty when a run writes the report; `relieflab verify --write` fills it from a
+// result folder's claims (claims/claims.h). Replaces the panel's data in `page`; false when the
+// page has no panel (a report written before it had one).
+bool set_report_verdicts(std::string& page, const nlohmann::json& verdicts);
+// The panel's data as it stands in `page` (null when there is none).
+nlohmann::json report_verdicts(const std::string& page);
+
 }  // namespace rl
