@@ -15,13 +15,6 @@ const std::set<std::string> kVerdicts = {"confirmed", "partly confirmed", "not c
                                          "refuted", "measured"};
 const std::set<std::string> kOperators = {"<", "<=", ">", ">=", "=="};
 
-std::vector<std::string> words(const std::string& s) {
-  std::istringstream in(s);
-  std::vector<std::string> out;
-  for (std::string w; in >> w;) out.push_back(w);
-  return out;
-}
-
 // The {name}s of a sentence.
 std::vector<std::string> placeholders(const std::string& text) {
   std::vector<std::string> names;
@@ -88,7 +81,7 @@ void check_names(const Claim& c, const toml::node& n, const Src& src) {
       for (const std::string& arg : v.args) need(arg, "value '" + v.name + "'");
   for (const std::string& p : placeholders(c.text)) need(p, "the text");
   for (const std::string& check : c.checks) {
-    const std::vector<std::string> w = words(check);
+    const std::vector<std::string> w = claim_words(check);
     const bool compare = w.size() == 3 && kOperators.count(w[1]);
     const bool between = w.size() == 5 && w[1] == "between" && w[3] == "and";
     if (!compare && !between)
@@ -133,6 +126,13 @@ Claim parse_claim(const toml::node& n, const Src& src) {
 }
 
 }  // namespace
+
+std::vector<std::string> claim_words(const std::string& text) {
+  std::istringstream in(text);
+  std::vector<std::string> out;
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
+}
 
 ClaimsFile load_claims(const std::string& path) {
   const Src src{path};

@@ -61,6 +61,8 @@ struct ClaimsFile {
 
 // Throws ConfigError naming file, line and key on a malformed file.
 ClaimsFile load_claims(const std::string& path);
+// The whitespace-separated words of a check ("A between B and C") or a filter ("k=v k=v").
+std::vector<std::string> claim_words(const std::string& text);
 
 struct ClaimResult {
   std::string id;

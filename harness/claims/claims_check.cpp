@@ -3,9 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 #include "claims/claims.h"
 #include "core/atomic_write.h"
@@ -34,8 +32,7 @@ double aggregate(const std::vector<double>& xs, const std::string& of) {
 
 std::vector<const CsvRow*> select(const std::vector<CsvRow>& rows, const std::string& where) {
   std::vector<std::pair<std::string, std::string>> terms;
-  std::istringstream in(where);
-  for (std::string term; in >> term;) {
+  for (const std::string& term : claim_words(where)) {
     const size_t eq = term.find('=');
     terms.emplace_back(term.substr(0, eq), eq == std::string::npos ? "" : term.substr(eq + 1));
   }
@@ -167,9 +164,7 @@ ClaimResult check_claim(const Claim& c, const std::vector<CsvRow>& rows) {
   ClaimValues values(c, rows);
   std::string why;
   for (const std::string& check : c.checks) {
-    std::istringstream in(check);
-    std::vector<std::string> w;
-    for (std::string s; in >> s;) w.push_back(s);
+    const std::vector<std::string> w = claim_words(check);
     double x[3] = {0, 0, 0};
     bool ok = true;
     for (size_t i = 0; i < w.size(); i += 2) ok = ok && values.get(w[i], x[i / 2], why);
@@ -203,13 +198,6 @@ ClaimResult check_claim(const Claim& c, const std::vector<CsvRow>& rows) {
   return r;
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 }  // namespace
 
 std::vector<ClaimResult> check_claims(const ClaimsFile& file, const std::vector<CsvRow>& rows) {
@@ -234,7 +222,7 @@ namespace {
 int verify_readme(const std::string& dir, const std::string& generated, bool write,
                   std::string& report) {
   const std::string path = dir + "/README.md";
-  std::string readme = read_file(path);
+  std::string readme = read_text(path);
   const size_t begin = readme.find(kClaimsBegin), end = readme.find(kClaimsEnd);
   if (begin == std::string::npos || end == std::string::npos || end < begin) {
     report += path + ": no generated verdict section (the lines '" + kClaimsBegin + "' and '" +
@@ -259,7 +247,7 @@ int verify_report_panel(const std::string& dir, const nlohmann::json& verdicts, 
                         std::string& report) {
   const std::string path = dir + "/report.html";
   if (!std::filesystem::exists(path)) return 0;
-  std::string page = read_file(path);
+  std::string page = read_text(path);
   if (report_verdicts(page) == verdicts) return 0;
   if (!write || !set_report_verdicts(page, verdicts)) {
     report += path + ": the verdict panel differs from the claims (relieflab verify --write " +

@@ -2,9 +2,9 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
+#include <filesystem>
 
+#include "core/atomic_write.h"
 #include "core/error.h"
 
 namespace rl {
@@ -79,11 +79,8 @@ std::vector<CsvRow> parse_rows_csv(const std::string& text, const std::string& w
 }
 
 std::vector<CsvRow> read_rows_csv(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(path + ": cannot read");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_rows_csv(text.str(), path);
+  if (!std::filesystem::is_regular_file(path)) throw ConfigError(path + ": cannot read");
+  return parse_rows_csv(read_text(path), path);
 }
 
 }  // namespace rl

@@ -13,9 +13,7 @@
 //                                        status 1 when any did (sweep/compare.h)
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -94,16 +92,50 @@ int update_docs(const std::string& root) {
   const auto blocks = rl::generated_blocks();
   int changed = 0;
   for (const fs::path& f : files) {
-    std::ifstream in(f);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    const std::string text = ss.str(), updated = rl::update_generated_blocks(text, blocks);
+    const std::string text = rl::read_text(f.string());
+    const std::string updated = rl::update_generated_blocks(text, blocks);
     if (updated == text) continue;
     rl::write_text_atomic(f.string(), updated);
     std::printf("updated %s\n", f.string().c_str());
     ++changed;
   }
   return changed;
+}
+
+// `relieflab verify`: each folder's claims against its rows, README and report (a folder
+// without claims.toml is listed as unchecked). Exit status 1 when any claim fails.
+int verify_folders(const std::vector<std::string>& dirs, bool write) {
+  int failures = 0, checked = 0;
+  std::string report;
+  for (const std::string& dir : dirs) {
+    if (!std::filesystem::exists(dir + "/claims.toml")) {
+      std::printf("%s: no claims.toml: its verdicts are not checked\n", dir.c_str());
+      continue;
+    }
+    failures += rl::verify_result_folder(dir, write, report);
+    ++checked;
+  }
+  std::fputs(report.c_str(), stdout);
+  std::printf("relieflab: %d folder(s) with claims checked, %d failure(s)\n", checked, failures);
+  return failures ? 1 : 0;
+}
+
+// `relieflab run [CONFIG] [--out DIR] [--shard I/N]`.
+void run_sweep_command(const std::string& config_path, const std::string& out_dir, bool quiet,
+                       const std::string& shard_text) {
+  rl::SweepConfig config =
+      config_path.empty() ? rl::default_sweep_config() : rl::load_sweep_config(config_path);
+  rl::RunOptions options;
+  options.out_dir = out_dir.empty() ? "out/" + config.name : out_dir;
+  options.progress = !quiet;
+  if (!shard_text.empty()) {
+    options.shard = rl::parse_shard(shard_text);
+    // Shards run at once must not share a store: one folder each unless told otherwise.
+    if (out_dir.empty() && options.shard.active())
+      options.out_dir += "-shard-" + std::to_string(options.shard.index) + "-of-" +
+                         std::to_string(options.shard.count);
+  }
+  rl::run_sweep(config, options);
 }
 
 }  // namespace
@@ -213,39 +245,12 @@ int main(int argc, char** argv) {
       std::fputs(rl::format_comparison(c).c_str(), stdout);
       return c.regressed() ? 1 : 0;
     }
-    if (app.got_subcommand("verify")) {
-      int failures = 0, checked = 0;
-      std::string report;
-      for (const std::string& dir : verify_dirs) {
-        if (!std::filesystem::exists(dir + "/claims.toml")) {
-          std::printf("%s: no claims.toml: its verdicts are not checked\n", dir.c_str());
-          continue;
-        }
-        failures += rl::verify_result_folder(dir, verify_write, report);
-        ++checked;
-      }
-      std::fputs(report.c_str(), stdout);
-      std::printf("relieflab: %d folder(s) with claims checked, %d failure(s)\n", checked,
-                  failures);
-      return failures ? 1 : 0;
-    }
+    if (app.got_subcommand("verify")) return verify_folders(verify_dirs, verify_write);
     if (app.got_subcommand("docs")) {
       std::printf("%d file(s) updated\n", update_docs(docs_root));
       return 0;
     }
-    rl::SweepConfig config =
-        config_path.empty() ? rl::default_sweep_config() : rl::load_sweep_config(config_path);
-    rl::RunOptions options;
-    options.out_dir = out_dir.empty() ? "out/" + config.name : out_dir;
-    options.progress = !quiet;
-    if (!shard_text.empty()) {
-      options.shard = rl::parse_shard(shard_text);
-      // Shards run at once must not share a store: one folder each unless told otherwise.
-      if (out_dir.empty() && options.shard.active())
-        options.out_dir += "-shard-" + std::to_string(options.shard.index) + "-of-" +
-                           std::to_string(options.shard.count);
-    }
-    rl::run_sweep(config, options);
+    run_sweep_command(config_path, out_dir, quiet, shard_text);
     return 0;
   } catch (const rl::ConfigError& e) {
     std::fprintf(stderr, "relieflab: config error: %s\n", e.what());

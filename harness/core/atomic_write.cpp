@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include <unistd.h>
@@ -44,6 +46,13 @@ void write_text_atomic(const std::string& path, const std::string& text) {
     throw std::runtime_error("cannot write " + path + ": " + std::strerror(e));
   }
   commit_temp(tmp, path);
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 }  // namespace rl

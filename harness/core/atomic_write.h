@@ -18,4 +18,8 @@ void commit_temp(const std::string& tmp, const std::string& path);
 // std::runtime_error naming `path` and the system's reason when any step fails.
 void write_text_atomic(const std::string& path, const std::string& text);
 
+// The whole of a text file as written (binary: no line-ending translation); empty when it
+// cannot be opened.
+std::string read_text(const std::string& path);
+
 }  // namespace rl

@@ -2,9 +2,7 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -21,13 +19,6 @@ std::string d3_script_path() {
 }
 
 namespace {
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 std::string cell_title(const Row& r, const std::vector<std::string>& parameter_columns) {
   std::string t = r.value("technique", std::string("?"));
