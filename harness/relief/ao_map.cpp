@@ -21,22 +21,23 @@ int floor_mod(long a, int n) {
 
 // Heights in texel units (top = height_texels) with a pyramid of block maxima, for a horizon
 // search that skips, whole, the stretches of a profile that cannot rise above the horizon found
-// so far. Level 0 is the map repeated into a power-of-two grid with room for a block past the
-// map's far edge (so a box that starts inside the map is read without wrapping again); level l
-// holds the maximum of each 2^l x 2^l block.
+// so far. Level 0 is the map repeated into a grid with room for a top-level block past the
+// map's far edge (so a box that starts inside the map is read without wrapping again), rounded
+// up to whole top-level blocks so that every level halves exactly; level l holds the maximum of
+// each 2^l x 2^l block. (A power-of-two grid would do too, but costs 4x the map's memory at
+// 4096^2; this one at most (1 + 1024 / side)^2.)
 class HeightPyramid {
  public:
   static constexpr int kTop = 9;  // blocks of up to 512 texels: segments of up to 256 samples
 
   HeightPyramid(const ReliefMap& map, double height_texels) : w_(map.width), h_(map.height) {
-    auto pow2_above = [](int n) {
-      int p = 1;
-      while (p < n + (1 << kTop)) p <<= 1;
-      return p;
+    auto padded = [](int n) {
+      const int block = 1 << kTop;
+      return (n + block + block - 1) / block * block;  // >= n + one block, whole blocks
     };
     levels_.resize(kTop + 1);
     sizes_.resize(kTop + 1);
-    sizes_[0] = {pow2_above(w_), pow2_above(h_)};
+    sizes_[0] = {padded(w_), padded(h_)};
     std::vector<float>& base = levels_[0];
     base.resize(size_t(sizes_[0].x) * sizes_[0].y);
     for (int y = 0; y < sizes_[0].y; ++y)
