@@ -34,8 +34,37 @@ struct AxisWalk {
   }
 };
 
+// One layer's walk and the bilinear patch of the cell it is in:
+// D(px, py) = d00 + A px + B py + C px py, with px, py from the cell's corner.
 struct LayerWalk {
   AxisWalk x, y;
+  double share = 0;                                 // of the depth (Eq. 2)
+  double d00 = 0, A = 0, B = 0, C = 0, lowest = 0;  // lowest: the shallowest corner
+
+  void load_patch(const ReliefMap& m) {
+    // The cell's corners, wrapping like GL_REPEAT (the walk's cells may be negative).
+    const int x0 = int(((x.cell % m.width) + m.width) % m.width);
+    const int y0 = int(((y.cell % m.height) + m.height) % m.height);
+    const int x1 = x0 + 1 == m.width ? 0 : x0 + 1, y1 = y0 + 1 == m.height ? 0 : y0 + 1;
+    const glm::vec4* row0 = &m.relief[size_t(y0) * m.width];
+    const glm::vec4* row1 = &m.relief[size_t(y1) * m.width];
+    d00 = row0[x0].a;
+    const double d10 = row0[x1].a, d01 = row1[x0].a, d11 = row1[x1].a;
+    A = d10 - d00;
+    B = d01 - d00;
+    C = d00 - d10 - d01 + d11;
+    lowest = std::min({d00, d10, d01, d11});
+  }
+  // Subtracts this layer's share of the surface depth at t = t_enter + tau from the quadratic
+  // qa tau^2 + qb tau + qc. Local coordinates from the cell's corner at the cell's entry (no
+  // cancellation far along the ray).
+  void add_patch(double t_enter, double& qa, double& qb, double& qc) const {
+    const double px = x.x0 + x.dx * t_enter - double(x.cell);
+    const double py = y.x0 + y.dx * t_enter - double(y.cell);
+    qa -= share * C * x.dx * y.dx;
+    qb -= share * (A * x.dx + B * y.dx + C * (px * y.dx + py * x.dx));
+    qc -= share * (d00 + A * px + B * py + C * px * py);
+  }
 };
 
 }  // namespace
@@ -45,7 +74,11 @@ MetaReliefTruth::MetaReliefTruth(std::shared_ptr<const MetaRelief> meta) : meta_
 double MetaReliefTruth::first_hit(const glm::dvec3& o, const glm::dvec3& d, double t_min,
                                   double t_max, long* cells) const {
   const auto& layers = meta_->layers();
-  std::vector<LayerWalk> walks(layers.size());
+  // Most meta-reliefs have a few layers: their walks live on the stack.
+  constexpr size_t kInline = 4;
+  LayerWalk inline_walks[kInline];
+  std::vector<LayerWalk> many(layers.size() > kInline ? layers.size() : 0);
+  LayerWalk* walks = layers.size() > kInline ? many.data() : inline_walks;
   double crossings_per_t = 0;
   for (size_t i = 0; i < layers.size(); ++i) {
     // Texel-centre coordinates of layer i: X = u * tiling * width - 0.5, texel centres on
@@ -54,6 +87,8 @@ double MetaReliefTruth::first_hit(const glm::dvec3& o, const glm::dvec3& d, doub
     const double sx = layers[i].tiling * m.width, sy = layers[i].tiling * m.height;
     walks[i].x.start(o.x * sx - 0.5, d.x * sx, t_min);
     walks[i].y.start(o.y * sy - 0.5, d.y * sy, t_min);
+    walks[i].share = meta_->depth_share(i);
+    walks[i].load_patch(m);
     crossings_per_t += std::abs(d.x * sx) + std::abs(d.y * sy);
   }
   // Bounded: every step crosses at least one crease, and there are at most this many.
@@ -63,32 +98,27 @@ double MetaReliefTruth::first_hit(const glm::dvec3& o, const glm::dvec3& d, doub
   double t_enter = t_min;
   for (long n = 0; n < max_steps && t_enter <= t_max; ++n) {
     if (cells) ++*cells;
-    double t_exit = t_max;
-    for (const LayerWalk& w : walks) t_exit = std::min({t_exit, w.x.next, w.y.next});
-    // f(tau) = ray depth - surface depth at t = t_enter + tau, a quadratic in this union cell.
-    double qa = 0, qb = d.z, qc = o.z + d.z * t_enter;
+    double t_exit = t_max, shallowest = 0;
     for (size_t i = 0; i < layers.size(); ++i) {
-      const LayerWalk& w = walks[i];
-      const ReliefMap& m = layers[i].map;
-      const int xi = int(w.x.cell % m.width), yj = int(w.y.cell % m.height);
-      const double d00 = m.depth_texel(xi, yj), d10 = m.depth_texel(xi + 1, yj);
-      const double d01 = m.depth_texel(xi, yj + 1), d11 = m.depth_texel(xi + 1, yj + 1);
-      const double A = d10 - d00, B = d01 - d00, C = d00 - d10 - d01 + d11;
-      // Local coordinates from the cell's entry (no cancellation far along the ray).
-      const double px = w.x.x0 + w.x.dx * t_enter - double(w.x.cell);
-      const double py = w.y.x0 + w.y.dx * t_enter - double(w.y.cell);
-      const double s = meta_->depth_share(i);
-      qa -= s * C * w.x.dx * w.y.dx;
-      qb -= s * (A * w.x.dx + B * w.y.dx + C * (px * w.y.dx + py * w.x.dx));
-      qc -= s * (d00 + A * px + B * py + C * px * py);
+      t_exit = std::min({t_exit, walks[i].x.next, walks[i].y.next});
+      shallowest += walks[i].share * walks[i].lowest;
     }
-    const double span = t_exit - t_enter;
-    const double tau = qc >= 0 ? 0.0 : smallest_root_in(qa, qb, qc, 0.0, span);
-    if (!std::isnan(tau)) return t_enter + tau;
+    // The patch is nowhere shallower than its layers' shallowest corners: a ray above that
+    // all through the cell cannot meet it (the margin covers the quadratic's rounding).
+    const double deepest = std::max(o.z + d.z * t_enter, o.z + d.z * t_exit);
+    if (!(deepest < shallowest - 1e-12)) {
+      // f(tau) = ray depth - surface depth at t = t_enter + tau, a quadratic in this cell.
+      double qa = 0, qb = d.z, qc = o.z + d.z * t_enter;
+      for (size_t i = 0; i < layers.size(); ++i) walks[i].add_patch(t_enter, qa, qb, qc);
+      const double tau = qc >= 0 ? 0.0 : smallest_root_in(qa, qb, qc, 0.0, t_exit - t_enter);
+      if (!std::isnan(tau)) return t_enter + tau;
+    }
     if (t_exit >= t_max) break;
-    for (LayerWalk& w : walks) {
-      if (w.x.next <= t_exit) w.x.advance();
-      if (w.y.next <= t_exit) w.y.advance();
+    for (size_t i = 0; i < layers.size(); ++i) {
+      bool moved = false;
+      if (walks[i].x.next <= t_exit) walks[i].x.advance(), moved = true;
+      if (walks[i].y.next <= t_exit) walks[i].y.advance(), moved = true;
+      if (moved) walks[i].load_patch(layers[i].map);
     }
     t_enter = t_exit;
   }

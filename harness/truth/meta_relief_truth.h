@@ -8,7 +8,8 @@
 // in t per union cell, solved in double precision like the single-map reference
 // (relief/heightfield_reference.h). Nothing is built and nothing repeats: a fractional tiling
 // (5.5 repeats every 2 base tiles, 3.7 every 10) would make an Embree grid of one common period
-// tens of millions of vertices, while this costs one DDA step per crease crossed. Its deviation
+// tens of millions of vertices, while this costs one DDA step per crease crossed (and no solve
+// where the ray passes above every layer's shallowest corner of the cell). Its deviation
 // from the surface is rounding alone (tessellation_bound() = 0); tests/test_meta_relief checks it
 // against the Embree heightfield truth where a bake is exact and against dense sampling
 // elsewhere.
