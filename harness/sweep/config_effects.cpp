@@ -22,7 +22,7 @@ void parse_effect_options(const toml::table& t, const Src& src, const toml::node
     if (!o)
       fail(src.at(*options),
            "'ambient_occlusion' must be a table, e.g. { map_depth = 0.04, update = \"eq6\" }");
-    check_keys(*o, {"directions", "filter", "map_depth", "update", "samples"}, src,
+    check_keys(*o, {"directions", "filter", "map_depth", "update", "samples", "stderr_target"}, src,
                "ambient_occlusion");
     if (auto* n = o->get("directions"))
       s.ao.directions = positive_int(*n, src, "directions", 8, 720);
@@ -39,13 +39,16 @@ void parse_effect_options(const toml::table& t, const Src& src, const toml::node
           u == "eq6" ? AmbientOcclusionDesc::Update::Eq6 : AmbientOcclusionDesc::Update::None;
     }
     if (auto* n = o->get("samples")) s.ao.samples = positive_int(*n, src, "samples", 1, 65536);
+    if (auto* n = o->get("stderr_target"))
+      s.ao.stderr_target = number_in(*n, src, "stderr_target", 0, 0.5);
   }
   canon["ambient_occlusion"] = {
       {"directions", s.ao.directions},
       {"filter", s.ao.filter},
       {"map_depth", s.ao.map_depth},
       {"update", s.ao.update == AmbientOcclusionDesc::Update::Eq6 ? "eq6" : "none"},
-      {"samples", s.ao.samples}};
+      {"samples", s.ao.samples},
+      {"stderr_target", s.ao.stderr_target}};
 }
 
 }  // namespace rl

@@ -151,6 +151,10 @@ uint64_t ao_seed(size_t pixel) {
   return fnv1a64(&pixel, sizeof pixel, 0x5eed0a0ull);
 }
 
+AoSampling ao_sampling(const SceneDesc& scene) {
+  return {scene.ao.samples, scene.ao.stderr_target};
+}
+
 }  // namespace
 
 GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const SceneDesc& scene,
@@ -256,7 +260,7 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
           if (ambient_occlusion) {
             // Hemisphere rays from the hit up to where they leave the relief at the top plane
             // (nothing above it blocks), through the tiling as the AO map wraps.
-            ao = reference_ao(scene.ao.samples, ao_seed(i), base.normal(),
+            ao = reference_ao(ao_sampling(scene), ao_seed(i), base.normal(),
                               glm::normalize(base.dpdu()), [&](const glm::dvec3& w) {
                                 const glm::dvec3 l = base.texture_direction(w);
                                 const double t_exit = -h.point.z / l.z;
@@ -345,7 +349,7 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
             // shape (a handle over the body) is what no texture-space AO can know.
             const double below_top = scene.depth * map.surface_depth(h.uv.x, h.uv.y) + 1e-6;
             ao = reference_ao(
-                scene.ao.samples, ao_seed(i), h.normal, h.tangent, [&](const glm::dvec3& w) {
+                ao_sampling(scene), ao_seed(i), h.normal, h.tangent, [&](const glm::dvec3& w) {
                   const double rise = std::max(glm::dot(w, h.normal), 1e-6);
                   ++ao_traced;
                   return truth.occluded(h.position, w, 1e-4 * scene.depth, below_top / rise);
