@@ -13,8 +13,10 @@
 
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
+#include "sweep/config.h"
 #include "truth/displaced_truth.h"
 #include "truth/heightfield_truth.h"
+#include "truth/make_truth.h"
 #include "truth/truth_render.h"
 
 namespace rl {
@@ -171,6 +173,45 @@ void BM_DisplacedTruthGBuffer(benchmark::State& state) {
   time_truth_gbuffers(state, truth, map, scene, make_camera(scene, View{30, 30}, 512, 512));
 }
 
+// The reference AO of the default sweep's AO scenes (the rock wall on Embree, and its
+// meta-relief traced exactly) at 45 degrees: the hemisphere rays dominate the default sweep.
+void BM_ReferenceAo(benchmark::State& state, std::string scene_name) {
+  const SweepConfig config = default_sweep_config();
+  SceneDesc scene;
+  for (const SceneDesc& s : config.scenes)
+    if (s.name == scene_name) scene = s;
+  ReliefMap map = build_relief_asset(scene, scene.relief.native.longer());
+  const SceneTruth truth(scene, map, config.truth_tolerance);
+  const int side = int(state.range(0));
+  const Camera cam = make_camera(scene, View{45, 30}, side, side);
+  uint64_t rays = 0;
+  double stderr_sum = 0, covered = 0;
+  for (auto _ : state) {
+    TruthStats stats;
+    GBuffer g = truth.render(map, scene, cam, EffectSet{Effect::AmbientOcclusion}, &stats);
+    rays += stats.ao_rays;
+    for (size_t i = 0; i < g.aux.size(); ++i)
+      if (g.covered(i)) {
+        stderr_sum += g.aux[i].y;
+        covered += 1;
+      }
+  }
+  state.SetItemsProcessed(int64_t(rays));
+  // The noise floor the sweep reports (ao_ref_stderr) and the rays it took per pixel.
+  state.counters["stderr_mean"] = stderr_sum / std::max(covered, 1.0);
+  state.counters["rays_per_pixel"] = double(rays) / std::max(covered, 1.0);
+}
+
+BENCHMARK_CAPTURE(BM_ReferenceAo, rockwall_ao, "rockwall_ao")
+    ->Arg(64)
+    ->Arg(256)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_ReferenceAo, rockwall_meta, "rockwall_meta")
+    ->Arg(64)
+    ->Arg(256)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_TruthIntersect, bricks, "bricks")->Arg(256)->Arg(512);
 BENCHMARK_CAPTURE(BM_RawEmbreeIntersect1, bricks, "bricks")->Arg(256)->Arg(512);
 BENCHMARK_CAPTURE(BM_TruthIntersect, sines, "sines")->Arg(256)->Arg(512);
