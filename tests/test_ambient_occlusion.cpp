@@ -2,6 +2,7 @@
 // Eq. 6, the effect's gating in shader and truth, and its accuracy against the Embree
 // reference. Tolerances are stated where they are used.
 #include <cmath>
+#include <cstring>
 
 #include <gtest/gtest.h>
 
@@ -15,6 +16,8 @@
 #include "support/test_support.h"
 #include "technique/gpu_ao_map.h"
 #include "technique/shader_technique.h"
+#include "truth/ao_truth_cache.h"
+#include "truth/make_truth.h"
 #include "truth/reference_ao.h"
 
 namespace rl {
@@ -509,6 +512,72 @@ TEST(ReferenceAo, SkewTangentGivesTheSameCosineWeighting) {
       reference_ao({4096, 0.0}, 11, n, glm::normalize(glm::dvec3(1, 0.4, 0.7)),
                    [&](const glm::dvec3& d) { return glm::dot(d, n) < std::sqrt(0.5); });
   EXPECT_NEAR(cone.visibility, 0.5, 3 * cone.std_error + 0.01);
+}
+
+}  // namespace
+}  // namespace rl
+
+namespace rl {
+namespace {
+
+bool same_gbuffer(const GBuffer& a, const GBuffer& b) {
+  auto same = [](const std::vector<glm::vec4>& x, const std::vector<glm::vec4>& y) {
+    return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof x[0]) == 0;
+  };
+  return same(a.color, b.color) && same(a.position, b.position) && same(a.normal, b.normal) &&
+         same(a.hit, b.hit) && same(a.aux, b.aux);
+}
+
+TEST(AoTruthCache, ReusesOnlyTheSameHitsAndChangesNoBit) {
+  ScopedCacheDir dir;
+  SceneDesc scene = test::procedural_scene("bricks", 64, 0.08);
+  scene.effects.add(Effect::AmbientOcclusion);
+  scene.ao.samples = 64;
+  const ReliefMap map = build_relief_asset(scene, 64);
+  const SceneTruth truth(scene, map, 2e-3);
+  const int size = 40;
+  const size_t pixels = size_t(size) * size;
+  const Camera camera = make_camera(scene, View{50, 30}, size, size);
+  const GBuffer uncached = truth.render(map, scene, camera, scene.effects);
+  long covered = 0;
+  for (size_t i = 0; i < uncached.size(); ++i) covered += uncached.covered(i);
+  ASSERT_GT(covered, 500);
+
+  const uint64_t hash = truth_source_hash(map);
+  TruthStats first_stats, again_stats;
+  AoTruthCache first("test view 50/30", hash, ao_sampling(scene), pixels);
+  const GBuffer first_run = truth.render(map, scene, camera, scene.effects, &first_stats, &first);
+  first.save();
+  EXPECT_EQ(first.computed(), size_t(covered));
+  EXPECT_EQ(first_stats.ao_cached_px, 0u);
+  EXPECT_TRUE(same_gbuffer(first_run, uncached));
+
+  // A second run reads every covered pixel's estimate back, bit for bit, and reports the same
+  // sampled rays.
+  AoTruthCache again("test view 50/30", hash, ao_sampling(scene), pixels);
+  const GBuffer second_run = truth.render(map, scene, camera, scene.effects, &again_stats, &again);
+  EXPECT_EQ(again.reused(), size_t(covered));
+  EXPECT_EQ(again.computed(), 0u);
+  EXPECT_EQ(again_stats.ao_cached_px, uint64_t(covered));
+  EXPECT_EQ(again_stats.ao_rays, first_stats.ao_rays);
+  EXPECT_TRUE(same_gbuffer(second_run, uncached));
+
+  // Another view filed under the same identity: no hit point matches, nothing is reused.
+  const Camera other = make_camera(scene, View{35, 120}, size, size);
+  AoTruthCache misfiled("test view 50/30", hash, ao_sampling(scene), pixels);
+  const GBuffer other_run = truth.render(map, scene, other, scene.effects, nullptr, &misfiled);
+  EXPECT_EQ(misfiled.reused(), 0u);
+  EXPECT_TRUE(same_gbuffer(other_run, truth.render(map, scene, other, scene.effects)));
+
+  // Another map content or sampling is another entry.
+  AoTruthCache other_map("test view 50/30", hash + 1, ao_sampling(scene), pixels);
+  truth.render(map, scene, camera, scene.effects, nullptr, &other_map);
+  EXPECT_EQ(other_map.reused(), 0u);
+  AoSampling finer = ao_sampling(scene);
+  finer.stderr_target = 0.01;
+  AoTruthCache other_sampling("test view 50/30", hash, finer, pixels);
+  truth.render(map, scene, camera, scene.effects, nullptr, &other_sampling);
+  EXPECT_EQ(other_sampling.reused(), 0u);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include <glm/glm.hpp>
@@ -32,6 +33,7 @@
 #include "sweep/result_store.h"
 #include "sweep/tables.h"
 #include "technique/technique.h"
+#include "truth/ao_truth_cache.h"
 #include "truth/make_truth.h"
 #include "truth/truth_render.h"
 
@@ -357,8 +359,15 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       truth_stats = memo->second.second;
       truth_key = cell.truth_key;
     } else if (cell.truth_key != truth_key) {
-      truth =
-          asset->truth->render(asset->truth_source(), scene, camera, scene.effects, &truth_stats);
+      // The reference AO is most of an AO scene's truth: an earlier run's is reused where
+      // the hits are the same.
+      std::optional<AoTruthCache> ao_cache;
+      if (scene.effects.has(Effect::AmbientOcclusion))
+        ao_cache.emplace(cell.truth_key, truth_source_hash(asset->truth_source()),
+                         ao_sampling(scene), size_t(cell.width) * cell.height);
+      truth = asset->truth->render(asset->truth_source(), scene, camera, scene.effects,
+                                   &truth_stats, ao_cache ? &*ao_cache : nullptr);
+      if (ao_cache) ao_cache->save();
       truth_key = cell.truth_key;
       if (scene.truth_texture_res > 0) truth_memo[truth_key] = {truth, truth_stats};
       ++summary.truth_traces;
@@ -371,7 +380,10 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
                     (unsigned long long)truth_stats.primary_rays,
                     (unsigned long long)truth_stats.shadow_rays,
                     (unsigned long long)truth_stats.ao_rays, truth_stats.trace_ms);
-      log.line(buf);
+      log.line(buf + (truth_stats.ao_cached_px
+                          ? " (AO of " + std::to_string(truth_stats.ao_cached_px) +
+                                " pixels from the cache)"
+                          : std::string()));
       log.line(describe_truth_bound(truth, asset->metric_texel));
       if (truth_stats.unresolved)
         log.line("relieflab: warning: " + std::to_string(truth_stats.unresolved) +

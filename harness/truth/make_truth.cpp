@@ -63,11 +63,13 @@ SceneTruth::SceneTruth(const SceneDesc& scene, const ReliefMap& map, double tole
 SceneTruth::~SceneTruth() = default;
 
 GBuffer SceneTruth::render(const ReliefMap& map, const SceneDesc& scene, const Camera& camera,
-                           EffectSet effects, TruthStats* stats) const {
-  if (pattern_) return render_truth(*pattern_, map, scene, camera, effects, stats, objects_.get());
+                           EffectSet effects, TruthStats* stats, AoTruthCache* ao_cache) const {
+  const ObjectsTruth* objects = objects_.get();
+  if (pattern_)
+    return render_truth(*pattern_, map, scene, camera, effects, stats, objects, ao_cache);
   if (displaced_)
-    return render_truth(*displaced_, map, scene, camera, effects, stats, objects_.get());
-  return render_truth(*planar_, map, scene, camera, effects, stats, objects_.get());
+    return render_truth(*displaced_, map, scene, camera, effects, stats, objects, ao_cache);
+  return render_truth(*planar_, map, scene, camera, effects, stats, objects, ao_cache);
 }
 
 double SceneTruth::tessellation_bound() const {

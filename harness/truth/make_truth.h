@@ -27,7 +27,8 @@ class SceneTruth {
              const BaseMesh* base = nullptr);
   ~SceneTruth();
   GBuffer render(const ReliefMap& map, const SceneDesc& scene, const Camera& camera,
-                 EffectSet effects, TruthStats* stats = nullptr) const;
+                 EffectSet effects, TruthStats* stats = nullptr,
+                 AoTruthCache* ao_cache = nullptr) const;
   double tessellation_bound() const;  // depth units
   int subdivision() const;
   double build_ms() const { return build_ms_; }

@@ -9,6 +9,7 @@
 #include "core/hash.h"
 #include "core/parallel.h"
 #include "core/ray_box.h"
+#include "truth/ao_truth_cache.h"
 #include "truth/displaced_truth.h"
 #include "truth/objects_truth.h"
 #include "truth/pattern_base_truth.h"
@@ -151,15 +152,15 @@ uint64_t ao_seed(size_t pixel) {
   return fnv1a64(&pixel, sizeof pixel, 0x5eed0a0ull);
 }
 
+}  // namespace
+
 AoSampling ao_sampling(const SceneDesc& scene) {
   return {scene.ao.samples, scene.ao.stderr_target};
 }
 
-}  // namespace
-
 GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const SceneDesc& scene,
                      const Camera& camera, EffectSet effects, TruthStats* stats,
-                     const ObjectsTruth* objects) {
+                     const ObjectsTruth* objects, AoTruthCache* ao_cache) {
   const auto start = std::chrono::steady_clock::now();
   const uint64_t primary0 = truth.primary_rays(), shadow0 = truth.shadow_rays();
   const PlanarBase base = planar_base(scene);
@@ -167,6 +168,7 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
   const bool ambient_occlusion = effects.has(Effect::AmbientOcclusion);
   // Hemisphere directions sampled, and those traced (the truth counts them as occlusion rays).
   std::atomic<uint64_t> ao_rays{0}, ao_traced{0};
+  const size_t ao_reused0 = ao_cache ? ao_cache->reused() : 0;
   // Rays end just below the deepest point of the map (not clamped at 1: a map reaching depth 1
   // would put its deepest hits exactly on the end of the ray, where rounding can lose them).
   const double bottom = double(truth.max_depth()) + 1e-4;
@@ -260,15 +262,18 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
           if (ambient_occlusion) {
             // Hemisphere rays from the hit up to where they leave the relief at the top plane
             // (nothing above it blocks), through the tiling as the AO map wraps.
-            ao = reference_ao(ao_sampling(scene), ao_seed(i), base.normal(),
-                              glm::normalize(base.dpdu()), [&](const glm::dvec3& w) {
-                                const glm::dvec3 l = base.texture_direction(w);
-                                const double t_exit = -h.point.z / l.z;
-                                const double t0 = 1e-4 / std::max(1.0, glm::length(l));
-                                if (!(t_exit > t0)) return false;  // at the top: open
-                                ++ao_traced;
-                                return truth.occluded(h.point, l, t0, t_exit);
-                              });
+            auto trace = [&] {
+              return reference_ao(ao_sampling(scene), ao_seed(i), base.normal(),
+                                  glm::normalize(base.dpdu()), [&](const glm::dvec3& w) {
+                                    const glm::dvec3 l = base.texture_direction(w);
+                                    const double t_exit = -h.point.z / l.z;
+                                    const double t0 = 1e-4 / std::max(1.0, glm::length(l));
+                                    if (!(t_exit > t0)) return false;  // at the top: open
+                                    ++ao_traced;
+                                    return truth.occluded(h.point, l, t0, t_exit);
+                                  });
+            };
+            ao = ao_cache ? ao_cache->estimate(i, h.point, base.normal(), trace) : trace();
             ao_rays += uint64_t(ao.rays);
           }
           write_relief_pixel(
@@ -286,6 +291,7 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
     stats->primary_rays = truth.primary_rays() - primary0;
     stats->shadow_rays = truth.shadow_rays() - shadow0 - ao_traced.load();
     stats->ao_rays = ao_rays.load();
+    stats->ao_cached_px = ao_cache ? ao_cache->reused() - ao_reused0 : 0;
     stats->unresolved = unresolved.load();
   }
   return g;
@@ -297,13 +303,14 @@ namespace {
 template <typename WorldTruth>
 GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const SceneDesc& scene,
                            const Camera& camera, EffectSet effects, TruthStats* stats,
-                           const ObjectsTruth* objects) {
+                           const ObjectsTruth* objects, AoTruthCache* ao_cache) {
   const auto start = std::chrono::steady_clock::now();
   const uint64_t primary0 = truth.primary_rays(), shadow0 = truth.shadow_rays();
   const bool shadows = effects.has(Effect::SelfShadow);
   const bool ambient_occlusion = effects.has(Effect::AmbientOcclusion);
   // Hemisphere directions sampled, and those traced (the truth counts them as occlusion rays).
   std::atomic<uint64_t> ao_rays{0}, ao_traced{0};
+  const size_t ao_reused0 = ao_cache ? ao_cache->reused() : 0;
   const double far = camera.far_plane;
   const double vertical_world = truth.vertical_bound() * scene.depth;
   const double rounding_world = truth.rounding_bound() * std::max(scene.size, scene.depth);
@@ -348,12 +355,15 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
             // shell over a locally flat base: the relief occludes itself, while the base's own
             // shape (a handle over the body) is what no texture-space AO can know.
             const double below_top = scene.depth * map.surface_depth(h.uv.x, h.uv.y) + 1e-6;
-            ao = reference_ao(
-                ao_sampling(scene), ao_seed(i), h.normal, h.tangent, [&](const glm::dvec3& w) {
-                  const double rise = std::max(glm::dot(w, h.normal), 1e-6);
-                  ++ao_traced;
-                  return truth.occluded(h.position, w, 1e-4 * scene.depth, below_top / rise);
-                });
+            auto trace = [&] {
+              return reference_ao(
+                  ao_sampling(scene), ao_seed(i), h.normal, h.tangent, [&](const glm::dvec3& w) {
+                    const double rise = std::max(glm::dot(w, h.normal), 1e-6);
+                    ++ao_traced;
+                    return truth.occluded(h.position, w, 1e-4 * scene.depth, below_top / rise);
+                  });
+            };
+            ao = ao_cache ? ao_cache->estimate(i, h.position, h.normal, trace) : trace();
             ao_rays += uint64_t(ao.rays);
           }
           write_relief_pixel(g, i, scene, albedo, n, h.position, to_light, dir, h.uv, in_shadow, ao,
@@ -367,6 +377,7 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
     stats->primary_rays = truth.primary_rays() - primary0;
     stats->shadow_rays = truth.shadow_rays() - shadow0 - ao_traced.load();
     stats->ao_rays = ao_rays.load();
+    stats->ao_cached_px = ao_cache ? ao_cache->reused() - ao_reused0 : 0;
     stats->unresolved = 0;
   }
   return g;
@@ -376,14 +387,14 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
 
 GBuffer render_truth(const DisplacedTruth& truth, const ReliefMap& map, const SceneDesc& scene,
                      const Camera& camera, EffectSet effects, TruthStats* stats,
-                     const ObjectsTruth* objects) {
-  return render_world_truth(truth, map, scene, camera, effects, stats, objects);
+                     const ObjectsTruth* objects, AoTruthCache* ao_cache) {
+  return render_world_truth(truth, map, scene, camera, effects, stats, objects, ao_cache);
 }
 
 GBuffer render_truth(const PatternBaseTruth& truth, const ReliefMap& map, const SceneDesc& scene,
                      const Camera& camera, EffectSet effects, TruthStats* stats,
-                     const ObjectsTruth* objects) {
-  return render_world_truth(truth, map, scene, camera, effects, stats, objects);
+                     const ObjectsTruth* objects, AoTruthCache* ao_cache) {
+  return render_world_truth(truth, map, scene, camera, effects, stats, objects, ao_cache);
 }
 
 }  // namespace rl

@@ -9,6 +9,7 @@
 #include "core/gbuffer.h"
 #include "relief/relief_map.h"
 #include "scene/scene.h"
+#include "truth/reference_ao.h"
 #include "truth/truth_surface.h"
 
 namespace rl {
@@ -17,8 +18,9 @@ struct TruthStats {
   double trace_ms = 0;
   uint64_t primary_rays = 0;
   uint64_t shadow_rays = 0;
-  uint64_t ao_rays = 0;  // hemisphere rays of the reference ambient occlusion
-  long unresolved = 0;   // covered pixels whose ray found no surface (should be 0)
+  uint64_t ao_rays = 0;       // hemisphere rays of the reference ambient occlusion
+  uint64_t ao_cached_px = 0;  // pixels whose reference AO came from the AoTruthCache
+  long unresolved = 0;        // covered pixels whose ray found no surface (should be 0)
 };
 
 // harness/glsl/shading.glsl, in double precision; `ambient_visibility` scales the ambient term
@@ -38,23 +40,30 @@ double truth_hit_bound(double vertical, double rounding, const glm::dvec3& base_
                        const glm::dvec3& geometric_normal, const glm::dvec3& shading_normal,
                        const glm::dvec3& dir, const glm::dvec3& position);
 
+// The reference AO's sampling a scene asks for (its ambient_occlusion table).
+AoSampling ao_sampling(const SceneDesc& scene);
+
 class ObjectsTruth;
 class DisplacedTruth;
 class PatternBaseTruth;
+class AoTruthCache;
+
+// Each overload takes the scene's objects if any, and `ao_cache` to reuse an earlier run's
+// reference AO where the hit is the same (truth/ao_truth_cache.h); the caller saves it.
 
 // A relief on the planar base (texture-space truth), with the scene's objects if given.
 GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const SceneDesc& scene,
                      const Camera& camera, EffectSet effects, TruthStats* stats = nullptr,
-                     const ObjectsTruth* objects = nullptr);
+                     const ObjectsTruth* objects = nullptr, AoTruthCache* ao_cache = nullptr);
 
 // A relief on a curved base (world-space displaced truth), with the scene's objects if given.
 GBuffer render_truth(const DisplacedTruth& truth, const ReliefMap& map, const SceneDesc& scene,
                      const Camera& camera, EffectSet effects, TruthStats* stats = nullptr,
-                     const ObjectsTruth* objects = nullptr);
+                     const ObjectsTruth* objects = nullptr, AoTruthCache* ao_cache = nullptr);
 
 // A non-height-field pattern on a curved base (world-space pattern mesh), with objects.
 GBuffer render_truth(const PatternBaseTruth& truth, const ReliefMap& map, const SceneDesc& scene,
                      const Camera& camera, EffectSet effects, TruthStats* stats = nullptr,
-                     const ObjectsTruth* objects = nullptr);
+                     const ObjectsTruth* objects = nullptr, AoTruthCache* ao_cache = nullptr);
 
 }  // namespace rl
