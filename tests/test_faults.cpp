@@ -8,6 +8,7 @@
 #include <random>
 #include <thread>
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 #include <sys/resource.h>

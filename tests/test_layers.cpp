@@ -1,7 +1,8 @@
 // The harness's folders form layers, each including only those below it: core; gl, relief and
-// metrics on core; scene on relief; truth and technique on scene; sweep on all of those; claims
-// (verdicts checked against a sweep's rows) on sweep's config reading; the CLI on top. A cycle
-// (relief <-> scene once did) fails here, naming the file and include.
+// metrics on core; the image module (oiio) on relief's interface to it; scene on relief; truth
+// and technique on scene; sweep on all of those; claims (verdicts checked against a sweep's
+// rows) on sweep's config reading; the CLI on top. A cycle (relief <-> scene once did) fails
+// here, naming the file and include.
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -20,6 +21,7 @@ TEST(Layers, HarnessFoldersIncludeOnlyTheLayersBelowThem) {
       {"core", {"core"}},
       {"gl", {"core", "gl"}},
       {"relief", {"core", "relief"}},
+      {"oiio", {"relief"}},  // the image module: relief/image_backend.h through OpenImageIO
       {"metrics", {"core", "metrics"}},
       {"scene", {"core", "relief", "scene"}},
       {"truth", {"core", "relief", "scene", "truth"}},

@@ -6,10 +6,6 @@
 #include <filesystem>
 #include <memory>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-#include <OpenImageIO/imageio.h>
-
 #include "core/atomic_write.h"
 #include "core/error.h"
 
@@ -27,28 +23,25 @@ struct Image {
 
 Image read_image(const std::string& path) {
   if (!std::filesystem::exists(path)) throw ConfigError("relief image not found: " + path);
-  // Keep stored channels as they are: by default OIIO premultiplies PNG colour by alpha,
-  // which would scale the normals of a map whose alpha holds heights.
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  auto in = OIIO::ImageInput::open(path, &config);
-  if (!in) throw ConfigError("cannot read image " + path + ": " + one_line(OIIO::geterror()));
-  const OIIO::ImageSpec& spec = in->spec();
+  const ImageBackend& files = image_backend();
+  ImageHeader spec;
+  std::string error;
+  if (!files.read_header(path, spec, error))
+    throw ConfigError("cannot read image " + path + ": " + one_line(error));
   // Checked before anything is allocated: a header may claim any size.
   constexpr int kLargestSide = 16384;
-  if (spec.width > kLargestSide || spec.height > kLargestSide || spec.nchannels > 16)
+  if (spec.width > kLargestSide || spec.height > kLargestSide || spec.channels > 16)
     throw ConfigError(path + ": image is " + std::to_string(spec.width) + "x" +
-                      std::to_string(spec.height) + " with " + std::to_string(spec.nchannels) +
+                      std::to_string(spec.height) + " with " + std::to_string(spec.channels) +
                       " channels; relief images are at most " + std::to_string(kLargestSide) + "x" +
                       std::to_string(kLargestSide) + " with 16 channels");
   Image img;
   img.width = spec.width;
   img.height = spec.height;
-  img.channels = spec.nchannels;
-  img.eight_bit = spec.format == OIIO::TypeDesc::UINT8;
-  img.pixels.resize(static_cast<size_t>(img.width) * img.height * img.channels);
-  if (!in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
-    throw ConfigError("cannot decode image " + path + ": " + one_line(in->geterror()));
+  img.channels = spec.channels;
+  img.eight_bit = spec.eight_bit;
+  if (!files.read_pixels(path, spec, img.pixels, error))
+    throw ConfigError("cannot decode image " + path + ": " + one_line(error));
   if (img.width < 2 || img.height < 2) throw ConfigError("image too small: " + path);
   // A NaN or infinite texel (float formats such as EXR) would leave every truth ray through it
   // unresolved and the row published; refuse it, naming where it is.
@@ -66,16 +59,13 @@ Image read_image(const std::string& path) {
 // Bilinear resample of one image to (w, h), used only for colour maps of a different size.
 Image resized(const Image& img, int w, int h) {
   if (img.width == w && img.height == h) return img;
-  OIIO::ImageSpec in_spec(img.width, img.height, img.channels, OIIO::TypeDesc::FLOAT);
-  OIIO::ImageBuf in(in_spec, const_cast<float*>(img.pixels.data()));
-  OIIO::ImageBuf out(OIIO::ImageSpec(w, h, img.channels, OIIO::TypeDesc::FLOAT));
-  OIIO::ImageBufAlgo::resize(out, in);
   Image r = img;
   r.width = w;
   r.height = h;
   r.eight_bit = false;
   r.pixels.resize(static_cast<size_t>(w) * h * img.channels);
-  out.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, r.pixels.data());
+  image_backend().resize(img.pixels.data(), img.width, img.height, img.channels, r.pixels.data(), w,
+                         h);
   return r;
 }
 
@@ -153,32 +143,19 @@ void write_png(const std::string& path, int width, int height, int channels,
       dst[i] = static_cast<unsigned char>(v * 255.0f + 0.5f);
     }
   }
-  write_image_file(path, OIIO::ImageSpec(width, height, channels, OIIO::TypeDesc::UINT8),
-                   OIIO::TypeDesc::UINT8, bytes.data());
+  ImageWriteSpec spec;
+  spec.width = width;
+  spec.height = height;
+  spec.channels = channels;
+  write_image_file(path, spec, bytes.data());
 }
 
-void write_image_file(const std::string& path, const OIIO::ImageSpec& spec, OIIO::TypeDesc type,
-                      const void* pixels) {
+void write_image_file(const std::string& path, const ImageWriteSpec& spec, const void* pixels) {
   const std::filesystem::path final_path(path);
   if (final_path.has_parent_path()) std::filesystem::create_directories(final_path.parent_path());
   const std::string tmp = unique_temp_path(path);
   std::string failure;
-  {
-    auto out = OIIO::ImageOutput::create(tmp);
-    if (!out || !out->open(tmp, spec) || !out->write_image(type, pixels) || !out->close())
-      failure = out ? out->geterror() : OIIO::geterror();
-  }
-  if (failure.empty()) {
-    // Read it back: a full disk can leave an empty or cut file that the writer called good.
-    auto in = OIIO::ImageInput::open(tmp);
-    std::vector<unsigned char> back(spec.image_bytes());
-    if (!in || in->spec().width != spec.width || in->spec().height != spec.height ||
-        in->spec().nchannels != spec.nchannels ||
-        !in->read_image(0, 0, 0, spec.nchannels, spec.format, back.data()))
-      failure = "it does not read back whole (disk full?)" +
-                (in ? ": " + in->geterror() : ": " + OIIO::geterror());
-  }
-  if (!failure.empty()) {
+  if (!image_backend().write(tmp, spec, pixels, failure)) {
     std::error_code ignored;
     std::filesystem::remove(tmp, ignored);
     throw std::runtime_error("cannot write image " + path + ": " + failure);

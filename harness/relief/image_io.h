@@ -1,11 +1,12 @@
 #pragma once
-// Relief maps from image files (OpenImageIO), and PNG output for renders and heat maps.
+// Relief maps from image files (OpenImageIO, through relief/image_backend.h), and PNG output
+// for renders and heat maps.
 #include <string>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
 #include <glm/glm.hpp>
 
+#include "relief/image_backend.h"
 #include "relief/relief_map.h"
 
 namespace rl {
@@ -32,11 +33,10 @@ ReliefMap load_relief_images(const ReliefImageSource& src, double depth_per_texe
 void write_png(const std::string& path, int width, int height, int channels,
                const std::vector<float>& pixels);
 
-// Writes `pixels` (of `type`, laid out as `spec` says) to `path` in the format its extension
+// Writes `pixels` (float or 8-bit, laid out as `spec` says) to `path` in the format its extension
 // names: to a unique temporary file, read back whole (a write the disk lost, even one the
 // library did not report, fails here), then renamed into place. Throws std::runtime_error
 // naming `path` on any failure and leaves nothing under that name.
-void write_image_file(const std::string& path, const OIIO::ImageSpec& spec, OIIO::TypeDesc type,
-                      const void* pixels);
+void write_image_file(const std::string& path, const ImageWriteSpec& spec, const void* pixels);
 
 }  // namespace rl

@@ -3,10 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-
 #include "core/hash.h"
+#include "relief/image_backend.h"
 #include "relief/meta_relief.h"
 
 namespace rl {
@@ -148,13 +146,8 @@ void quantize_8bit(ReliefMap& map) {
 ReliefMap resample(const ReliefMap& map, int width, int height) {
   if (width == map.width && height == map.height) return map;
   auto resize = [&](const std::vector<glm::vec4>& src) {
-    OIIO::ImageSpec in_spec(map.width, map.height, 4, OIIO::TypeDesc::FLOAT);
-    OIIO::ImageBuf in(in_spec, const_cast<glm::vec4*>(src.data()));
-    OIIO::ImageSpec out_spec(width, height, 4, OIIO::TypeDesc::FLOAT);
-    OIIO::ImageBuf out(out_spec);
-    OIIO::ImageBufAlgo::resize(out, in);
     std::vector<glm::vec4> dst(static_cast<size_t>(width) * height);
-    out.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, dst.data());
+    image_backend().resize(&src[0].x, map.width, map.height, 4, &dst[0].x, width, height);
     return dst;
   };
   ReliefMap out;

@@ -4,7 +4,6 @@
 #include <stdexcept>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "relief/image_io.h"
@@ -13,9 +12,18 @@ namespace rl {
 
 namespace {
 
-void set_matrix(OIIO::ImageSpec& spec, const char* name, const glm::dmat4& m) {
+ImageAttribute matrix(const char* name, const glm::dmat4& m) {
   const glm::mat4 f(m);
-  spec.attribute(name, OIIO::TypeMatrix, glm::value_ptr(f));
+  const float* p = glm::value_ptr(f);
+  return {name, ImageAttribute::Kind::Matrix44, std::vector<float>(p, p + 16), {}, {}};
+}
+
+ImageAttribute number(const char* name, double v) {
+  return {name, ImageAttribute::Kind::Float, {float(v)}, {}, {}};
+}
+
+ImageAttribute text(const char* name, const std::string& v) {
+  return {name, ImageAttribute::Kind::String, {}, {}, v};
 }
 
 }  // namespace
@@ -64,28 +72,39 @@ void write_gbuffer_exr(const std::string& path, const GBuffer& g, const SceneDes
       }
     }
 
-  OIIO::ImageSpec spec(g.width, g.height, channels, OIIO::TypeDesc::FLOAT);
-  spec.channelnames = names;
+  ImageWriteSpec spec;
+  spec.width = g.width;
+  spec.height = g.height;
+  spec.channels = channels;
+  spec.float_pixels = true;
+  spec.channel_names = names;
   spec.alpha_channel = 3;
   spec.z_channel = 12;
-  spec.attribute("compression", "zip");
-  set_matrix(spec, "worldtocamera", view);
-  set_matrix(spec, "worldtoscreen", projection * view);
-  set_matrix(spec, "relieflab:view", view);
-  set_matrix(spec, "relieflab:projection", projection);
-  const int viewport[4] = {0, 0, g.width - 1, g.height - 1};
-  spec.attribute("relieflab:viewport", OIIO::TypeBox2i, viewport);
-  const float eye[3] = {float(camera.eye.x), float(camera.eye.y), float(camera.eye.z)};
-  spec.attribute("relieflab:eye", OIIO::TypeVector, eye);
-  spec.attribute("relieflab:fov_y_deg", float(camera.fov_y_deg));
-  spec.attribute("relieflab:near", float(camera.near_plane));
-  spec.attribute("relieflab:far", float(camera.far_plane));
-  spec.attribute("relieflab:scene", labels.scene);
-  if (!labels.technique.empty()) spec.attribute("relieflab:technique", labels.technique);
-  if (!labels.params.empty()) spec.attribute("relieflab:params", labels.params);
-  spec.attribute("relieflab:key", labels.key);
+  auto& a = spec.attributes;
+  a.push_back(text("compression", "zip"));
+  a.push_back(matrix("worldtocamera", view));
+  a.push_back(matrix("worldtoscreen", projection * view));
+  a.push_back(matrix("relieflab:view", view));
+  a.push_back(matrix("relieflab:projection", projection));
+  a.push_back({"relieflab:viewport",
+               ImageAttribute::Kind::Box2i,
+               {},
+               {0, 0, g.width - 1, g.height - 1},
+               {}});
+  a.push_back({"relieflab:eye",
+               ImageAttribute::Kind::Vector3,
+               {float(camera.eye.x), float(camera.eye.y), float(camera.eye.z)},
+               {},
+               {}});
+  a.push_back(number("relieflab:fov_y_deg", camera.fov_y_deg));
+  a.push_back(number("relieflab:near", camera.near_plane));
+  a.push_back(number("relieflab:far", camera.far_plane));
+  a.push_back(text("relieflab:scene", labels.scene));
+  if (!labels.technique.empty()) a.push_back(text("relieflab:technique", labels.technique));
+  if (!labels.params.empty()) a.push_back(text("relieflab:params", labels.params));
+  a.push_back(text("relieflab:key", labels.key));
 
-  write_image_file(path, spec, OIIO::TypeDesc::FLOAT, px.data());
+  write_image_file(path, spec, px.data());
 }
 
 }  // namespace rl

@@ -3,10 +3,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include <OpenImageIO/imageio.h>
-
 #include "core/error.h"
 #include "core/hash.h"
+#include "relief/image_backend.h"
 #include "relief/mesh_bake.h"
 #include "scene/relief_asset.h"
 
@@ -33,9 +32,11 @@ std::string file_id(const std::string& path) {
 void read_relief_images(ReliefSourceDesc& r, nlohmann::json& canon, const std::string& site) {
   if (r.normal_path.empty() && r.depth_path.empty()) return;
   const std::string& sized = r.depth_path.empty() ? r.normal_path : r.depth_path;
-  auto in = OIIO::ImageInput::open(sized);
-  if (!in) throw ConfigError(site + ": cannot read image " + sized + ": " + OIIO::geterror());
-  r.native = {in->spec().width, in->spec().height};
+  ImageHeader header;
+  std::string error;
+  if (!image_backend().read_header(sized, header, error))
+    throw ConfigError(site + ": cannot read image " + sized + ": " + error);
+  r.native = {header.width, header.height};
   for (const std::string* p : {&r.normal_path, &r.depth_path, &r.color_path})
     if (!p->empty()) canon["files"].push_back({file_name(*p), content_hash(*p)});
 }

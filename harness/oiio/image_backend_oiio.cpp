@@ -1,0 +1,113 @@
+// The image module: relief/image_backend.h through OpenImageIO. Built as librelieflab_oiio.so
+// and loaded on first use, so that only processes that read or write images load
+// OpenImageIO's dependencies.
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+#include "relief/image_backend.h"
+
+namespace rl {
+namespace {
+
+// The text of a failure, whether it is the file's or the library's.
+template <typename File>
+std::string failure(const File& file) {
+  return file ? file->geterror() : OIIO::geterror();
+}
+
+bool read_header(const std::string& path, ImageHeader& header, std::string& error) {
+  // Keep stored channels as they are: by default OIIO premultiplies PNG colour by alpha,
+  // which would scale the normals of a map whose alpha holds heights.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
+  if (!in) {
+    error = OIIO::geterror();
+    return false;
+  }
+  const OIIO::ImageSpec& spec = in->spec();
+  header = {spec.width, spec.height, spec.nchannels, spec.format == OIIO::TypeDesc::UINT8};
+  return true;
+}
+
+bool read_pixels(const std::string& path, const ImageHeader& header, std::vector<float>& pixels,
+                 std::string& error) {
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
+  pixels.resize(size_t(header.width) * header.height * header.channels);
+  if (!in || !in->read_image(0, 0, 0, header.channels, OIIO::TypeDesc::FLOAT, pixels.data())) {
+    error = failure(in);
+    return false;
+  }
+  return true;
+}
+
+OIIO::ImageSpec oiio_spec(const ImageWriteSpec& s) {
+  OIIO::ImageSpec spec(s.width, s.height, s.channels,
+                       s.float_pixels ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  if (!s.channel_names.empty()) spec.channelnames = s.channel_names;
+  spec.alpha_channel = s.alpha_channel;
+  spec.z_channel = s.z_channel;
+  for (const ImageAttribute& a : s.attributes) {
+    switch (a.kind) {
+      case ImageAttribute::Kind::Matrix44:
+        spec.attribute(a.name, OIIO::TypeMatrix, a.floats.data());
+        break;
+      case ImageAttribute::Kind::Box2i:
+        spec.attribute(a.name, OIIO::TypeBox2i, a.ints.data());
+        break;
+      case ImageAttribute::Kind::Vector3:
+        spec.attribute(a.name, OIIO::TypeVector, a.floats.data());
+        break;
+      case ImageAttribute::Kind::Float:
+        spec.attribute(a.name, a.floats.at(0));
+        break;
+      case ImageAttribute::Kind::String:
+        spec.attribute(a.name, a.text);
+        break;
+    }
+  }
+  return spec;
+}
+
+bool write(const std::string& path, const ImageWriteSpec& s, const void* pixels,
+           std::string& error) {
+  const OIIO::ImageSpec spec = oiio_spec(s);
+  {
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out || !out->open(path, spec) || !out->write_image(spec.format, pixels) || !out->close()) {
+      error = failure(out);
+      return false;
+    }
+  }
+  // Read it back: a full disk can leave an empty or cut file that the writer called good.
+  auto in = OIIO::ImageInput::open(path);
+  std::vector<unsigned char> back(spec.image_bytes());
+  if (!in || in->spec().width != spec.width || in->spec().height != spec.height ||
+      in->spec().nchannels != spec.nchannels ||
+      !in->read_image(0, 0, 0, spec.nchannels, spec.format, back.data())) {
+    error = "it does not read back whole (disk full?): " + failure(in);
+    return false;
+  }
+  return true;
+}
+
+void resize(const float* pixels, int w, int h, int channels, float* out, int to_w, int to_h) {
+  OIIO::ImageBuf in(OIIO::ImageSpec(w, h, channels, OIIO::TypeDesc::FLOAT),
+                    const_cast<float*>(pixels));
+  OIIO::ImageBuf resized(OIIO::ImageSpec(to_w, to_h, channels, OIIO::TypeDesc::FLOAT));
+  OIIO::ImageBufAlgo::resize(resized, in);
+  resized.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, out);
+}
+
+const ImageBackend kBackend{read_header, read_pixels, write, resize};
+
+}  // namespace
+}  // namespace rl
+
+extern "C" __attribute__((visibility("default"))) const rl::ImageBackend*
+relieflab_image_backend() {
+  return &rl::kBackend;
+}
