@@ -31,6 +31,7 @@ TEST(FragmentCost, EveryLaneEqualCostsTheMean) {
   EXPECT_EQ(cost.frag_fetches_max, 7);
   EXPECT_EQ(cost.quad_fetches_mean, 7);
   EXPECT_EQ(cost.warp_fetches_mean, 7);
+  EXPECT_EQ(cost.warp_fetches_per_px, 7);
 }
 
 TEST(FragmentCost, OneDeepPitCostsItsWholeWarp) {
@@ -61,6 +62,24 @@ TEST(FragmentCost, PassesPoolPerPixelAndEmptyPixelsCostNothing) {
   // Pixel (0, 0)'s tile: 2 fragments at its slowest 8; the corner's tile: 1 at 3.
   EXPECT_DOUBLE_EQ(cost.warp_fetches_mean, (2 * 8 + 1 * 3) / 3.0);
   EXPECT_DOUBLE_EQ(cost.quad_fetches_mean, (2 * 8 + 1 * 3) / 3.0);
+  // Per pixel drawn: the same total over the 2 pixels shaded (both passes charged to one).
+  EXPECT_DOUBLE_EQ(cost.warp_fetches_per_px, (2 * 8 + 1 * 3) / 2.0);
+}
+
+TEST(FragmentCost, EveryPassOfAMultiPassTechniqueIsPaidPerPixel) {
+  // Depth slicing draws one quad per slice: per fragment it costs what one slice does, per
+  // pixel it pays every slice (Listing 5.2; each slice's fragment reads the map once or twice).
+  SceneDesc scene = test::procedural_scene("bricks", 64, 0.08, false);
+  for (int slices : {16, 32}) {
+    const test::Measured m =
+        test::measure(scene, "depth_slicing", {{"slices", slices}}, View{90, 0}, 32);
+    const FragmentCost cost = fragment_cost(m.counts);
+    SCOPED_TRACE(slices);
+    ASSERT_GT(cost.fragments, 0);
+    EXPECT_LE(cost.warp_fetches_mean, 2.0);  // one slice's fragment, slowest lane
+    EXPECT_GE(cost.warp_fetches_per_px, slices * 1.0);
+    EXPECT_GE(cost.warp_fetches_per_px, m.metrics.fetches.mean);
+  }
 }
 
 TEST(FragmentCost, IterationsAreCountedPerShadedFragment) {
@@ -83,6 +102,7 @@ TEST(FragmentCost, NothingShadedIsNotMeasured) {
   EXPECT_EQ(cost.fragments, 0);
   EXPECT_TRUE(std::isnan(cost.frag_fetches_mean));
   EXPECT_TRUE(std::isnan(cost.warp_fetches_mean));
+  EXPECT_TRUE(std::isnan(cost.warp_fetches_per_px));
   EXPECT_TRUE(std::isnan(cost.iterations_mean));
   EXPECT_TRUE(std::isnan(cost.iterations_max));
 }

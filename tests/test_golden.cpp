@@ -88,6 +88,7 @@ const std::vector<Pinned> kPinned = {
     // What a GPU would pay (metrics/fragment_cost.h): every shaded fragment, and a warp's.
     {"frag_fetches_mean", true, 0.01},
     {"warp_fetches_mean", true, 0.01},
+    {"warp_fetches_per_px", true, 0.01},
     {"iterations_mean", true, 0.01}};
 
 TEST(Golden, TechniquesAreNoWorseThanTheirGoldenFigures) {

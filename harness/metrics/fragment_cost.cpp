@@ -5,8 +5,8 @@
 
 namespace rl {
 
-double lockstep_fetches_mean(const FragmentCounts& c, int tile_w, int tile_h) {
-  double cost = 0, fragments = 0;
+LockstepCost lockstep_cost(const FragmentCounts& c, int tile_w, int tile_h) {
+  LockstepCost total;
   for (int y0 = 0; y0 < c.height; y0 += tile_h)
     for (int x0 = 0; x0 < c.width; x0 += tile_w) {
       double tile_fragments = 0, slowest = 0;
@@ -14,12 +14,20 @@ double lockstep_fetches_mean(const FragmentCounts& c, int tile_w, int tile_h) {
         for (int x = x0; x < std::min(x0 + tile_w, c.width); ++x) {
           const size_t i = size_t(y) * c.width + x;
           tile_fragments += c.fragments[i];
-          if (c.fragments[i]) slowest = std::max(slowest, double(c.fetch_max[i]));
+          if (c.fragments[i]) {
+            slowest = std::max(slowest, double(c.fetch_max[i]));
+            ++total.pixels;
+          }
         }
-      cost += tile_fragments * slowest;
-      fragments += tile_fragments;
+      total.fetches += tile_fragments * slowest;
+      total.fragments += tile_fragments;
     }
-  return fragments > 0 ? cost / fragments : std::numeric_limits<double>::quiet_NaN();
+  return total;
+}
+
+double lockstep_fetches_mean(const FragmentCounts& c, int tile_w, int tile_h) {
+  const LockstepCost t = lockstep_cost(c, tile_w, tile_h);
+  return t.fragments > 0 ? t.fetches / t.fragments : std::numeric_limits<double>::quiet_NaN();
 }
 
 FragmentCost fragment_cost(const FragmentCounts& c) {
@@ -34,7 +42,11 @@ FragmentCost fragment_cost(const FragmentCounts& c) {
     out.iterations_max = std::max(out.iterations_max, double(c.iteration_max[i]));
   }
   out.quad_fetches_mean = lockstep_fetches_mean(c, 2, 2);
-  out.warp_fetches_mean = lockstep_fetches_mean(c, kWarpTileWidth, kWarpTileHeight);
+  const LockstepCost warp = lockstep_cost(c, kWarpTileWidth, kWarpTileHeight);
+  out.warp_fetches_mean =
+      warp.fragments > 0 ? warp.fetches / warp.fragments : std::numeric_limits<double>::quiet_NaN();
+  out.warp_fetches_per_px =
+      warp.pixels > 0 ? warp.fetches / warp.pixels : std::numeric_limits<double>::quiet_NaN();
   if (out.fragments == 0) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     out.frag_fetches_mean = out.frag_fetches_max = out.iterations_mean = out.iterations_max = nan;
@@ -51,6 +63,7 @@ std::vector<std::pair<std::string, double>> FragmentCost::named() const {
           {"frag_fetches_max", frag_fetches_max},
           {"quad_fetches_mean", quad_fetches_mean},
           {"warp_fetches_mean", warp_fetches_mean},
+          {"warp_fetches_per_px", warp_fetches_per_px},
           {"iterations_mean", iterations_mean},
           {"iterations_max", iterations_max}};
 }

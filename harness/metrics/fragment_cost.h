@@ -15,6 +15,11 @@
 //   fragments. quad_fetches_mean: the same for 2 x 2 quads, the smallest group any GPU shades.
 //   The passes of a multi-pass technique are pooled per tile: their fragments share one largest
 //   count, which bounds the sum of each pass's own groups from above.
+// - warp_fetches_per_px: the same tiles' total over the pixels at least one fragment was shaded
+//   at: the frame's lockstep cost per pixel it drew. Per fragment, a technique of 64 passes of
+//   two fetches each costs 2 like a 2-fetch single pass; per pixel it costs 128. It equals
+//   warp_fetches_mean where every pixel is shaded once, and is the default cost of the Pareto
+//   fronts (sweep/pareto.h).
 // - iterations_mean / iterations_max: search-loop iterations per shaded fragment
 //   (harness/glsl/search_cost.glsl), over the same fragments. They part from the fetch counts
 //   where a step reads several textures (multilayer groups, cube faces: fewer iterations) or a
@@ -30,7 +35,7 @@ namespace rl {
 struct FragmentCost {
   double fragments = 0;
   double frag_fetches_mean = 0, frag_fetches_max = 0;
-  double quad_fetches_mean = 0, warp_fetches_mean = 0;
+  double quad_fetches_mean = 0, warp_fetches_mean = 0, warp_fetches_per_px = 0;
   double iterations_mean = 0, iterations_max = 0;
   // (name, value) in rows.csv's column order; means NaN when no fragment was shaded.
   std::vector<std::pair<std::string, double>> named() const;
@@ -38,8 +43,13 @@ struct FragmentCost {
 
 inline constexpr int kWarpTileWidth = 8, kWarpTileHeight = 4;
 
-// The lockstep cost of `counts` in tiles of tile_w x tile_h pixels: the mean over fragments of
-// their tile's largest fetch count (NaN when none was shaded).
+// The lockstep cost of `counts` in tiles of tile_w x tile_h pixels: each tile's fragments times
+// its largest fetch count, summed over the tiles, with the fragments and the pixels shaded.
+struct LockstepCost {
+  double fetches = 0, fragments = 0, pixels = 0;
+};
+LockstepCost lockstep_cost(const FragmentCounts& counts, int tile_w, int tile_h);
+// Its mean over fragments (NaN when none was shaded).
 double lockstep_fetches_mean(const FragmentCounts& counts, int tile_w, int tile_h);
 FragmentCost fragment_cost(const FragmentCounts& counts);
 

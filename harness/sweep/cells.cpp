@@ -16,8 +16,9 @@ namespace {
 // is redefined, so stale rows are not mistaken for current ones.
 // 2: the exact heightfield truth and its bounds; 3: the bound along the surface's own normal;
 // 4: the cost of every shaded fragment (metrics/fragment_cost.h), cone maps safe under
-// filtering, depth slicing without slack on float maps.
-constexpr int kMeasurementVersion = 5;
+// filtering, depth slicing without slack on float maps; 6: warp_fetches_per_px, the default
+// Pareto cost (a stored row without it would drop out of the fronts).
+constexpr int kMeasurementVersion = 6;
 
 }  // namespace
 

@@ -34,6 +34,7 @@ std::map<std::string, MetricTolerance> default_tolerances() {
           {"fetches_mean", relative},
           {"frag_fetches_mean", relative},
           {"warp_fetches_mean", relative},
+          {"warp_fetches_per_px", relative},
           {"iterations_mean", relative}};
 }
 

@@ -238,8 +238,8 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
       for (const std::string& p : varied)
         if (std::find(t.rows.begin(), t.rows.end(), p) == t.rows.end()) t.rows.push_back(p);
     }
-    t.values = {"wrong_pct",    "pos_err_rmse",      "artifact_pct",      "psnr_db",
-                "fetches_mean", "frag_fetches_mean", "warp_fetches_mean", "frame_ms"};
+    t.values = {"wrong_pct",    "pos_err_rmse",      "artifact_pct",        "psnr_db",
+                "fetches_mean", "frag_fetches_mean", "warp_fetches_per_px", "frame_ms"};
     c.tables.push_back(t);
   }
 

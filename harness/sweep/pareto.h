@@ -10,9 +10,10 @@
 namespace rl {
 
 struct PlotSpec {
-  // Cost (lower is better): by default the lockstep cost of every shaded fragment
-  // (metrics/fragment_cost.h), what a GPU would pay; any row column may be chosen.
-  std::string x = "warp_fetches_mean";
+  // Cost (lower is better): by default the lockstep cost of every shaded fragment per pixel
+  // drawn (metrics/fragment_cost.h), what a GPU would pay, every pass of a multi-pass technique
+  // included; any row column may be chosen.
+  std::string x = "warp_fetches_per_px";
   std::string y = "wrong_pct";  // error (lower is better): the headline error
   std::vector<std::string> group = {"scene", "elevation_deg"};
   bool log_y = true;

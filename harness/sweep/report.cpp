@@ -109,6 +109,7 @@ nlohmann::json report_data(const SweepConfig& config, const std::vector<Row>& ro
                            "fetches_mean",
                            "frag_fetches_mean",
                            "warp_fetches_mean",
+                           "warp_fetches_per_px",
                            "iterations_mean",
                            "frame_ms",
                            "memory_bytes",
