@@ -26,8 +26,10 @@
 namespace rl {
 
 struct AoSampling {
-  int max_samples = 144;        // rounded to a square m * m (at least 1)
-  double stderr_target = 0.02;  // stop refining once the standard error is at most this; 0: never
+  int max_samples = 144;  // rounded to a square m * m (at least 1)
+  // Stop refining once the standard error is at most this; 0: never. The stop is decided on
+  // the estimate's own rays, so it biases (mostly open pixels look open on a coarse grid).
+  double stderr_target = 0;
 };
 
 struct AoEstimate {
