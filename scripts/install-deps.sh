@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   cmake g++ make pkg-config
+  python3                             # figure scripts read rows.csv (scripts/limberger-fig14-figures.sh)
   libembree-dev                       # truth: Embree 3 ray tracing
   libopenimageio-dev openimageio-tools # image files (the tools package is needed by OIIO's CMake config)
   libopencv-core-dev libopencv-imgproc-dev # PSNR, SSIM, heat-map colour maps
