@@ -99,7 +99,9 @@ TEST(AoMap, FilterTouchesOnlyOccludedTexels) {
   o.filter = true;
   const AoMap filtered = compute_ao_map(m, o);
   for (size_t i = 0; i < raw.visibility.size(); ++i)
-    if (raw.visibility[i] == 1.0f) ASSERT_EQ(filtered.visibility[i], 1.0f) << i;
+    if (raw.visibility[i] == 1.0f) {
+      ASSERT_EQ(filtered.visibility[i], 1.0f) << i;
+    }
 }
 
 TEST(AoMap, CachedMapEqualsComputedOne) {
@@ -361,10 +363,6 @@ TEST(ReferenceAo, RefinesUntilTheTargetAndKeepsTheCoarserRays) {
   EXPECT_NEAR(odd.std_error, std::sqrt(odd.visibility * (1 - odd.visibility) / 81), 1e-15);
 }
 
-const ShaderTechnique& as_shader(const Technique& t) {
-  return dynamic_cast<const ShaderTechnique&>(t);
-}
-
 TEST(AmbientOcclusionEffect, NoAoCodeWithoutTheEffect) {
   // What the driver compiled: the AO map's sampler is an active uniform of the linked program
   // with the effect and absent without it, for every technique that supports AO.
@@ -395,7 +393,9 @@ TEST(AmbientOcclusionEffect, NoAoRaysOrShadingWithoutTheEffect) {
   EXPECT_EQ(plain.truth_stats.ao_rays, 0u);
   EXPECT_FALSE(plain.metrics.has_ao);
   for (size_t i = 0; i < plain.technique.size(); ++i)
-    if (plain.technique.covered(i)) ASSERT_EQ(plain.technique.aux[i].x, 1.0f);
+    if (plain.technique.covered(i)) {
+      ASSERT_EQ(plain.technique.aux[i].x, 1.0f);
+    }
   for (const auto& [name, value] : plain.metrics.named())
     EXPECT_NE(name.rfind("ao_", 0), 0u) << name;
 

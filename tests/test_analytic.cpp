@@ -62,7 +62,9 @@ TEST(Analytic, ConstantDepthIsHitOnItsPlane) {
   test::Measured relief =
       measure(scene, "relief", {{"linear_steps", 16}, {"binary_steps", 8}}, View{50, 10});
   for (size_t i = 0; i < relief.truth.size(); ++i)
-    if (relief.truth.covered(i)) ASSERT_NEAR(relief.truth.position[i].z, -0.04, 1e-6);
+    if (relief.truth.covered(i)) {
+      ASSERT_NEAR(relief.truth.position[i].z, -0.04, 1e-6);
+    }
   // Relief mapping ends within its binary interval: (1 / 16) / 2^8 depth units (+ float).
   EXPECT_LE(relief.metrics.pos_err.max, 1.0 / 16 / 256 + 1e-4);
   // Kaneko's parallax (no offset limiting) reaches the view ray at the fragment's depth,

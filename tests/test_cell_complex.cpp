@@ -140,8 +140,12 @@ TEST(CellComplexBuild, ClassifiesASphereLikeItsDistanceField) {
         for (int i = 0; i < n; ++i) {
           const double d = glm::length((glm::dvec3(i, j, k) + 0.5) / double(n) - centre);
           const CellState s = cc.cell(i, j, k).state;
-          if (d < r - half_diag - facet) EXPECT_EQ(s, CellState::Black) << i << j << k;
-          if (d > r + half_diag) EXPECT_EQ(s, CellState::White) << i << j << k;
+          if (d < r - half_diag - facet) {
+            EXPECT_EQ(s, CellState::Black) << i << j << k;
+          }
+          if (d > r + half_diag) {
+            EXPECT_EQ(s, CellState::White) << i << j << k;
+          }
           grey += s == CellState::Grey;
         }
     EXPECT_EQ(cc.stats().grey_cells, grey);

@@ -159,7 +159,9 @@ TEST(Silhouette, HardCasesStayFiniteAndBounded) {
       ASSERT_TRUE(std::isfinite(hits[i].t) && std::isfinite(hits[i].depth) &&
                   std::isfinite(hits[i].uv.x) && std::isfinite(hits[i].uv.y));
       ASSERT_LE(hits[i].fetches, 32 + 6);
-      if (hits[i].hit) ASSERT_GE(hits[i].t, 0.0f);
+      if (hits[i].hit) {
+        ASSERT_GE(hits[i].t, 0.0f);
+      }
     }
   }
   // Both silhouette cases of Figure 5.25: a convex quadric that the ray leaves before depth 1

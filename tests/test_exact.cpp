@@ -169,7 +169,9 @@ TEST(Exact, HardCasesStayFiniteAndBounded) {
                   int((std::abs(d.x) + std::abs(d.y)) * 32 * (1 - rays[i].origin.z)) + 3);
         ReferenceHit ref = intersect_heightfield(map, glm::dvec3(rays[i].origin), glm::dvec3(d),
                                                  1.0 - rays[i].origin.z);
-        if (std::string(technique) == "relief_exact_bilinear") EXPECT_NEAR(hits[i].t, ref.t, 1e-4);
+        if (std::string(technique) == "relief_exact_bilinear") {
+          EXPECT_NEAR(hits[i].t, ref.t, 1e-4);
+        }
       }
     }
   }

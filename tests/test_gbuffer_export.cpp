@@ -123,7 +123,9 @@ linear_steps = [8]
       // The exact truth's bound: float storage of the position, under a thousandth of a texel.
       EXPECT_GT(truth.at(x, r, "truth_bound"), 0.0f);
       EXPECT_LT(truth.at(x, r, "truth_bound"), 1e-3f / 32);  // texels of 1/32
-      if (tech.at(x, r, "A") > 0.5f) EXPECT_EQ(tech.at(x, r, "truth_bound"), 0.0f);
+      if (tech.at(x, r, "A") > 0.5f) {
+        EXPECT_EQ(tech.at(x, r, "truth_bound"), 0.0f);
+      }
     }
   EXPECT_GT(truth_covered, 500);
   EXPECT_EQ(truth_covered, long((*row)["covered_px"]));

@@ -142,7 +142,9 @@ TEST(HardCases, ZeroLengthQuantisedNormalsStayFinite) {
   GBuffer g;
   target.read_back(g);
   for (size_t i = 0; i < g.size(); ++i)
-    if (g.covered(i)) ASSERT_TRUE(std::isfinite(g.normal[i].x) && std::isfinite(g.color[i].r));
+    if (g.covered(i)) {
+      ASSERT_TRUE(std::isfinite(g.normal[i].x) && std::isfinite(g.color[i].r));
+    }
 }
 
 }  // namespace

@@ -358,7 +358,9 @@ TEST(DepthSlicing, SlicesMetEdgeOnStayFinite) {
       const double cpu = cpu_first_inside(hf, rays[i].origin, rays[i].direction);
       cpu_found += cpu >= 0;
       // A kept slice point is inside the object, so never before its first inside point.
-      if (hits[i].hit && cpu >= 0) EXPECT_GE(hits[i].t, cpu - 1.5 / 32);
+      if (hits[i].hit && cpu >= 0) {
+        EXPECT_GE(hits[i].t, cpu - 1.5 / 32);
+      }
     }
     // Slices miss only rays that graze the object between two slices.
     EXPECT_GT(found, 0.95 * cpu_found);

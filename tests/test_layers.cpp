@@ -3,6 +3,7 @@
 // and technique on scene; sweep on all of those; claims (verdicts checked against a sweep's
 // rows) on sweep's config reading; the CLI on top. A cycle (relief <-> scene once did) fails
 // here, naming the file and include.
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -54,6 +55,20 @@ TEST(Layers, HarnessFoldersIncludeOnlyTheLayersBelowThem) {
   }
   EXPECT_GT(files, 50);
   EXPECT_GT(includes, 100);
+}
+
+// Image files go through a module loaded on first use (relief/image_backend.h): the CLI itself
+// must not need OpenImageIO, whose ~260 libraries cost every process 0.2 s at start.
+TEST(Layers, TheCliDoesNotLinkOpenImageIO) {
+  const std::string cmd = std::string("ldd ") + RELIEFLAB_CLI + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string out;
+  char buf[4096];
+  while (fgets(buf, sizeof buf, pipe)) out += buf;
+  ASSERT_EQ(pclose(pipe), 0) << out;
+  EXPECT_NE(out.find("libc.so"), std::string::npos) << out;  // ldd did list the libraries
+  EXPECT_EQ(out.find("OpenImageIO"), std::string::npos) << out;
 }
 
 }  // namespace

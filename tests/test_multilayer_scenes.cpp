@@ -136,7 +136,8 @@ TEST(Multilayer, TheWeaveOnASphereShowsItsFarSideThroughTheGaps) {
 TEST(PatternBaseTruth, TheWeaveMappedOntoASphereStaysInItsShell) {
   // Every pattern point mapped onto the sphere (radius 0.5) lies between the base and one
   // relief depth below it; rays through the centre of the view hit it.
-  const BaseMesh sphere = make_base_mesh(BaseDesc{.kind = "sphere", .segments = 24}, 1.0, 2.0);
+  const BaseMesh sphere =
+      make_base_mesh(BaseDesc{.kind = "sphere", .path = "", .segments = 24}, 1.0, 2.0);
   const PatternBaseTruth truth(make_pattern_mesh("weave", {}, "test"), sphere, 0.06);
   ASSERT_GT(truth.triangles(), 10000u);
   const DisplacedHit h = truth.intersect({0, 0, 3}, {0, 0, -1}, 10.0);

@@ -173,8 +173,9 @@ depth = 0.05
     by_azimuth[c.technique + " " + std::to_string(c.texture_res) + " " +
                std::to_string(c.view.elevation_deg)][c.view.azimuth_deg] = wrong;
     if (c.technique == "relief_exact" || c.technique == "relief_exact_bilinear" ||
-        c.technique == "relief_robust")
+        c.technique == "relief_robust") {
       EXPECT_LT(wrong, 1.0);
+    }
   }
   EXPECT_GT(rows, 0);
   // Every technique but odd treats u and v alike. odd's stored directions are a grid over the
@@ -183,7 +184,9 @@ depth = 0.05
   // pixels are X x X per tile, three times longer along u on this 3:1 strip (measured: 12.4%
   // against 8.6% of the pixels wrong at 96x32). So it is held to the same rows, not the symmetry.
   for (const auto& [cell, wrong] : by_azimuth)
-    if (cell.rfind("odd ", 0) != 0) EXPECT_NEAR(wrong.at(0), wrong.at(90), 0.5) << cell;
+    if (cell.rfind("odd ", 0) != 0) {
+      EXPECT_NEAR(wrong.at(0), wrong.at(90), 0.5) << cell;
+    }
 }
 
 }  // namespace

@@ -27,6 +27,7 @@ class PairedSamples final : public Technique {
     return {.name = "test_paired_samples",
             .title = "Test plugin: paired sample counts",
             .citation = "tests/test_registry.cpp",
+            .effects = {},
             .params = {{.name = "min_samples",
                         .kind = ParamKind::Int,
                         .default_value = 8,

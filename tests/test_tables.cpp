@@ -133,10 +133,19 @@ TEST(Latex, BooktabsWithTheBestValueOfEachColumnInBold) {
 }
 
 TEST(Pareto, FrontKeepsOnlyUndominatedPoints) {
-  std::vector<ParetoPoint> p = {{2, 0.8, "normal", "normal"}, {3, 0.9, "parallax", "parallax"},
-                                {10, 0.2, "r8", "relief"},    {20, 0.05, "r32", "relief"},
-                                {20, 0.07, "r32b", "relief"}, {40, 0.05, "r64", "relief"},
-                                {1, 5.0, "cheap", "x"}};
+  auto point = [](double x, double y, const char* label, const char* series) {
+    ParetoPoint q;
+    q.x = x;
+    q.y = y;
+    q.label = label;
+    q.series = series;
+    return q;
+  };
+  std::vector<ParetoPoint> p = {
+      point(2, 0.8, "normal", "normal"), point(3, 0.9, "parallax", "parallax"),
+      point(10, 0.2, "r8", "relief"),    point(20, 0.05, "r32", "relief"),
+      point(20, 0.07, "r32b", "relief"), point(40, 0.05, "r64", "relief"),
+      point(1, 5.0, "cheap", "x")};
   const std::vector<size_t> front = pareto_front(p);
   // parallax (dominated by normal), r32b (by r32) and r64 (same error as r32, more cost) drop.
   EXPECT_EQ(front, (std::vector<size_t>{6, 0, 2, 3}));

@@ -134,7 +134,9 @@ TEST(Odd, FiniteFromStraightDownToLevelAndAtTheAcosEnds) {
             view, 48);
         EXPECT_EQ(m.metrics.nonfinite_px, 0);
         for (const auto& [column, value] : m.metrics.named())
-          if (m.metrics.union_covered_px > 0) EXPECT_FALSE(std::isinf(value)) << column;
+          if (m.metrics.union_covered_px > 0) {
+            EXPECT_FALSE(std::isinf(value)) << column;
+          }
       }
   // Probe rays almost level along +-u and +-v: cosines at +-1 (and past it by rounding) and
   // the pole of the angles.

@@ -484,9 +484,10 @@ TEST_P(ProbeContract, ProbesAgreeWithTheFrameAndTheReference) {
           (!hits[i].hit || apart > frame_tolerance_texels(c, params, *f.map, f.pixel_rays[i])))
         ++disagree;
       // An exact answer is the reference's on the pixel's own ray too.
-      if (c.answer == Answer::Exact && rc.truth_is_the_map)
+      if (c.answer == Answer::Exact && rc.truth_is_the_map) {
         EXPECT_LE(probe_error_texels(*f.map, f.pixel_rays[i], hits[i], ref), kExactTexels)
             << name() << " on " << rc.name << " pixel " << i;
+      }
     }
     std::cout << "[contract] " << name() << " probe vs frame on " << rc.name << ": " << disagree
               << " of " << compared << " pixels differ\n";
