@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "claims/claims.h"
+#include "core/atomic_write.h"
 #include "core/error.h"
 #include "support/test_support.h"
 
@@ -191,6 +192,63 @@ TEST(Claims, VerifyChecksTheReadmeSectionAndWriteRegeneratesIt) {
   EXPECT_NE(output.find("claim grazing-worse: check 'grazing > steep' does not hold"),
             std::string::npos)
       << output;
+}
+
+// A claim about pictures names the rows it describes; the README links their committed files or
+// gives the command that makes them, and a claim that speaks of pictures without naming them, or
+// names uncommitted ones without a command, fails.
+TEST(Claims, ClaimsAboutPicturesNameThemAndTheirFilesOrCommand) {
+  const std::string rows =
+      "technique,scene,elevation_deg,wrong_pct,image_render,image_truth,image_error\n"
+      "relief,panel,45,2.5,images/r.png,images/t.png,images/e.png\n"
+      "relief,panel,20,4.0,images/r20.png,images/t20.png,images/e20.png\n";
+  auto claims = [](const std::string& extra) {
+    return "[[claim]]\nid = \"bands\"\njudges = \"Fig. 3\"\nverdict = \"measured\"\n"
+           "text = \"The heat map shows bands; {w}% wrong.\"\n" +
+           extra +
+           "[claim.values]\nw = { where = \"elevation_deg=45\", column = \"wrong_pct\" }\n"
+           "[[claim.check]]\nthat = \"w < 3\"\n";
+  };
+  const std::string readme = std::string(kClaimsBegin) + "\n" + kClaimsEnd + "\n";
+  std::string report;
+  // Speaks of a heat map, names none.
+  const std::string unnamed = folder_with("claims_pictures_unnamed", rows, claims(""), readme);
+  EXPECT_GE(verify_result_folder(unnamed, true, report), 1);
+  EXPECT_NE(report.find("claim bands: the text speaks of pictures but names none"),
+            std::string::npos)
+      << report;
+  // Names them, not committed, no command.
+  report.clear();
+  const std::string nocommand = folder_with("claims_pictures_nocommand", rows,
+                                            claims("pictures = \"elevation_deg=45\"\n"), readme);
+  EXPECT_EQ(verify_result_folder(nocommand, true, report), 1);
+  EXPECT_NE(report.find("are not in the folder and it names no 'pictures_command'"),
+            std::string::npos)
+      << report;
+  // A filter that picks no row.
+  report.clear();
+  const std::string none = folder_with(
+      "claims_pictures_none", rows,
+      claims("pictures = \"elevation_deg=5\"\npictures_command = \"make it\"\n"), readme);
+  EXPECT_EQ(verify_result_folder(none, true, report), 1);
+  EXPECT_NE(report.find("pictures: no row where elevation_deg=5"), std::string::npos) << report;
+  // Not committed, with a command: the README gives the command.
+  report.clear();
+  const std::string dir = folder_with(
+      "claims_pictures", rows,
+      claims("pictures = \"elevation_deg=45\"\npictures_command = \"scripts/make.sh\"\n"), readme);
+  EXPECT_EQ(verify_result_folder(dir, true, report), 0) << report;
+  EXPECT_NE(read_text(dir + "/README.md").find("Pictures: `scripts/make.sh`."), std::string::npos);
+  // Committed: the README links the row's render, truth and heat map.
+  std::filesystem::create_directories(dir + "/images");
+  for (const char* f : {"r", "t", "e"}) write(dir + "/images/" + f + ".png", "png");
+  report.clear();
+  EXPECT_EQ(verify_result_folder(dir, true, report), 0) << report;
+  EXPECT_NE(read_text(dir + "/README.md")
+                .find("Pictures: panel relief 45° [render](images/r.png) · [truth](images/t.png) · "
+                      "[heat map](images/e.png)."),
+            std::string::npos)
+      << read_text(dir + "/README.md");
 }
 
 }  // namespace

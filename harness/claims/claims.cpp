@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -94,7 +95,9 @@ void check_names(const Claim& c, const toml::node& n, const Src& src) {
 Claim parse_claim(const toml::node& n, const Src& src) {
   const toml::table* t = n.as_table();
   if (!t) fail(src.at(n), "each [[claim]] is a table");
-  check_keys(*t, {"id", "judges", "verdict", "text", "values", "check"}, src, "[[claim]]");
+  check_keys(*t,
+             {"id", "judges", "verdict", "text", "values", "check", "pictures", "pictures_command"},
+             src, "[[claim]]");
   Claim c;
   c.where = src.at(n);
   for (const char* key : {"id", "judges", "verdict", "text"})
@@ -103,6 +106,12 @@ Claim parse_claim(const toml::node& n, const Src& src) {
   c.judges = string_of(*t->get("judges"), src, "judges");
   c.verdict = string_of(*t->get("verdict"), src, "verdict");
   c.text = string_of(*t->get("text"), src, "text");
+  if (const toml::node* p = t->get("pictures")) c.pictures = string_of(*p, src, "pictures");
+  if (const toml::node* p = t->get("pictures_command")) {
+    c.pictures_command = string_of(*p, src, "pictures_command");
+    if (c.pictures.empty())
+      fail(src.at(*p), "claim '" + c.id + "': 'pictures_command' makes the rows 'pictures' names");
+  }
   if (!kVerdicts.count(c.verdict))
     fail(src.at(*t->get("verdict")), "claim '" + c.id + "': verdict '" + c.verdict +
                                          "' is not one of confirmed, partly confirmed, not "
@@ -126,6 +135,13 @@ Claim parse_claim(const toml::node& n, const Src& src) {
 }
 
 }  // namespace
+
+bool describes_pictures(const std::string& text) {
+  static const std::regex words(
+      R"(heat ?maps?|pictures?|\brender(s|ed)?\b|\bimages?\b|\bfigures?\b|\blooks?\b|\bglow)",
+      std::regex::icase);
+  return std::regex_search(text, words);
+}
 
 std::vector<std::string> claim_words(const std::string& text) {
   std::istringstream in(text);

@@ -18,6 +18,8 @@
 //   ratio = { ratio = ["at0", "at2"], digits = 2 }
 //   [[claim.check]]
 //   that = "ratio > 4"
+//   pictures = "scene=panel elevation_deg=45"        (if the text speaks of pictures)
+//   pictures_command = "scripts/reproduce.sh --images configs/papers/x.toml"
 //
 // A filter's field=value pairs match a row's cells as numbers when both are numbers, else as
 // text (value "a|b" matches either); a value reads exactly one row unless it names an aggregate
@@ -51,8 +53,15 @@ struct Claim {
   std::string id, judges, verdict, text;
   std::vector<ClaimValue> values;
   std::vector<std::string> checks;
+  // A claim about pictures names the rows whose render, truth and heat map it describes (a
+  // filter, as `where`), and the command that makes them where the folder does not commit them.
+  // A text that speaks of pictures (describes_pictures) must name them.
+  std::string pictures, pictures_command;
   std::string where;  // "claims.toml:LINE", for messages
 };
+
+// Does a claim's sentence speak of pictures (heat maps, renders, images, figures, looks)?
+bool describes_pictures(const std::string& text);
 
 struct ClaimsFile {
   std::string path;
@@ -64,17 +73,25 @@ ClaimsFile load_claims(const std::string& path);
 // The whitespace-separated words of a check ("A between B and C") or a filter ("k=v k=v").
 std::vector<std::string> claim_words(const std::string& text);
 
+// One row's pictures, as rows.csv names them (relative to the result folder).
+struct ClaimPicture {
+  std::string label, render, truth, error;
+};
+
 struct ClaimResult {
   std::string id;
-  std::string sentence;               // the text with the measured values filled in
-  std::vector<std::string> failures;  // each check that does not hold, or a value not found
+  std::string sentence;                // the text with the measured values filled in
+  std::vector<std::string> failures;   // each check that does not hold, or a value not found
+  std::vector<ClaimPicture> pictures;  // the rows `pictures` picks
+  bool pictures_committed = false;     // every one of their files is in the folder
   bool holds() const { return failures.empty(); }
 };
 std::vector<ClaimResult> check_claims(const ClaimsFile& file, const std::vector<CsvRow>& rows);
 
 inline constexpr const char* kClaimsBegin = "<!-- claims: generated from claims.toml -->";
 inline constexpr const char* kClaimsEnd = "<!-- claims: end -->";
-// The README's verdict section: one numbered item per claim.
+// The README's verdict section: one numbered item per claim, its pictures linked where the
+// folder commits them, else the command that makes them.
 std::string claims_markdown(const ClaimsFile& file, const std::vector<ClaimResult>& results);
 
 // Checks each folder's claims.toml against its rows.csv and its README's generated section

@@ -158,6 +158,28 @@ bool compare(double a, const std::string& op, double b) {
   return a == b;
 }
 
+// The rows a claim's pictures are of, and their files as rows.csv names them.
+void check_pictures(const Claim& c, const std::vector<CsvRow>& rows, ClaimResult& r) {
+  if (c.pictures.empty()) {
+    if (describes_pictures(c.text))
+      r.failures.push_back(
+          "the text speaks of pictures but names none: add 'pictures' (the rows "
+          "whose render, truth and heat map it describes)");
+    return;
+  }
+  const std::vector<const CsvRow*> picked = select(rows, c.pictures);
+  if (picked.empty()) r.failures.push_back("pictures: no row where " + c.pictures);
+  auto cell = [](const CsvRow& row, const char* column) {
+    auto it = row.find(column);
+    return it == row.end() ? std::string() : it->second;
+  };
+  for (const CsvRow* row : picked)
+    r.pictures.push_back({cell(*row, "scene") + " " + cell(*row, "technique") + " " +
+                              cell(*row, "elevation_deg") + "°",
+                          cell(*row, "image_render"), cell(*row, "image_truth"),
+                          cell(*row, "image_error")});
+}
+
 ClaimResult check_claim(const Claim& c, const std::vector<CsvRow>& rows) {
   ClaimResult r;
   r.id = c.id;
@@ -180,6 +202,7 @@ ClaimResult check_claim(const Claim& c, const std::vector<CsvRow>& rows) {
       r.failures.push_back("check '" + check + "' does not hold: " + measured);
     }
   }
+  check_pictures(c, rows, r);
   r.sentence = c.text;
   for (size_t at = r.sentence.find('{'); at != std::string::npos; at = r.sentence.find('{', at)) {
     const size_t end = r.sentence.find('}', at);
@@ -206,12 +229,29 @@ std::vector<ClaimResult> check_claims(const ClaimsFile& file, const std::vector<
   return out;
 }
 
+namespace {
+
+// "Pictures: ..." after a claim's sentence: links to the committed files, or the command.
+std::string pictures_markdown(const Claim& c, const ClaimResult& r) {
+  if (r.pictures.empty()) return "";
+  if (!r.pictures_committed) return " Pictures: `" + c.pictures_command + "`.";
+  std::string md = " Pictures:";
+  for (size_t i = 0; i < r.pictures.size(); ++i) {
+    const ClaimPicture& p = r.pictures[i];
+    md += std::string(i ? ";" : "") + " " + p.label + " [render](" + p.render + ") · [truth](" +
+          p.truth + ") · [heat map](" + p.error + ")";
+  }
+  return md + ".";
+}
+
+}  // namespace
+
 std::string claims_markdown(const ClaimsFile& file, const std::vector<ClaimResult>& results) {
   std::string md = std::string(kClaimsBegin) + "\n";
   for (size_t i = 0; i < file.claims.size(); ++i) {
     const Claim& c = file.claims[i];
     md += std::to_string(i + 1) + ". **" + c.judges + "** — *" + c.verdict + "*. " +
-          results[i].sentence + "\n";
+          results[i].sentence + pictures_markdown(c, results[i]) + "\n";
   }
   return md + kClaimsEnd;
 }
@@ -259,11 +299,39 @@ int verify_report_panel(const std::string& dir, const nlohmann::json& verdicts, 
   return 0;
 }
 
+// Whether every picture file of a claim is in the folder; a claim whose pictures are not must
+// name the command that makes them.
+void check_pictures_committed(const std::string& dir, const Claim& c, ClaimResult& r) {
+  if (r.pictures.empty()) return;
+  r.pictures_committed = true;
+  for (const ClaimPicture& p : r.pictures)
+    for (const std::string* f : {&p.render, &p.truth, &p.error})
+      r.pictures_committed =
+          r.pictures_committed && !f->empty() && std::filesystem::exists(dir + "/" + *f);
+  if (!r.pictures_committed && c.pictures_command.empty())
+    r.failures.push_back("its pictures (" + std::to_string(r.pictures.size()) + " row(s) where " +
+                         c.pictures +
+                         ") are not in the folder and it names "
+                         "no 'pictures_command' that makes them");
+}
+
+nlohmann::json panel_pictures(const Claim& c, const ClaimResult& r) {
+  nlohmann::json out = {{"command", r.pictures_committed ? "" : c.pictures_command},
+                        {"rows", nlohmann::json::array()}};
+  if (r.pictures_committed)
+    for (const ClaimPicture& p : r.pictures)
+      out["rows"].push_back(
+          {{"label", p.label}, {"render", p.render}, {"truth", p.truth}, {"error", p.error}});
+  return out;
+}
+
 }  // namespace
 
 int verify_result_folder(const std::string& dir, bool write, std::string& report) {
   const ClaimsFile file = load_claims(dir + "/claims.toml");
-  const std::vector<ClaimResult> results = check_claims(file, read_rows_csv(dir + "/rows.csv"));
+  std::vector<ClaimResult> results = check_claims(file, read_rows_csv(dir + "/rows.csv"));
+  for (size_t i = 0; i < results.size(); ++i)
+    check_pictures_committed(dir, file.claims[i], results[i]);
   int failures = 0;
   nlohmann::json panel = nlohmann::json::array();
   for (size_t i = 0; i < results.size(); ++i) {
@@ -274,6 +342,8 @@ int verify_result_folder(const std::string& dir, bool write, std::string& report
                      {"verdict", file.claims[i].verdict},
                      {"sentence", results[i].sentence},
                      {"holds", results[i].holds()}});
+    if (!results[i].pictures.empty())
+      panel.back()["pictures"] = panel_pictures(file.claims[i], results[i]);
   }
   failures += verify_readme(dir, claims_markdown(file, results), write, report);
   return failures + verify_report_panel(dir, panel, write, report);

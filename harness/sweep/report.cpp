@@ -177,6 +177,17 @@ pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px
       li.appendChild(document.createTextNode(' — '));
       li.appendChild(el('em', {}, v.verdict + (v.holds ? '' : ' (no longer holds)')));
       li.appendChild(document.createTextNode('. ' + v.sentence.replace(/[*`]/g, '')));  // Markdown marks
+      var pics = v.pictures || {rows: [], command: ''};
+      if (pics.command) li.appendChild(el('p', {}, 'Pictures: ' + pics.command));
+      pics.rows.forEach(function (p) {  // the cells the claim rests on: render, truth, heat map
+        var row = el('div', {'class': 'rl-claim-pictures'}, p.label + ' ');
+        [p.render, p.truth, p.error].forEach(function (src) {
+          var a = el('a', {href: src});
+          a.appendChild(el('img', {src: src, width: 128, alt: src}));
+          row.appendChild(a);
+        });
+        li.appendChild(row);
+      });
       document.getElementById('rl-verdicts-list').appendChild(li);
     });
   }
