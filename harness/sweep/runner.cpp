@@ -217,8 +217,403 @@ void add_cell_columns(Row& row, const CellComplex& cc, const GBuffer& g, double 
   row["intersections_per_s"] = frame_ms > 0 ? double(covered) / (frame_ms * 1e-3) : 0.0;
 }
 
+// ---- plan -----------------------------------------------------------------------------------
+
+// Stored rows are checked before they are trusted: a corrupt one is dropped from the store and
+// from `done` (its cell is measured again). Returns the log lines that say so.
+std::vector<std::string> drop_unusable_rows(ResultStore& store, const std::vector<Cell>& cells,
+                                            std::set<std::string>& done) {
+  std::vector<std::string> dropped;
+  for (const Cell& c : cells) {
+    if (!done.count(c.key)) continue;
+    const std::string problem = stored_row_problem(store, c);
+    if (problem.empty()) continue;
+    dropped.push_back("relieflab: warning: the stored row of " + c.technique + " / " +
+                      c.identity.value("scene", std::string()) + " (key " + c.key + ") " + problem +
+                      "; measuring the cell again");
+    store.erase(c.key);
+    done.erase(c.key);
+  }
+  return dropped;
+}
+
+void log_plan(Log& log, const SweepConfig& config, const RunOptions& options,
+              const SweepSummary& summary, size_t all_cells, size_t duplicates,
+              const std::vector<std::string>& dropped, GlContext& gl) {
+  log.line("relieflab: sweep '" + config.name + "' from " + config.source + ": " +
+           std::to_string(summary.cells) + " cells" +
+           (options.shard.active()
+                ? " (shard " + options.shard.text() + " of " + std::to_string(all_cells) + ")"
+                : std::string()) +
+           ", " + std::to_string(summary.already_done) + " already in " + options.out_dir +
+           "/results.sqlite");
+  if (duplicates)
+    log.line("relieflab: " + std::to_string(duplicates) +
+             " repeated cell(s) dropped (the same view, setting and scene given twice: a repeated "
+             "elevation, view or [[technique]] block)");
+  for (const std::string& line : dropped) log.line(line);
+  log.line("relieflab: OpenGL " + gl.version() + " on " + gl.renderer() + " (" + gl.platform() +
+           "), frames timed by " +
+           (gl.is_software() ? "wall clock + glFinish" : "GL_TIME_ELAPSED"));
+}
+
+// Cells in order of (asset, truth), keeping the config's order otherwise: each asset is built
+// and each truth traced once.
+std::vector<size_t> measuring_order(const std::vector<Cell>& cells) {
+  std::vector<size_t> order(cells.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::map<std::string, size_t> asset_rank, truth_rank;
+  for (const Cell& c : cells) {
+    asset_rank.emplace(c.asset_key, asset_rank.size());
+    truth_rank.emplace(c.truth_key, truth_rank.size());
+  }
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    const Cell &ca = cells[a], &cb = cells[b];
+    if (asset_rank[ca.asset_key] != asset_rank[cb.asset_key])
+      return asset_rank[ca.asset_key] < asset_rank[cb.asset_key];
+    return truth_rank[ca.truth_key] < truth_rank[cb.truth_key];
+  });
+  return order;
+}
+
+// ---- assets ---------------------------------------------------------------------------------
+
+// The map (and the truth's own map where truth_resolution asks for one), the base, the truth,
+// the texel sizes, the AO map and the GPU textures of one (scene, texture resolution).
+std::unique_ptr<Asset> build_asset(const SweepConfig& config, const SceneDesc& scene,
+                                   const Cell& cell) {
+  const auto t0 = Clock::now();
+  auto asset = std::make_unique<Asset>();
+  asset->map = build_relief_asset(scene, cell.texture_res);
+  if (scene.truth_texture_res > 0 &&
+      scene.relief.size_at(scene.truth_texture_res) != scene.relief.size_at(cell.texture_res))
+    asset->truth_map =
+        std::make_unique<ReliefMap>(build_relief_asset(scene, scene.truth_texture_res));
+  asset->objects = std::make_unique<ObjectPass>(scene.objects);
+  if (scene.base.curved()) {
+    // One base mesh for the GPU, the truth and the texel size.
+    const BaseMesh mesh = make_base_mesh(scene.base, scene.size, scene.tile);
+    asset->base = std::make_unique<GpuBase>(base_geometry(mesh));
+    asset->truth =
+        std::make_unique<SceneTruth>(scene, asset->truth_source(), config.truth_tolerance, &mesh);
+    // A meta-relief's texel is its layer 0's (its bake may be finer).
+    const ReliefMap& layer0 = asset->map.meta ? asset->map.meta->layers()[0].map : asset->map;
+    asset->texel_world = texel_world(mesh, MapSize{layer0.width, layer0.height});
+    const ReliefMap& truth0 = asset->truth_source().meta
+                                  ? asset->truth_source().meta->layers()[0].map
+                                  : asset->truth_source();
+    asset->metric_texel = texel_world(mesh, MapSize{truth0.width, truth0.height});
+  } else {
+    asset->base = std::make_unique<GpuBase>(make_base_geometry(scene));
+    asset->truth =
+        std::make_unique<SceneTruth>(scene, asset->truth_source(), config.truth_tolerance);
+    asset->texel_world = texel_world(scene, cell.texture_res);
+    asset->metric_texel = texel_world(
+        scene, scene.truth_texture_res > 0 ? scene.truth_texture_res : cell.texture_res);
+  }
+  const AoMap ao = attach_ao_map(asset->map, scene, asset->texel_world);
+  asset->ao_ms = ao.compute_ms;
+  asset->ao_from_cache = ao.from_cache;
+  asset->relief = std::make_unique<GpuRelief>(asset->map, scene.meta.runtime());
+  asset->build_ms = ms_since(t0);
+  return asset;
+}
+
+void log_asset(Log& log, const SceneDesc& scene, const Asset& asset) {
+  log.line(describe_asset(scene, asset));
+  if (const CellComplex* cc = asset.map.cells.get(); cc && cc->stats().ambiguous_regions)
+    log.line("relieflab: warning: scene " + scene.name + ": " +
+             std::to_string(cc->stats().ambiguous_regions) +
+             " enclosed region(s) of the cell grid got disagreeing inside/outside votes (an "
+             "open or non-manifold mesh); each was decided by the majority");
+}
+
+// ---- truth ----------------------------------------------------------------------------------
+
+struct TruthView {
+  GBuffer g;
+  TruthStats stats;
+};
+
+// The truth of one (asset, viewport, view). The reference AO is most of an AO scene's truth:
+// an earlier run's is reused where the hits are the same (truth/ao_truth_cache.h).
+TruthView trace_truth(const SceneDesc& scene, const Asset& asset, const Cell& cell,
+                      const Camera& camera) {
+  std::optional<AoTruthCache> ao_cache;
+  if (scene.effects.has(Effect::AmbientOcclusion))
+    ao_cache.emplace(cell.truth_key, truth_source_hash(asset.truth_source()), ao_sampling(scene),
+                     size_t(cell.width) * cell.height);
+  TruthView t;
+  t.g = asset.truth->render(asset.truth_source(), scene, camera, scene.effects, &t.stats,
+                            ao_cache ? &*ao_cache : nullptr);
+  if (ao_cache) ao_cache->save();
+  return t;
+}
+
+void log_truth(Log& log, const SceneDesc& scene, const Cell& cell, const TruthView& t,
+               double metric_texel, size_t number) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "relieflab: truth #%zu traced: %s el=%g az=%g %dx%d: %llu primary + %llu "
+                "shadow + %llu AO rays in %.0f ms",
+                number, scene.name.c_str(), cell.view.elevation_deg, cell.view.azimuth_deg,
+                cell.width, cell.height, (unsigned long long)t.stats.primary_rays,
+                (unsigned long long)t.stats.shadow_rays, (unsigned long long)t.stats.ao_rays,
+                t.stats.trace_ms);
+  log.line(buf + (t.stats.ao_cached_px ? " (AO of " + std::to_string(t.stats.ao_cached_px) +
+                                             " pixels from the cache)"
+                                       : std::string()));
+  log.line(describe_truth_bound(t.g, metric_texel));
+  if (t.stats.unresolved)
+    log.line("relieflab: warning: " + std::to_string(t.stats.unresolved) +
+             " truth rays passed the floor by rounding and were placed on it");
+}
+
+// Where a cell's pictures and G-buffers go.
+struct CellFiles {
+  std::string image_dir, gbuffer_dir;
+};
+
+CellFiles cell_files(const RunOptions& options, const SceneDesc& scene) {
+  return {options.out_dir + "/images/" + scene.name, options.out_dir + "/gbuffers/" + scene.name};
+}
+
+void write_truth_files(const SweepConfig& config, const CellFiles& files, const SceneDesc& scene,
+                       const Cell& cell, const Camera& camera, const GBuffer& truth) {
+  if (config.write_images)
+    write_png(files.image_dir + "/truth_" + cell.truth_key + ".png", truth.width, truth.height, 3,
+              rgb_of(truth));
+  if (config.write_gbuffers)
+    write_gbuffer_exr(files.gbuffer_dir + "/truth_" + cell.truth_key + ".exr", truth, scene, camera,
+                      {scene.name, "", "", cell.truth_key});
+}
+
+// ---- measure --------------------------------------------------------------------------------
+
+// What one cell's technique drew and cost.
+struct CellMeasure {
+  GBuffer g;
+  FragmentCost cost;
+  ImageMetrics m;
+  FrameTiming timing;
+  std::vector<std::pair<std::string, double>> frame_columns;
+  double precompute_ms = 0;
+  bool precompute_cached = false;
+  size_t technique_bytes = 0;
+};
+
+// The technique instance of a cell, prepared once per asset and parameter setting.
+std::pair<std::unique_ptr<Technique>, double>& prepared_technique(const SweepConfig& config,
+                                                                  const SceneDesc& scene,
+                                                                  Asset& asset, const Cell& cell) {
+  auto& slot = asset.prepared[cell.technique + "|" + describe_params(cell)];
+  if (!slot.first) {
+    slot.first = TechniqueRegistry::instance().create(cell.technique, cell.params, config.source);
+    const auto t0 = Clock::now();
+    slot.first->prepare_scene(scene, asset.map);
+    glFinish();
+    slot.second = ms_since(t0);
+  }
+  return slot;
+}
+
+CellMeasure measure_cell(const SweepConfig& config, const SceneDesc& scene, Asset& asset,
+                         const Cell& cell, const Camera& camera, const GBuffer& truth,
+                         bool software_gl) {
+  auto& [technique, prepare_ms] = prepared_technique(config, scene, asset, cell);
+  FrameInput frame{scene,  asset.map,     *asset.relief,      *asset.base,
+                   camera, scene.effects, asset.objects.get()};
+  CellMeasure out;
+  FragmentCounts counts;
+  {
+    RenderTarget target(cell.width, cell.height, RenderTarget::Kind::GBuffer);
+    target.bind_and_clear();
+    render_frame(*technique, frame, RenderTarget::Kind::GBuffer);
+    target.read_back(out.g);
+    target.read_back_costs(counts);
+  }
+  out.cost = fragment_cost(counts);
+  out.frame_columns = technique->frame_columns();
+  out.m = compare_gbuffers(out.g, truth, scene.depth, asset.metric_texel,
+                           scene.effects.has(Effect::AmbientOcclusion));
+  RenderTarget timing_target(cell.width, cell.height, RenderTarget::Kind::ColorOnly);
+  out.timing = time_frames(
+      [&] {
+        timing_target.bind_and_clear();
+        render_frame(*technique, frame, RenderTarget::Kind::ColorOnly);
+      },
+      config.warmup, config.frames, software_gl);
+  out.precompute_ms = prepare_ms;
+  out.precompute_cached = technique->prepared_from_cache();
+  out.technique_bytes = technique->memory_bytes();
+  return out;
+}
+
+// ---- row ------------------------------------------------------------------------------------
+
+nlohmann::ordered_json number_or_empty(double value) {
+  return std::isnan(value) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(value);
+}
+
+// The spread of view elevations over the covered pixels (planar bases: against the quad's
+// plane), so a row's "elevation" is checked to mean one view angle.
+void add_elevation_columns(Row& row, const SceneDesc& scene, const Camera& camera, const GBuffer& g,
+                           const GBuffer& truth) {
+  double elev_min = 90, elev_max = -90;
+  if (!scene.base.curved())
+    for (int y = 0; y < g.height; ++y)
+      for (int x = 0; x < g.width; ++x) {
+        const size_t i = size_t(y) * g.width + x;
+        if (!g.covered(i) && !truth.covered(i)) continue;
+        glm::dvec3 o, d;
+        camera.pixel_ray(x, y, o, d);
+        const double el = glm::degrees(std::asin(std::clamp(-d.z, -1.0, 1.0)));
+        elev_min = std::min(elev_min, el);
+        elev_max = std::max(elev_max, el);
+      }
+  const bool have = elev_min <= elev_max;
+  row["elev_min_deg"] = have ? nlohmann::ordered_json(elev_min) : nlohmann::ordered_json();
+  row["elev_max_deg"] = have ? nlohmann::ordered_json(elev_max) : nlohmann::ordered_json();
+}
+
+void add_timing_columns(Row& row, const Cell& cell, const FrameTiming& timing) {
+  row["frame_ms"] = timing.median_ms;
+  // Speed as the papers count it: frames per second (Baboud & Decoret, Policarpo et al.), and
+  // viewport pixels x frames per second (Apaza & Andujar's "rays per second": every pixel of
+  // the viewport, whether or not the relief covers it).
+  row["fps"] = timing.median_ms > 0 ? 1e3 / timing.median_ms : 0.0;
+  row["rays_per_s"] =
+      timing.median_ms > 0 ? double(cell.width) * cell.height / (timing.median_ms * 1e-3) : 0.0;
+  row["frame_ms_min"] = timing.min_ms;
+  row["frame_ms_iqr"] = timing.iqr_ms;
+  row["frames_timed"] = timing.frames;
+  row["timing"] = timing.method;
+}
+
+// The representation's own columns: a multilayer bake (layers per texel, texels whose ray
+// crossed more surfaces than that, the most crossings), a cell complex, a face set.
+void add_representation_columns(Row& row, const Asset& asset, const CellMeasure& c) {
+  const LayerStack& layers = asset.map.layers;
+  const double texels = double(asset.map.width) * asset.map.height;
+  row["layers"] = layers.count;
+  row["layer_overflow_pct"] =
+      layers.empty() ? nlohmann::ordered_json()
+                     : nlohmann::ordered_json(100.0 * double(layers.overflow_texels) / texels);
+  row["layer_odd_pct"] = layers.empty()
+                             ? nlohmann::ordered_json()
+                             : nlohmann::ordered_json(100.0 * double(layers.odd_texels) / texels);
+  row["depth_complexity"] =
+      layers.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(layers.max_crossings);
+  if (asset.map.cells) add_cell_columns(row, *asset.map.cells, c.g, c.timing.median_ms);
+  if (asset.map.faces) row["face_count"] = asset.map.faces->count();
+}
+
+// Every measured column of a cell's row, beside its identity.
+Row cell_row(const Cell& cell, const SceneDesc& scene, const Camera& camera, const Asset& asset,
+             const CellMeasure& c, const TruthView& truth, const std::string& renderer) {
+  Row row = cell.identity;
+  // An error column that measures nothing (no pixel covered) is empty, never zero.
+  for (const auto& [name, value] : c.m.named()) row[name] = number_or_empty(value);
+  add_elevation_columns(row, scene, camera, c.g, truth.g);
+  add_timing_columns(row, cell, c.timing);
+  row["precompute_ms"] = c.precompute_ms;
+  row["precompute_cached"] = c.precompute_cached;
+  for (const auto& [name, value] : c.cost.named()) row[name] = number_or_empty(value);
+  for (const auto& [name, value] : c.frame_columns) row[name] = value;
+  row["memory_bytes"] = double(asset.relief->bytes() + c.technique_bytes);
+  row["truth_subdivision"] = asset.truth->subdivision();
+  row["truth_bound"] = asset.truth->tessellation_bound();
+  row["truth_flagged"] = c.m.truth_flagged();
+  row["truth_ms"] = truth.stats.trace_ms;
+  row["truth_unresolved_px"] = double(truth.stats.unresolved);
+  if (scene.effects.has(Effect::AmbientOcclusion)) {
+    row["ao_precompute_ms"] = asset.ao_ms;
+    row["ao_precompute_cached"] = asset.ao_from_cache;
+    row["ao_rescale"] = scene.ao.rescale(scene.depth);
+    row["truth_ao_rays"] = double(truth.stats.ao_rays);
+  }
+  row["effects"] = join_effects(scene.effects);
+  row["texture_size"] = std::to_string(asset.map.width) + "x" + std::to_string(asset.map.height);
+  add_representation_columns(row, asset, c);
+  // "sampled@1024": the truth of the map at another resolution (truth_resolution).
+  row["truth"] = std::string(truth_level_name(scene.truth)) +
+                 (asset.truth_map ? "@" + std::to_string(scene.truth_texture_res) : "");
+  row["renderer"] = renderer;
+  row["key"] = cell.key;
+  return row;
+}
+
+// The cell's render and heat map (and raw G-buffer), and their paths in the row.
+void write_cell_files(Row& row, const SweepConfig& config, const RunOptions& options,
+                      const CellFiles& files, const SceneDesc& scene, const Cell& cell,
+                      const Camera& camera, const GBuffer& g, const GBuffer& truth,
+                      double metric_texel) {
+  if (config.write_images) {
+    const std::string render_png = files.image_dir + "/" + cell.key + "_render.png";
+    const std::string error_png = files.image_dir + "/" + cell.key + "_error.png";
+    write_png(render_png, g.width, g.height, 3, rgb_of(g));
+    write_png(error_png, g.width, g.height, 3,
+              error_heat_map(g, truth, metric_texel, config.heat_map_scale));
+    row["image_render"] = fs::relative(render_png, options.out_dir).string();
+    row["image_truth"] =
+        fs::relative(files.image_dir + "/truth_" + cell.truth_key + ".png", options.out_dir)
+            .string();
+    row["image_error"] = fs::relative(error_png, options.out_dir).string();
+  }
+  if (config.write_gbuffers) {
+    const std::string exr = files.gbuffer_dir + "/" + cell.key + ".exr";
+    write_gbuffer_exr(exr, g, scene, camera,
+                      {scene.name, cell.technique, describe_params(cell), cell.key});
+    row["gbuffer"] = fs::relative(exr, options.out_dir).string();
+    row["gbuffer_truth"] =
+        fs::relative(files.gbuffer_dir + "/truth_" + cell.truth_key + ".exr", options.out_dir)
+            .string();
+  }
+}
+
+// ---- progress -------------------------------------------------------------------------------
+
+// Wall time per technique (its cells' measurement, truths and assets not included), for the
+// progress line's slowest technique.
+using TechniqueTimes = std::map<std::string, std::pair<double, size_t>>;
+
+std::string progress_line(const Cell& cell, const SceneDesc& scene, const CellMeasure& c,
+                          const SweepSummary& summary, size_t finished, size_t todo,
+                          double elapsed_s, const TechniqueTimes& times) {
+  const double eta = elapsed_s / finished * (todo - finished);
+  std::string slowest;
+  double slowest_ms = -1;
+  for (const auto& [t, s] : times)
+    if (s.first / s.second > slowest_ms) slowest = t, slowest_ms = s.first / s.second;
+  char buf[640];
+  std::snprintf(buf, sizeof buf,
+                "[%zu/%zu] %3.0f%% %s elapsed, ~%s left, %zu truths traced, slowest %s "
+                "%.0f ms/cell | %s %s | %s el=%g az=%g %dx%d | "
+                "wrong=%.3g%% pos_err_rmse=%.4g fetches=%.1f frame=%.2fms",
+                summary.already_done + finished, summary.cells,
+                100.0 * (summary.already_done + finished) / summary.cells, hms(elapsed_s).c_str(),
+                hms(eta).c_str(), summary.truth_traces, slowest.c_str(), slowest_ms,
+                cell.technique.c_str(), describe_params(cell).c_str(), scene.name.c_str(),
+                cell.view.elevation_deg, cell.view.azimuth_deg, cell.width, cell.height,
+                c.m.wrong_pct, c.m.pos_err.rmse, c.m.fetches.mean, c.timing.median_ms);
+  return buf;
+}
+
+std::string done_line(const SweepSummary& summary, const RunOptions& options, size_t tables) {
+  char buf[512];
+  std::snprintf(
+      buf, sizeof buf,
+      "relieflab: done in %s: %zu cells, %zu new rows, %zu already done; traced truth "
+      "%zu times, built %zu assets; wrote %s/rows.csv, %zu table(s), pareto.md and plots/",
+      hms(summary.elapsed_s).c_str(), summary.cells, summary.new_rows, summary.already_done,
+      summary.truth_traces, summary.asset_builds, options.out_dir.c_str(), tables);
+  return buf;
+}
+
 }  // namespace
 
+// Plan (cells, keys, shard, the rows already stored), then per cell: its asset, its truth, its
+// measurement and its row, each stage handing the next a plain value; then the outputs.
 SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   const auto start = Clock::now();
   SweepSummary summary;
@@ -234,345 +629,79 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   Log log(options.out_dir + "/run.log");
   ResultStore store(options.out_dir + "/results.sqlite");
   std::set<std::string> done = store.keys();
-  // Stored rows are checked before they are trusted: a corrupt one is dropped (and said so)
-  // and its cell measured again.
-  std::vector<std::string> dropped;
-  for (const Cell& c : cells) {
-    if (!done.count(c.key)) continue;
-    const std::string problem = stored_row_problem(store, c);
-    if (problem.empty()) continue;
-    dropped.push_back("relieflab: warning: the stored row of " + c.technique + " / " +
-                      c.identity.value("scene", std::string()) + " (key " + c.key + ") " + problem +
-                      "; measuring the cell again");
-    store.erase(c.key);
-    done.erase(c.key);
-  }
+  const std::vector<std::string> dropped = drop_unusable_rows(store, cells, done);
   for (const Cell& c : cells) summary.already_done += done.count(c.key);
-
   GlContext& gl = GlContext::shared();
   summary.renderer = gl.renderer();
-  log.line("relieflab: sweep '" + config.name + "' from " + config.source + ": " +
-           std::to_string(cells.size()) + " cells" +
-           (options.shard.active() ? " (shard " + options.shard.text() + " of " +
-                                         std::to_string(all_cells.size()) + ")"
-                                   : std::string()) +
-           ", " + std::to_string(summary.already_done) + " already in " + options.out_dir +
-           "/results.sqlite");
-  if (duplicates)
-    log.line("relieflab: " + std::to_string(duplicates) +
-             " repeated cell(s) dropped (the same view, setting and scene given twice: a repeated "
-             "elevation, view or [[technique]] block)");
-  for (const std::string& line : dropped) log.line(line);
-  log.line("relieflab: OpenGL " + gl.version() + " on " + gl.renderer() + " (" + gl.platform() +
-           "), frames timed by " +
-           (gl.is_software() ? "wall clock + glFinish" : "GL_TIME_ELAPSED"));
-
-  // Cells in order of (asset, truth), keeping the config's order otherwise.
-  std::vector<size_t> order(cells.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::map<std::string, size_t> asset_rank, truth_rank;
-  for (const Cell& c : cells) {
-    asset_rank.emplace(c.asset_key, asset_rank.size());
-    truth_rank.emplace(c.truth_key, truth_rank.size());
-  }
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    const Cell &ca = cells[a], &cb = cells[b];
-    if (asset_rank[ca.asset_key] != asset_rank[cb.asset_key])
-      return asset_rank[ca.asset_key] < asset_rank[cb.asset_key];
-    return truth_rank[ca.truth_key] < truth_rank[cb.truth_key];
-  });
+  log_plan(log, config, options, summary, all_cells.size(), duplicates, dropped, gl);
 
   const size_t todo = cells.size() - summary.already_done;
   size_t finished = 0;
   std::unique_ptr<Asset> asset;
   std::string asset_key, truth_key;
-  GBuffer truth;
-  TruthStats truth_stats;
+  TruthView truth;
   // Truths of a scene's fixed truth resolution, kept across its texture resolutions.
-  std::map<std::string, std::pair<GBuffer, TruthStats>> truth_memo;
+  std::map<std::string, TruthView> truth_memo;
   size_t memo_scene = size_t(-1);
   const auto work_start = Clock::now();
-  // Wall time per technique (its cells' measurement, truths and assets not included), for the
-  // progress line's slowest technique.
-  std::map<std::string, std::pair<double, size_t>> technique_ms;
+  TechniqueTimes technique_ms;
 
-  for (size_t oi = 0; oi < order.size(); ++oi) {
-    const Cell& cell = cells[order[oi]];
+  for (size_t index : measuring_order(cells)) {
+    const Cell& cell = cells[index];
     if (done.count(cell.key)) continue;
     const SceneDesc& scene = config.scenes[cell.scene_index];
-
     if (cell.asset_key != asset_key) {
-      const auto t0 = Clock::now();
-      asset = std::make_unique<Asset>();
-      asset->map = build_relief_asset(scene, cell.texture_res);
-      if (scene.truth_texture_res > 0 &&
-          scene.relief.size_at(scene.truth_texture_res) != scene.relief.size_at(cell.texture_res))
-        asset->truth_map =
-            std::make_unique<ReliefMap>(build_relief_asset(scene, scene.truth_texture_res));
-      asset->objects = std::make_unique<ObjectPass>(scene.objects);
-      if (scene.base.curved()) {
-        // One base mesh for the GPU, the truth and the texel size.
-        const BaseMesh mesh = make_base_mesh(scene.base, scene.size, scene.tile);
-        asset->base = std::make_unique<GpuBase>(base_geometry(mesh));
-        asset->truth = std::make_unique<SceneTruth>(scene, asset->truth_source(),
-                                                    config.truth_tolerance, &mesh);
-        // A meta-relief's texel is its layer 0's (its bake may be finer).
-        const ReliefMap& layer0 = asset->map.meta ? asset->map.meta->layers()[0].map : asset->map;
-        asset->texel_world = texel_world(mesh, MapSize{layer0.width, layer0.height});
-        const ReliefMap& truth0 = asset->truth_source().meta
-                                      ? asset->truth_source().meta->layers()[0].map
-                                      : asset->truth_source();
-        asset->metric_texel = texel_world(mesh, MapSize{truth0.width, truth0.height});
-      } else {
-        asset->base = std::make_unique<GpuBase>(make_base_geometry(scene));
-        asset->truth =
-            std::make_unique<SceneTruth>(scene, asset->truth_source(), config.truth_tolerance);
-        asset->texel_world = texel_world(scene, cell.texture_res);
-        asset->metric_texel = texel_world(
-            scene, scene.truth_texture_res > 0 ? scene.truth_texture_res : cell.texture_res);
-      }
-      const AoMap ao = attach_ao_map(asset->map, scene, asset->texel_world);
-      asset->ao_ms = ao.compute_ms;
-      asset->ao_from_cache = ao.from_cache;
-      asset->relief = std::make_unique<GpuRelief>(asset->map, scene.meta.runtime());
-      asset->build_ms = ms_since(t0);
+      asset = build_asset(config, scene, cell);
       asset_key = cell.asset_key;
       truth_key.clear();
       ++summary.asset_builds;
-      log.line(describe_asset(scene, *asset));
-      if (const CellComplex* cc = asset->map.cells.get(); cc && cc->stats().ambiguous_regions)
-        log.line("relieflab: warning: scene " + scene.name + ": " +
-                 std::to_string(cc->stats().ambiguous_regions) +
-                 " enclosed region(s) of the cell grid got disagreeing inside/outside votes (an "
-                 "open or non-manifold mesh); each was decided by the majority");
+      log_asset(log, scene, *asset);
     }
     const Camera camera = make_camera(scene, cell.view, cell.width, cell.height);
-    const std::string image_dir = options.out_dir + "/images/" + scene.name;
-    const std::string gbuffer_dir = options.out_dir + "/gbuffers/" + scene.name;
+    const CellFiles files = cell_files(options, scene);
     if (cell.scene_index != memo_scene) {
       truth_memo.clear();
       memo_scene = cell.scene_index;
     }
-    auto memo = truth_memo.find(cell.truth_key);
-    if (cell.truth_key != truth_key && memo != truth_memo.end()) {
-      truth = memo->second.first;  // the same surface and view at another texture resolution
-      truth_stats = memo->second.second;
+    if (cell.truth_key != truth_key) {
+      if (auto memo = truth_memo.find(cell.truth_key); memo != truth_memo.end()) {
+        truth = memo->second;  // the same surface and view at another texture resolution
+      } else {
+        truth = trace_truth(scene, *asset, cell, camera);
+        if (scene.truth_texture_res > 0) truth_memo[cell.truth_key] = truth;
+        log_truth(log, scene, cell, truth, asset->metric_texel, ++summary.truth_traces);
+        write_truth_files(config, files, scene, cell, camera, truth.g);
+      }
       truth_key = cell.truth_key;
-    } else if (cell.truth_key != truth_key) {
-      // The reference AO is most of an AO scene's truth: an earlier run's is reused where
-      // the hits are the same.
-      std::optional<AoTruthCache> ao_cache;
-      if (scene.effects.has(Effect::AmbientOcclusion))
-        ao_cache.emplace(cell.truth_key, truth_source_hash(asset->truth_source()),
-                         ao_sampling(scene), size_t(cell.width) * cell.height);
-      truth = asset->truth->render(asset->truth_source(), scene, camera, scene.effects,
-                                   &truth_stats, ao_cache ? &*ao_cache : nullptr);
-      if (ao_cache) ao_cache->save();
-      truth_key = cell.truth_key;
-      if (scene.truth_texture_res > 0) truth_memo[truth_key] = {truth, truth_stats};
-      ++summary.truth_traces;
-      char buf[256];
-      std::snprintf(buf, sizeof buf,
-                    "relieflab: truth #%zu traced: %s el=%g az=%g %dx%d: %llu primary + %llu "
-                    "shadow + %llu AO rays in %.0f ms",
-                    summary.truth_traces, scene.name.c_str(), cell.view.elevation_deg,
-                    cell.view.azimuth_deg, cell.width, cell.height,
-                    (unsigned long long)truth_stats.primary_rays,
-                    (unsigned long long)truth_stats.shadow_rays,
-                    (unsigned long long)truth_stats.ao_rays, truth_stats.trace_ms);
-      log.line(buf + (truth_stats.ao_cached_px
-                          ? " (AO of " + std::to_string(truth_stats.ao_cached_px) +
-                                " pixels from the cache)"
-                          : std::string()));
-      log.line(describe_truth_bound(truth, asset->metric_texel));
-      if (truth_stats.unresolved)
-        log.line("relieflab: warning: " + std::to_string(truth_stats.unresolved) +
-                 " truth rays passed the floor by rounding and were placed on it");
-      if (config.write_images)
-        write_png(image_dir + "/truth_" + cell.truth_key + ".png", truth.width, truth.height, 3,
-                  rgb_of(truth));
-      if (config.write_gbuffers)
-        write_gbuffer_exr(gbuffer_dir + "/truth_" + cell.truth_key + ".exr", truth, scene, camera,
-                          {scene.name, "", "", cell.truth_key});
     }
 
     const auto cell_start = Clock::now();  // the technique's part of the cell, truth excluded
-    // Technique instance, prepared once per asset and parameter setting.
-    const std::string instance_key = cell.technique + "|" + describe_params(cell);
-    auto& slot = asset->prepared[instance_key];
-    if (!slot.first) {
-      slot.first = TechniqueRegistry::instance().create(cell.technique, cell.params, config.source);
-      const auto t0 = Clock::now();
-      slot.first->prepare_scene(scene, asset->map);
-      glFinish();
-      slot.second = ms_since(t0);
-    }
-    Technique& technique = *slot.first;
-    FrameInput frame{scene,  asset->map,    *asset->relief,      *asset->base,
-                     camera, scene.effects, asset->objects.get()};
-
-    GBuffer g;
-    FragmentCounts counts;
-    {
-      RenderTarget target(cell.width, cell.height, RenderTarget::Kind::GBuffer);
-      target.bind_and_clear();
-      render_frame(technique, frame, RenderTarget::Kind::GBuffer);
-      target.read_back(g);
-      target.read_back_costs(counts);
-    }
-    const FragmentCost cost = fragment_cost(counts);
-    const std::vector<std::pair<std::string, double>> frame_columns = technique.frame_columns();
-    const bool ambient_occlusion = scene.effects.has(Effect::AmbientOcclusion);
-    const ImageMetrics m =
-        compare_gbuffers(g, truth, scene.depth, asset->metric_texel, ambient_occlusion);
-    RenderTarget timing_target(cell.width, cell.height, RenderTarget::Kind::ColorOnly);
-    const FrameTiming timing = time_frames(
-        [&] {
-          timing_target.bind_and_clear();
-          render_frame(technique, frame, RenderTarget::Kind::ColorOnly);
-        },
-        config.warmup, config.frames, gl.is_software());
-
-    // The spread of view elevations over the covered pixels (planar bases: against the quad's
-    // plane), so a row's "elevation" is checked to mean one view angle.
-    double elev_min = 90, elev_max = -90;
-    if (!scene.base.curved())
-      for (int y = 0; y < g.height; ++y)
-        for (int x = 0; x < g.width; ++x) {
-          const size_t i = size_t(y) * g.width + x;
-          if (!g.covered(i) && !truth.covered(i)) continue;
-          glm::dvec3 o, d;
-          camera.pixel_ray(x, y, o, d);
-          const double el = glm::degrees(std::asin(std::clamp(-d.z, -1.0, 1.0)));
-          elev_min = std::min(elev_min, el);
-          elev_max = std::max(elev_max, el);
-        }
-    const bool have_elev = elev_min <= elev_max;
-
-    Row row = cell.identity;
-    // An error column that measures nothing (no pixel covered) is empty, never zero.
-    for (const auto& [name, value] : m.named())
-      row[name] =
-          std::isnan(value) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(value);
-    if (m.empty())
+    const CellMeasure measured =
+        measure_cell(config, scene, *asset, cell, camera, truth.g, gl.is_software());
+    if (measured.m.empty())
       log.line("relieflab: warning: " + cell.technique + " " + describe_params(cell) + " on " +
                scene.name + " el=" + std::to_string(cell.view.elevation_deg) +
                ": neither the technique nor the truth covers a pixel; its error columns are "
                "empty (nothing was measured)");
-    row["elev_min_deg"] = have_elev ? nlohmann::ordered_json(elev_min) : nlohmann::ordered_json();
-    row["elev_max_deg"] = have_elev ? nlohmann::ordered_json(elev_max) : nlohmann::ordered_json();
-    row["frame_ms"] = timing.median_ms;
-    // Speed as the papers count it: frames per second (Baboud & Decoret, Policarpo et al.), and
-    // viewport pixels x frames per second (Apaza & Andujar's "rays per second": every pixel of
-    // the viewport, whether or not the relief covers it).
-    row["fps"] = timing.median_ms > 0 ? 1e3 / timing.median_ms : 0.0;
-    row["rays_per_s"] =
-        timing.median_ms > 0 ? double(cell.width) * cell.height / (timing.median_ms * 1e-3) : 0.0;
-    row["frame_ms_min"] = timing.min_ms;
-    row["frame_ms_iqr"] = timing.iqr_ms;
-    row["frames_timed"] = timing.frames;
-    row["timing"] = timing.method;
-    row["precompute_ms"] = slot.second;
-    row["precompute_cached"] = technique.prepared_from_cache();
-    for (const auto& [name, value] : cost.named())
-      row[name] =
-          std::isnan(value) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(value);
-    for (const auto& [name, value] : frame_columns) row[name] = value;
-    row["memory_bytes"] = double(asset->relief->bytes() + technique.memory_bytes());
-    row["truth_subdivision"] = asset->truth->subdivision();
-    row["truth_bound"] = asset->truth->tessellation_bound();
-    row["truth_flagged"] = m.truth_flagged();
-    row["truth_ms"] = truth_stats.trace_ms;
-    row["truth_unresolved_px"] = double(truth_stats.unresolved);
-    if (ambient_occlusion) {
-      row["ao_precompute_ms"] = asset->ao_ms;
-      row["ao_precompute_cached"] = asset->ao_from_cache;
-      row["ao_rescale"] = scene.ao.rescale(scene.depth);
-      row["truth_ao_rays"] = double(truth_stats.ao_rays);
-    }
-    row["effects"] = join_effects(scene.effects);
-    row["texture_size"] =
-        std::to_string(asset->map.width) + "x" + std::to_string(asset->map.height);
-    // A multilayer map's bake: layers per texel, texels whose ray crossed more surfaces than
-    // that (what the representation lost), and the most crossings of any texel.
-    const LayerStack& layers = asset->map.layers;
-    row["layers"] = layers.count;
-    row["layer_overflow_pct"] =
-        layers.empty() ? nlohmann::ordered_json()
-                       : nlohmann::ordered_json(100.0 * double(layers.overflow_texels) /
-                                                (double(asset->map.width) * asset->map.height));
-    row["layer_odd_pct"] =
-        layers.empty() ? nlohmann::ordered_json()
-                       : nlohmann::ordered_json(100.0 * double(layers.odd_texels) /
-                                                (double(asset->map.width) * asset->map.height));
-    row["depth_complexity"] =
-        layers.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(layers.max_crossings);
-    if (asset->map.cells) add_cell_columns(row, *asset->map.cells, g, timing.median_ms);
-    if (asset->map.faces) row["face_count"] = asset->map.faces->count();
-    // "sampled@1024": the truth of the map at another resolution (truth_resolution).
-    row["truth"] = std::string(truth_level_name(scene.truth)) +
-                   (asset->truth_map ? "@" + std::to_string(scene.truth_texture_res) : "");
-    row["renderer"] = gl.renderer();
-    row["key"] = cell.key;
-    if (config.write_images) {
-      const std::string render_png = image_dir + "/" + cell.key + "_render.png";
-      const std::string error_png = image_dir + "/" + cell.key + "_error.png";
-      write_png(render_png, g.width, g.height, 3, rgb_of(g));
-      write_png(error_png, g.width, g.height, 3,
-                error_heat_map(g, truth, asset->metric_texel, config.heat_map_scale));
-      row["image_render"] = fs::relative(render_png, options.out_dir).string();
-      row["image_truth"] =
-          fs::relative(image_dir + "/truth_" + cell.truth_key + ".png", options.out_dir).string();
-      row["image_error"] = fs::relative(error_png, options.out_dir).string();
-    }
-    if (config.write_gbuffers) {
-      const std::string exr = gbuffer_dir + "/" + cell.key + ".exr";
-      write_gbuffer_exr(exr, g, scene, camera,
-                        {scene.name, cell.technique, describe_params(cell), cell.key});
-      row["gbuffer"] = fs::relative(exr, options.out_dir).string();
-      row["gbuffer_truth"] =
-          fs::relative(gbuffer_dir + "/truth_" + cell.truth_key + ".exr", options.out_dir).string();
-    }
+    Row row = cell_row(cell, scene, camera, *asset, measured, truth, gl.renderer());
+    write_cell_files(row, config, options, files, scene, cell, camera, measured.g, truth.g,
+                     asset->metric_texel);
     store.insert(cell.key, row);
     ++summary.new_rows;
     ++finished;
     auto& [ms, n] = technique_ms[cell.technique];
     ms += ms_since(cell_start);
     ++n;
-
-    if (options.progress) {
-      const double elapsed = ms_since(work_start) / 1000.0;
-      const double eta = elapsed / finished * (todo - finished);
-      std::string slowest;
-      double slowest_ms = -1;
-      for (const auto& [t, s] : technique_ms)
-        if (s.first / s.second > slowest_ms) slowest = t, slowest_ms = s.first / s.second;
-      char buf[640];
-      std::snprintf(buf, sizeof buf,
-                    "[%zu/%zu] %3.0f%% %s elapsed, ~%s left, %zu truths traced, slowest %s "
-                    "%.0f ms/cell | %s %s | %s el=%g az=%g %dx%d | "
-                    "wrong=%.3g%% pos_err_rmse=%.4g fetches=%.1f frame=%.2fms",
-                    summary.already_done + finished, cells.size(),
-                    100.0 * (summary.already_done + finished) / cells.size(), hms(elapsed).c_str(),
-                    hms(eta).c_str(), summary.truth_traces, slowest.c_str(), slowest_ms,
-                    cell.technique.c_str(), describe_params(cell).c_str(), scene.name.c_str(),
-                    cell.view.elevation_deg, cell.view.azimuth_deg, cell.width, cell.height,
-                    m.wrong_pct, m.pos_err.rmse, m.fetches.mean, timing.median_ms);
-      std::fprintf(stderr, "%s\n", buf);
-    }
+    if (options.progress)
+      std::fprintf(stderr, "%s\n",
+                   progress_line(cell, scene, measured, summary, finished, todo,
+                                 ms_since(work_start) / 1000.0, technique_ms)
+                       .c_str());
   }
 
   write_sweep_outputs(config, cells, store, options.out_dir);
-
   summary.elapsed_s = ms_since(start) / 1000.0;
-  char buf[512];
-  std::snprintf(
-      buf, sizeof buf,
-      "relieflab: done in %s: %zu cells, %zu new rows, %zu already done; traced truth "
-      "%zu times, built %zu assets; wrote %s/rows.csv, %zu table(s), pareto.md and plots/",
-      hms(summary.elapsed_s).c_str(), summary.cells, summary.new_rows, summary.already_done,
-      summary.truth_traces, summary.asset_builds, options.out_dir.c_str(), config.tables.size());
-  log.line(buf);
+  log.line(done_line(summary, options, config.tables.size()));
   return summary;
 }
 
