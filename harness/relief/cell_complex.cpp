@@ -510,25 +510,29 @@ void dilate_attributes(const std::vector<uint8_t>& crossings, int res,
 
 }  // namespace
 
-CellComplex CellComplex::build(const TriangleMesh& mesh, const CellComplexOptions& options) {
-  if (options.grid > 0 && options.grid > kMaxCellGrid)
-    throw ConfigError("cell grid " + std::to_string(options.grid) + " is above the cap " +
-                      std::to_string(kMaxCellGrid));
-  if (options.resolution < 2 || options.resolution > 1024)
-    throw ConfigError("cell map resolution must be 2 to 1024, got " +
-                      std::to_string(options.resolution));
-  if (options.distance_bits != 8 && options.distance_bits != 16)
-    throw ConfigError("distance_bits must be 8 or 16");
-  if (options.grid <= 0) {
-    // Section 3.3.3: start at 1 and double until the occluded-fragment ratio is below the
-    // threshold or N_max is reached.
+// The construction's stages (Section 3.3), each on the complex it fills.
+struct CellComplexBuilder {
+  static void check_options(const CellComplexOptions& options) {
+    if (options.grid > 0 && options.grid > kMaxCellGrid)
+      throw ConfigError("cell grid " + std::to_string(options.grid) + " is above the cap " +
+                        std::to_string(kMaxCellGrid));
+    if (options.resolution < 2 || options.resolution > 1024)
+      throw ConfigError("cell map resolution must be 2 to 1024, got " +
+                        std::to_string(options.resolution));
+    if (options.distance_bits != 8 && options.distance_bits != 16)
+      throw ConfigError("distance_bits must be 8 or 16");
+  }
+
+  // Section 3.3.3: start at 1 and double until the occluded-fragment ratio is below the
+  // threshold or N_max is reached.
+  static CellComplex search_grid(const TriangleMesh& mesh, const CellComplexOptions& options) {
     std::vector<GridTrial> trials;
     double total_ms = 0;
     const int cap = std::clamp(options.grid_max, 1, kMaxCellGrid);
     for (int n = 1;; n *= 2) {
       CellComplexOptions o = options;
       o.grid = std::min(n, cap);
-      CellComplex c = build(mesh, o);
+      CellComplex c = CellComplex::build(mesh, o);
       trials.push_back({o.grid, c.stats_.occluded_ratio(), c.stats_.grey_cells,
                         c.stats_.domain_faces, c.stats_.construction_ms});
       total_ms += c.stats_.construction_ms;
@@ -539,116 +543,141 @@ CellComplex CellComplex::build(const TriangleMesh& mesh, const CellComplexOption
       }
     }
   }
+
+  // Each grey cell's internal faces, configuration (case and projection) and domain faces.
+  static void configure_cells(CellComplex& cc) {
+    const int n = cc.n_;
+    CellComplex::Stats& st = cc.stats_;
+    for (int k = 0; k < n; ++k)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          CellComplex::Cell& c = cc.cells_[cc.index(i, j, k)];
+          if (c.state == CellState::White) ++st.white_cells;
+          if (c.state == CellState::Black) ++st.black_cells;
+          if (c.state != CellState::Grey) continue;
+          ++st.grey_cells;
+          uint8_t internal = 0;
+          for (int f = 0; f < 6; ++f) {
+            int nb[3] = {i, j, k};
+            nb[f / 2] += f % 2 ? 1 : -1;
+            const bool outside = nb[f / 2] < 0 || nb[f / 2] >= n;
+            if (!outside && cc.cells_[cc.index(nb[0], nb[1], nb[2])].state != CellState::White)
+              internal |= uint8_t(1u << f);
+          }
+          c.internal_mask = internal;
+          c.config = configure_cell(internal);
+          ++st.cases[int(c.config.base_case)];
+          (internal == 63 ? st.interior_grey : st.border_grey)++;
+          c.first_face = int(cc.faces_.size());
+          for (int f = 0; f < 6; ++f)
+            if ((c.config.domain_mask >> f) & 1u) cc.faces_.push_back({int(cc.index(i, j, k)), f});
+        }
+    st.domain_faces = long(cc.faces_.size());
+  }
+
+  // Crossings of one texel's projection line, and the fragments they count.
+  struct TexelCount {
+    long fragments = 0, occluded = 0, multi = 0;
+  };
+
+  // One texel of one domain face (Section 3.3.2): a ray along its projection line (exact per
+  // texel) gives the first crossing's distance, normal and colour.
+  static void sample_texel(CellComplex& cc, RTCScene scene, const TriangleMesh& mesh, size_t t,
+                           TexelCount& count) {
+    const int n = cc.n_, res = cc.res_;
+    const size_t texels = size_t(res) * res;
+    const CellComplex::DomainFace& df = cc.faces_[t / texels];
+    const int x = int((t % texels) % res), y = int((t % texels) / res);
+    const CellComplex::Cell& c = cc.cells_[df.cell];
+    const glm::dvec3 cell0(df.cell % n, (df.cell / n) % n, df.cell / (size_t(n) * n));
+    const CellLine line =
+        face_line(c.config.projection, df.face, {(x + 0.5) / res, (y + 0.5) / res});
+    const glm::dvec3 from = (cell0 + line.on_face) / double(n);
+    const glm::dvec3 to = (cell0 + line.inner) / double(n);
+    const double length = glm::length(to - from);
+    // The face point is outside on an external face (it touches a white cell); on an interior
+    // grey cell's face it is inside next to a black cell, else by parity.
+    bool face_inside = false;
+    if (c.internal_mask == 63) {
+      int nb[3] = {int(cell0.x), int(cell0.y), int(cell0.z)};
+      nb[df.face / 2] += df.face % 2 ? 1 : -1;
+      const bool in_grid = nb[df.face / 2] >= 0 && nb[df.face / 2] < n;
+      const CellState s =
+          in_grid ? cc.cells_[cc.index(nb[0], nb[1], nb[2])].state : CellState::White;
+      face_inside =
+          s == CellState::Black || (s == CellState::Grey && parity_inside(scene, from, nullptr));
+    }
+    double d = 1;  // outside all along
+    int hits = 0;
+    if (length > 0) {
+      RTCRayHit first{};
+      hits = count_crossings(scene, from, (to - from) / length, length, &first);
+      count.fragments += hits;
+      count.occluded += std::max(0, hits - 1);
+      count.multi += hits > 1;
+      if (hits > 0) {
+        d = std::clamp(double(first.ray.tfar) / length, 0.0, 1.0);
+        const glm::dvec3 ng(first.hit.Ng_x, first.hit.Ng_y, first.hit.Ng_z);
+        if (glm::dot(ng, ng) > 0) cc.normal_[t] = glm::vec3(glm::normalize(ng));
+        if (!mesh.triangle_colors.empty()) cc.color_[t] = mesh.triangle_colors[first.hit.primID];
+      }
+    }
+    // A line inside all along is stored as entering at its face point (d = 0, no flag), so it
+    // interpolates continuously with its neighbours that enter just after theirs; the flag
+    // marks only lines that start inside and leave (inside up to d).
+    if (face_inside && hits == 0) d = 0;
+    cc.face_inside_[t] = face_inside && hits > 0;
+    cc.crossings_[t] = uint8_t(std::min(hits, 255));
+    cc.distance_[t] = uint16_t(std::lround(d * cc.distance_scale()));
+  }
+
+  // Sampling (Section 3.3.2) of every texel of every domain face; every crossing counted as a
+  // fragment.
+  static void sample_faces(CellComplex& cc, RTCScene scene, const TriangleMesh& mesh) {
+    const size_t texels = size_t(cc.res_) * cc.res_;
+    const size_t all = cc.faces_.size() * texels;
+    cc.distance_.assign(all, 0);
+    cc.face_inside_.assign(all, 0);
+    cc.crossings_.assign(all, 0);
+    cc.normal_.assign(all, glm::vec3(0, 0, -1));
+    cc.color_.assign(all, kCellAlbedo);
+    std::atomic<long> fragments{0}, occluded{0}, multi{0};
+    parallel_for(
+        all,
+        [&](size_t begin, size_t end) {
+          TexelCount count;
+          for (size_t t = begin; t < end; ++t) sample_texel(cc, scene, mesh, t, count);
+          fragments += count.fragments;
+          occluded += count.occluded;
+          multi += count.multi;
+        },
+        1024);
+    dilate_attributes(cc.crossings_, cc.res_, cc.normal_, cc.color_);
+    cc.stats_.fragments = fragments.load();
+    cc.stats_.occluded_fragments = occluded.load();
+    cc.stats_.multi_crossing_texels = multi.load();
+  }
+};
+
+CellComplex CellComplex::build(const TriangleMesh& mesh, const CellComplexOptions& options) {
+  CellComplexBuilder::check_options(options);
+  if (options.grid <= 0) return CellComplexBuilder::search_grid(mesh, options);
   CellComplex cc;
   cc.n_ = options.grid;
   cc.res_ = options.resolution;
   cc.bits_ = options.distance_bits;
-  const int n = cc.n_, res = cc.res_;
   EmbreeScene embree(mesh);
   Stats& st = cc.stats_;
   st.mesh_triangles = long(mesh.triangles.size());
   cc.mesh_ = mesh;
 
   auto t0 = std::chrono::steady_clock::now();
-  classify(mesh, embree.scene, n, cc.cells_, st);
-  // Faces, cases and projections.
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        Cell& c = cc.cells_[cc.index(i, j, k)];
-        if (c.state == CellState::White) ++st.white_cells;
-        if (c.state == CellState::Black) ++st.black_cells;
-        if (c.state != CellState::Grey) continue;
-        ++st.grey_cells;
-        uint8_t internal = 0;
-        for (int f = 0; f < 6; ++f) {
-          int nb[3] = {i, j, k};
-          nb[f / 2] += f % 2 ? 1 : -1;
-          const bool outside = nb[f / 2] < 0 || nb[f / 2] >= n;
-          if (!outside && cc.cells_[cc.index(nb[0], nb[1], nb[2])].state != CellState::White)
-            internal |= uint8_t(1u << f);
-        }
-        c.internal_mask = internal;
-        c.config = configure_cell(internal);
-        ++st.cases[int(c.config.base_case)];
-        (internal == 63 ? st.interior_grey : st.border_grey)++;
-        c.first_face = int(cc.faces_.size());
-        for (int f = 0; f < 6; ++f)
-          if ((c.config.domain_mask >> f) & 1u) cc.faces_.push_back({int(cc.index(i, j, k)), f});
-      }
-  st.domain_faces = long(cc.faces_.size());
+  classify(mesh, embree.scene, cc.n_, cc.cells_, st);
+  CellComplexBuilder::configure_cells(cc);
   st.classify_ms = ms_since(t0);
 
-  // Sampling (Section 3.3.2), by rays along each texel's projection line (exact per texel):
-  // the first crossing's distance, normal and colour; every crossing counted as a fragment.
   t0 = std::chrono::steady_clock::now();
-  const size_t texels = size_t(res) * res;
-  cc.distance_.assign(cc.faces_.size() * texels, 0);
-  cc.face_inside_.assign(cc.faces_.size() * texels, 0);
-  cc.crossings_.assign(cc.faces_.size() * texels, 0);
-  cc.normal_.assign(cc.faces_.size() * texels, glm::vec3(0, 0, -1));
-  cc.color_.assign(cc.faces_.size() * texels, kCellAlbedo);
-  std::atomic<long> fragments{0}, occluded{0}, multi{0};
-  const double scale = cc.distance_scale();
-  parallel_for(
-      cc.faces_.size() * texels,
-      [&](size_t begin, size_t end) {
-        long frag = 0, occ = 0, mul = 0;
-        for (size_t t = begin; t < end; ++t) {
-          const DomainFace& df = cc.faces_[t / texels];
-          const int x = int((t % texels) % res), y = int((t % texels) / res);
-          const Cell& c = cc.cells_[df.cell];
-          const glm::dvec3 cell0(df.cell % n, (df.cell / n) % n, df.cell / (size_t(n) * n));
-          const CellLine line =
-              face_line(c.config.projection, df.face, {(x + 0.5) / res, (y + 0.5) / res});
-          const glm::dvec3 from = (cell0 + line.on_face) / double(n);
-          const glm::dvec3 to = (cell0 + line.inner) / double(n);
-          const double length = glm::length(to - from);
-          // The face point is outside on an external face (it touches a white cell); on an
-          // interior grey cell's face it is inside next to a black cell, else by parity.
-          bool face_inside = false;
-          if (c.internal_mask == 63) {
-            int nb[3] = {int(cell0.x), int(cell0.y), int(cell0.z)};
-            nb[df.face / 2] += df.face % 2 ? 1 : -1;
-            const bool in_grid = nb[df.face / 2] >= 0 && nb[df.face / 2] < n;
-            const CellState s =
-                in_grid ? cc.cells_[cc.index(nb[0], nb[1], nb[2])].state : CellState::White;
-            face_inside = s == CellState::Black ||
-                          (s == CellState::Grey && parity_inside(embree.scene, from, nullptr));
-          }
-          double d = 1;  // outside all along
-          int hits = 0;
-          if (length > 0) {
-            RTCRayHit first{};
-            hits = count_crossings(embree.scene, from, (to - from) / length, length, &first);
-            frag += hits;
-            occ += std::max(0, hits - 1);
-            mul += hits > 1;
-            if (hits > 0) {
-              d = std::clamp(double(first.ray.tfar) / length, 0.0, 1.0);
-              const glm::dvec3 ng(first.hit.Ng_x, first.hit.Ng_y, first.hit.Ng_z);
-              if (glm::dot(ng, ng) > 0) cc.normal_[t] = glm::vec3(glm::normalize(ng));
-              if (!mesh.triangle_colors.empty())
-                cc.color_[t] = mesh.triangle_colors[first.hit.primID];
-            }
-          }
-          // A line inside all along is stored as entering at its face point (d = 0, no flag),
-          // so it interpolates continuously with its neighbours that enter just after theirs;
-          // the flag marks only lines that start inside and leave (inside up to d).
-          if (face_inside && hits == 0) d = 0;
-          cc.face_inside_[t] = face_inside && hits > 0;
-          cc.crossings_[t] = uint8_t(std::min(hits, 255));
-          cc.distance_[t] = uint16_t(std::lround(d * scale));
-        }
-        fragments += frag;
-        occluded += occ;
-        multi += mul;
-      },
-      1024);
-  dilate_attributes(cc.crossings_, res, cc.normal_, cc.color_);
-  st.fragments = fragments.load();
-  st.occluded_fragments = occluded.load();
-  st.multi_crossing_texels = multi.load();
+  CellComplexBuilder::sample_faces(cc, embree.scene, mesh);
   st.sample_ms = ms_since(t0);
   st.construction_ms = st.classify_ms + st.sample_ms;
   return cc;

@@ -169,6 +169,7 @@ class CellComplex {
   glm::dvec3 sample_color(int face_index, glm::dvec2 st) const;
 
  private:
+  friend struct CellComplexBuilder;  // the construction's stages (cell_complex.cpp)
   int n_ = 1, res_ = 64, bits_ = 16;
   std::vector<Cell> cells_;
   std::vector<DomainFace> faces_;
