@@ -62,12 +62,14 @@ class DepthSampler {
     for (size_t i = 0; i < d_.size(); ++i) d_[i] = m.relief[i].a;
   }
   double operator()(double x, double y) const {
-    // Shift by whole tiles so floor() and % see non-negative values.
+    // Shift by whole tiles so the floor and the wrap see non-negative values; the floor of a
+    // positive value is its truncation (no library call), and a texel inside the map needs no
+    // division to wrap.
     x += 64.0 * w_;
     y += 64.0 * h_;
-    const double fx0 = std::floor(x), fy0 = std::floor(y);
+    const double fx0 = double(long(x)), fy0 = double(long(y));
     const double fx = x - fx0, fy = y - fy0;
-    const long x0 = long(fx0) % w_, y0 = long(fy0) % h_;
+    const long x0 = wrap(long(fx0) - 64 * w_, w_), y0 = wrap(long(fy0) - 64 * h_, h_);
     const long x1 = x0 + 1 == w_ ? 0 : x0 + 1, y1 = y0 + 1 == h_ ? 0 : y0 + 1;
     const float* r0 = &d_[size_t(y0) * w_];
     const float* r1 = &d_[size_t(y1) * w_];
@@ -75,6 +77,11 @@ class DepthSampler {
   }
 
  private:
+  static long wrap(long a, long n) {
+    if (a >= 0 && a < n) return a;
+    const long r = a % n;
+    return r < 0 ? r + n : r;
+  }
   long w_, h_;
   std::vector<float> d_;
 };
