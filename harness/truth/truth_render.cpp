@@ -152,6 +152,72 @@ uint64_t ao_seed(size_t pixel) {
   return fnv1a64(&pixel, sizeof pixel, 0x5eed0a0ull);
 }
 
+// The reference AO at pixel `i`: `trace()`, or an earlier run's estimate where the cache has
+// one for exactly this hit (truth/ao_truth_cache.h).
+template <typename Trace>
+AoEstimate reference_ao_at(AoTruthCache* cache, size_t i, const glm::dvec3& point,
+                           const glm::dvec3& normal, Trace&& trace) {
+  return cache ? cache->estimate(i, point, normal, trace) : trace();
+}
+
+// A planar truth hit's shading normal and albedo, as the shaders shade it.
+struct Surface {
+  glm::dvec3 normal, albedo;
+};
+
+Surface planar_surface(const PlanarBase& base, const ReliefMap& map, const TruthHit& h,
+                       const glm::dvec2& uv, const glm::dvec3& dir) {
+  // A tangent-space normal in the base's unit frame.
+  auto in_base_frame = [&](const glm::dvec3& t) {
+    return glm::normalize(t.x * glm::normalize(base.dpdu()) + t.y * glm::normalize(base.dpdv()) +
+                          t.z * base.normal());
+  };
+  glm::dvec3 n = in_base_frame(decode_normal(map.surface_relief(uv.x, uv.y)));
+  if (h.tangent_normal) {
+    n = in_base_frame(h.normal);
+  } else if (h.has_normal) {
+    // The surface's own normal (mesh truth), from texture space (u, v, depth) to world by the
+    // inverse transpose of the base's scaling; facing the viewer.
+    const glm::dvec3 m = h.normal;
+    n = glm::normalize(glm::dvec3(m.x / glm::length(base.dpdu()), m.y / glm::length(base.dpdv()),
+                                  -m.z / base.depth));
+    if (glm::dot(n, dir) > 0) n = -n;
+  }
+  const glm::dvec3 albedo = h.has_albedo ? h.albedo : glm::dvec3(map.sample_color(uv.x, uv.y));
+  // The solid floor under a multilayer map: facing up, in the floor colour.
+  if (!map.layers.empty() && !h.hit) return {base.normal(), glm::dvec3(kLayeredFloorColor)};
+  return {n, albedo};
+}
+
+// Whether a planar truth hit is in its own shadow, as the shaders decide it.
+bool planar_in_shadow(const TruthSurface& truth, const PlanarBase& base, const SceneDesc& scene,
+                      const TruthHit& h, const glm::dvec3& world) {
+  const glm::dvec3 l = base.texture_direction(scene.light_position - world);
+  const double t_start = 1e-4 / std::max(1.0, glm::length(l));
+  if (scene.impostor()) {
+    // Lit from either side: toward the light until the ray leaves the depth range.
+    const double t_exit = l.z < 0 ? -h.point.z / l.z : (l.z > 0 ? (1.0 - h.point.z) / l.z : 1e9);
+    return t_exit > t_start && truth.occluded(h.point, l, t_start, t_exit);
+  }
+  if (l.z >= 0) return true;  // light at or below the hit (as the shaders decide)
+  // From the hit toward the light, up to where it leaves the relief at the top.
+  return truth.occluded(h.point, l, t_start, std::min(1.0, -h.point.z / l.z));
+}
+
+// The render's ray counts, the shadow rays without the AO's occlusion rays.
+template <typename Truth>
+void fill_stats(TruthStats* stats, const Truth& truth, std::chrono::steady_clock::time_point start,
+                uint64_t primary0, uint64_t shadow0, uint64_t ao_rays, uint64_t ao_traced,
+                uint64_t ao_cached_px, long unresolved) {
+  if (!stats) return;
+  stats->trace_ms = ms_since(start);
+  stats->primary_rays = truth.primary_rays() - primary0;
+  stats->shadow_rays = truth.shadow_rays() - shadow0 - ao_traced;
+  stats->ao_rays = ao_rays;
+  stats->ao_cached_px = ao_cached_px;
+  stats->unresolved = unresolved;
+}
+
 }  // namespace
 
 AoSampling ao_sampling(const SceneDesc& scene) {
@@ -217,52 +283,14 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
           }
           if (!relief) continue;
           const glm::dvec2 uv(h.point.x, h.point.y);
-          // A tangent-space normal in the base's unit frame, as the shaders shade.
-          auto in_base_frame = [&](const glm::dvec3& t) {
-            return glm::normalize(t.x * glm::normalize(base.dpdu()) +
-                                  t.y * glm::normalize(base.dpdv()) + t.z * base.normal());
-          };
-          glm::dvec3 n = in_base_frame(decode_normal(map.surface_relief(uv.x, uv.y)));
-          if (h.tangent_normal) {
-            n = in_base_frame(h.normal);
-          } else if (h.has_normal) {
-            // The surface's own normal (mesh truth), from texture space (u, v, depth) to world
-            // by the inverse transpose of the base's scaling; facing the viewer.
-            const glm::dvec3 m = h.normal;
-            n = glm::normalize(glm::dvec3(m.x / glm::length(base.dpdu()),
-                                          m.y / glm::length(base.dpdv()), -m.z / base.depth));
-            if (glm::dot(n, dir) > 0) n = -n;
-          }
-          glm::dvec3 albedo = h.has_albedo ? h.albedo : glm::dvec3(map.sample_color(uv.x, uv.y));
-          if (!map.layers.empty() && !h.hit) {
-            // The solid floor under a multilayer map: facing up, in the floor colour.
-            n = base.normal();
-            albedo = glm::dvec3(kLayeredFloorColor);
-          }
+          const Surface surface = planar_surface(base, map, h, uv, dir);
           const glm::dvec3 to_light = glm::normalize(scene.light_position - world);
-          bool in_shadow = false;
-          if (shadows) {
-            const glm::dvec3 l = base.texture_direction(scene.light_position - world);
-            if (scene.impostor()) {
-              // Lit from either side: toward the light until the ray leaves the depth range.
-              const double t_exit =
-                  l.z < 0 ? -h.point.z / l.z : (l.z > 0 ? (1.0 - h.point.z) / l.z : 1e9);
-              const double t_start = 1e-4 / std::max(1.0, glm::length(l));
-              in_shadow = t_exit > t_start && truth.occluded(h.point, l, t_start, t_exit);
-            } else if (l.z >= 0) {
-              in_shadow = true;  // light at or below the hit (as the shaders decide)
-            } else {
-              // From the hit toward the light, up to where it leaves the relief at the top.
-              const double t_exit = std::min(1.0, -h.point.z / l.z);
-              const double t_start = 1e-4 / std::max(1.0, glm::length(l));
-              in_shadow = truth.occluded(h.point, l, t_start, t_exit);
-            }
-          }
+          const bool in_shadow = shadows && planar_in_shadow(truth, base, scene, h, world);
           AoEstimate ao;
           if (ambient_occlusion) {
             // Hemisphere rays from the hit up to where they leave the relief at the top plane
             // (nothing above it blocks), through the tiling as the AO map wraps.
-            auto trace = [&] {
+            ao = reference_ao_at(ao_cache, i, h.point, base.normal(), [&] {
               return reference_ao(ao_sampling(scene), ao_seed(i), base.normal(),
                                   glm::normalize(base.dpdu()), [&](const glm::dvec3& w) {
                                     const glm::dvec3 l = base.texture_direction(w);
@@ -272,12 +300,12 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
                                     ++ao_traced;
                                     return truth.occluded(h.point, l, t0, t_exit);
                                   });
-            };
-            ao = ao_cache ? ao_cache->estimate(i, h.point, base.normal(), trace) : trace();
+            });
             ao_rays += uint64_t(ao.rays);
           }
+          const glm::dvec3& n = surface.normal;
           write_relief_pixel(
-              g, i, scene, albedo, n, world, to_light, dir, uv, in_shadow, ao,
+              g, i, scene, surface.albedo, n, world, to_light, dir, uv, in_shadow, ao,
               // Every planar truth is exact (vertical 0) or a mesh traced as it is, so the
               // shading normal stands in for the geometric one; a tessellated planar truth
               // would have to supply its own (as DisplacedHit does).
@@ -286,14 +314,8 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
       },
       256);
 
-  if (stats) {
-    stats->trace_ms = ms_since(start);
-    stats->primary_rays = truth.primary_rays() - primary0;
-    stats->shadow_rays = truth.shadow_rays() - shadow0 - ao_traced.load();
-    stats->ao_rays = ao_rays.load();
-    stats->ao_cached_px = ao_cache ? ao_cache->reused() - ao_reused0 : 0;
-    stats->unresolved = unresolved.load();
-  }
+  fill_stats(stats, truth, start, primary0, shadow0, ao_rays.load(), ao_traced.load(),
+             ao_cache ? ao_cache->reused() - ao_reused0 : 0, unresolved.load());
   return g;
 }
 
@@ -355,15 +377,14 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
             // shell over a locally flat base: the relief occludes itself, while the base's own
             // shape (a handle over the body) is what no texture-space AO can know.
             const double below_top = scene.depth * map.surface_depth(h.uv.x, h.uv.y) + 1e-6;
-            auto trace = [&] {
+            ao = reference_ao_at(ao_cache, i, h.position, h.normal, [&] {
               return reference_ao(
                   ao_sampling(scene), ao_seed(i), h.normal, h.tangent, [&](const glm::dvec3& w) {
                     const double rise = std::max(glm::dot(w, h.normal), 1e-6);
                     ++ao_traced;
                     return truth.occluded(h.position, w, 1e-4 * scene.depth, below_top / rise);
                   });
-            };
-            ao = ao_cache ? ao_cache->estimate(i, h.position, h.normal, trace) : trace();
+            });
             ao_rays += uint64_t(ao.rays);
           }
           write_relief_pixel(g, i, scene, albedo, n, h.position, to_light, dir, h.uv, in_shadow, ao,
@@ -372,14 +393,8 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
         }
       },
       256);
-  if (stats) {
-    stats->trace_ms = ms_since(start);
-    stats->primary_rays = truth.primary_rays() - primary0;
-    stats->shadow_rays = truth.shadow_rays() - shadow0 - ao_traced.load();
-    stats->ao_rays = ao_rays.load();
-    stats->ao_cached_px = ao_cache ? ao_cache->reused() - ao_reused0 : 0;
-    stats->unresolved = 0;
-  }
+  fill_stats(stats, truth, start, primary0, shadow0, ao_rays.load(), ao_traced.load(),
+             ao_cache ? ao_cache->reused() - ao_reused0 : 0, 0);
   return g;
 }
 
