@@ -1,6 +1,8 @@
 // The image module: relief/image_backend.h through OpenImageIO. Built as librelieflab_oiio.so
 // and loaded on first use, so that only processes that read or write images load
 // OpenImageIO's dependencies.
+#include <memory>
+
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
@@ -16,12 +18,16 @@ std::string failure(const File& file) {
   return file ? file->geterror() : OIIO::geterror();
 }
 
-bool read_header(const std::string& path, ImageHeader& header, std::string& error) {
-  // Keep stored channels as they are: by default OIIO premultiplies PNG colour by alpha,
-  // which would scale the normals of a map whose alpha holds heights.
+// Opens an image keeping its stored channels as they are: by default OIIO premultiplies PNG
+// colour by alpha, which would scale the normals of a map whose alpha holds heights.
+std::unique_ptr<OIIO::ImageInput> open_unassociated(const std::string& path) {
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
-  auto in = OIIO::ImageInput::open(path, &config);
+  return OIIO::ImageInput::open(path, &config);
+}
+
+bool read_header(const std::string& path, ImageHeader& header, std::string& error) {
+  auto in = open_unassociated(path);
   if (!in) {
     error = OIIO::geterror();
     return false;
@@ -33,9 +39,7 @@ bool read_header(const std::string& path, ImageHeader& header, std::string& erro
 
 bool read_pixels(const std::string& path, const ImageHeader& header, std::vector<float>& pixels,
                  std::string& error) {
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  auto in = OIIO::ImageInput::open(path, &config);
+  auto in = open_unassociated(path);
   pixels.resize(size_t(header.width) * header.height * header.channels);
   if (!in || !in->read_image(0, 0, 0, header.channels, OIIO::TypeDesc::FLOAT, pixels.data())) {
     error = failure(in);
