@@ -26,24 +26,11 @@ int resolve_texture_res(const SceneDesc& scene, int texture_res) {
   return texture_res > 0 ? texture_res : scene.relief.native.longer();
 }
 
-SweepConfig parse_sweep_config(const std::string& text, const std::string& source_name,
-                               const std::string& base_dir) {
-  Src src{source_name};
-  toml::table root;
-  try {
-    root = toml::parse(text, source_name);
-  } catch (const toml::parse_error& e) {
-    throw ConfigError(source_name + ":" + std::to_string(e.source().begin.line) +
-                      ": TOML syntax error: " + std::string(e.description()));
-  }
-  check_keys(root, {"sweep", "scene", "technique", "table", "plot"}, src, "the top level");
-  SweepConfig c;
-  c.source = source_name;
-  c.text = text;
-  c.base_dir = base_dir;
-  json canon;
+namespace {
 
-  // [sweep]
+// [sweep]: the name, views, viewports, texture sizes, timing and outputs; the views are the
+// elevations x azimuths unless 'views' lists them.
+void parse_sweep_table(const toml::table& root, const Src& src, SweepConfig& c) {
   std::vector<double> elevations = {45}, azimuths = {0};
   if (auto* n = root.get("sweep")) {
     const toml::table* t = n->as_table();
@@ -119,70 +106,66 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
       for (double a : azimuths) c.views.push_back({e, a});
   if (c.viewports.empty()) c.viewports.push_back({256, 256});
   if (c.texture_res.empty()) c.texture_res.push_back(0);
+}
 
-  // [[scene]]: parsed, then completed from its files (sizes, proportions, hashes).
-  const toml::array* scenes = root.get("scene") ? root.get("scene")->as_array() : nullptr;
-  if (!scenes || scenes->empty()) fail(source_name, "no [[scene]] given");
-  std::set<std::string> scene_names;
-  for (const toml::node& n : *scenes) {
-    const toml::table* t = n.as_table();
-    if (!t) fail(src.at(n), "[[scene]] must be a table");
-    ParsedScene parsed = parse_scene(*t, src, base_dir, n);
-    read_scene_files(parsed);
-    json& sc = parsed.canon;
-    c.scenes.push_back(parsed.scene);
-    SceneDesc& scene = c.scenes.back();
-    // Layers cost memory per texel and layer (7 floats baked, then 28 bytes uploaded).
-    for (int res : c.texture_res) {
-      const MapSize size = scene.relief.size_at(res);
-      if (scene.relief.layers > 0 &&
-          double(size.width) * size.height * scene.relief.layers > double(1 << 26))
-        fail(src.at(n), "scene '" + scene.name + "': " + std::to_string(size.width) + "x" +
-                            std::to_string(size.height) + " texels x " +
-                            std::to_string(scene.relief.layers) +
-                            " layers exceeds 67,108,864 (e.g. 2048^2 x 8 or 4096^2 x 4)");
-    }
-    for (const View& v : c.views)
-      if (v.elevation_deg < 0 && !scene.impostor() && !scene.in_cube())
-        fail(src.at(n),
-             "scene '" + scene.name + "' is seen from below (elevation " +
-                 std::to_string(v.elevation_deg) +
-                 "), which only relief impostors (a mesh with 'layers'), cell complexes and "
-                 "heightfield objects (a mesh with 'faces') can be; give it a sweep of its own");
-    if (scene.framing == Framing::Fill) {
-      // Lengthen the quad (whole tiles more) for the grazing-est view of the sweep.
-      double min_el = 90, max_aspect = 0;
-      for (const View& v : c.views) min_el = std::min(min_el, v.elevation_deg);
-      for (const auto& [w, h] : c.viewports) max_aspect = std::max(max_aspect, double(w) / h);
-      apply_fill_framing(scene, min_el, max_aspect);
-      sc["size"] = scene.size;
-      sc["tile"] = scene.tile;
-    }
-    if (!scene_names.insert(c.scenes.back().name).second)
-      fail(src.at(n), "duplicate scene name '" + c.scenes.back().name + "'");
-    canon["scenes"][c.scenes.back().name] = sc;
-    c.scene_canonical[c.scenes.back().name] = sc.dump();
-    c.scene_sites[c.scenes.back().name] = {parsed.sites.scene, parsed.sites.relief};
-  }
-
-  // [[technique]]
-  const toml::array* techniques =
-      root.get("technique") ? root.get("technique")->as_array() : nullptr;
-  if (!techniques || techniques->empty()) fail(source_name, "no [[technique]] given");
-  for (const toml::node& n : *techniques) {
-    const toml::table* t = n.as_table();
-    if (!t) fail(src.at(n), "[[technique]] must be a table");
-    TechniqueSweep ts = parse_technique(*t, src, n);
-    check_technique_sweep(ts, c.scenes);
-    c.techniques.push_back(ts);
-  }
-
-  // [[table]]
+// The names a table's rows and columns or a plot's groups may use: the sweep's fields and
+// every registered technique's parameters.
+std::set<std::string> sweep_fields() {
   std::set<std::string> fields = {"technique",   "scene",       "elevation_deg",
                                   "azimuth_deg", "texture_res", "viewport"};
   for (const auto& name : TechniqueRegistry::instance().names())
     for (const ParamSpec& p : TechniqueRegistry::instance().find(name)->info.params)
       fields.insert(p.name);
+  return fields;
+}
+
+// One [[scene]]: parsed, completed from its files (sizes, proportions, hashes), checked
+// against the sweep's views and sizes, and entered in the canonical description.
+void add_scene(SweepConfig& c, json& canon, std::set<std::string>& scene_names,
+               const toml::table& t, const toml::node& n, const Src& src,
+               const std::string& base_dir) {
+  ParsedScene parsed = parse_scene(t, src, base_dir, n);
+  read_scene_files(parsed);
+  json& sc = parsed.canon;
+  c.scenes.push_back(parsed.scene);
+  SceneDesc& scene = c.scenes.back();
+  // Layers cost memory per texel and layer (7 floats baked, then 28 bytes uploaded).
+  for (int res : c.texture_res) {
+    const MapSize size = scene.relief.size_at(res);
+    if (scene.relief.layers > 0 &&
+        double(size.width) * size.height * scene.relief.layers > double(1 << 26))
+      fail(src.at(n), "scene '" + scene.name + "': " + std::to_string(size.width) + "x" +
+                          std::to_string(size.height) + " texels x " +
+                          std::to_string(scene.relief.layers) +
+                          " layers exceeds 67,108,864 (e.g. 2048^2 x 8 or 4096^2 x 4)");
+  }
+  for (const View& v : c.views)
+    if (v.elevation_deg < 0 && !scene.impostor() && !scene.in_cube())
+      fail(src.at(n),
+           "scene '" + scene.name + "' is seen from below (elevation " +
+               std::to_string(v.elevation_deg) +
+               "), which only relief impostors (a mesh with 'layers'), cell complexes and "
+               "heightfield objects (a mesh with 'faces') can be; give it a sweep of its own");
+  if (scene.framing == Framing::Fill) {
+    // Lengthen the quad (whole tiles more) for the grazing-est view of the sweep.
+    double min_el = 90, max_aspect = 0;
+    for (const View& v : c.views) min_el = std::min(min_el, v.elevation_deg);
+    for (const auto& [w, h] : c.viewports) max_aspect = std::max(max_aspect, double(w) / h);
+    apply_fill_framing(scene, min_el, max_aspect);
+    sc["size"] = scene.size;
+    sc["tile"] = scene.tile;
+  }
+  if (!scene_names.insert(c.scenes.back().name).second)
+    fail(src.at(n), "duplicate scene name '" + c.scenes.back().name + "'");
+  canon["scenes"][c.scenes.back().name] = sc;
+  c.scene_canonical[c.scenes.back().name] = sc.dump();
+  c.scene_sites[c.scenes.back().name] = {parsed.sites.scene, parsed.sites.relief};
+}
+
+// [[table]]s, or the default table of the headline errors and costs by scene, view and
+// setting.
+void parse_tables(const toml::table& root, const Src& src, const std::set<std::string>& fields,
+                  SweepConfig& c) {
   if (auto* n = root.get("table")) {
     const toml::array* tables = n->as_array();
     if (!tables) fail(src.at(*n), "tables are given as [[table]]");
@@ -242,8 +225,11 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
                 "fetches_mean", "frag_fetches_mean", "warp_fetches_per_px", "frame_ms"};
     c.tables.push_back(t);
   }
+}
 
-  // [[plot]]
+// [[plot]]s, or the default error-against-cost plot (sweep/pareto.h).
+void parse_plots(const toml::table& root, const Src& src, const std::set<std::string>& fields,
+                 SweepConfig& c) {
   if (auto* n = root.get("plot")) {
     const toml::array* plots = n->as_array();
     if (!plots) fail(src.at(*n), "plots are given as [[plot]]");
@@ -267,6 +253,55 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
     }
   }
   if (c.plots.empty()) c.plots.push_back(PlotSpec{});
+}
+
+}  // namespace
+
+SweepConfig parse_sweep_config(const std::string& text, const std::string& source_name,
+                               const std::string& base_dir) {
+  Src src{source_name};
+  toml::table root;
+  try {
+    root = toml::parse(text, source_name);
+  } catch (const toml::parse_error& e) {
+    throw ConfigError(source_name + ":" + std::to_string(e.source().begin.line) +
+                      ": TOML syntax error: " + std::string(e.description()));
+  }
+  check_keys(root, {"sweep", "scene", "technique", "table", "plot"}, src, "the top level");
+  SweepConfig c;
+  c.source = source_name;
+  c.text = text;
+  c.base_dir = base_dir;
+  json canon;
+
+  parse_sweep_table(root, src, c);
+
+  // [[scene]]: parsed, then completed from its files (sizes, proportions, hashes).
+  const toml::array* scenes = root.get("scene") ? root.get("scene")->as_array() : nullptr;
+  if (!scenes || scenes->empty()) fail(source_name, "no [[scene]] given");
+  std::set<std::string> scene_names;
+  for (const toml::node& n : *scenes) {
+    const toml::table* t = n.as_table();
+    if (!t) fail(src.at(n), "[[scene]] must be a table");
+    add_scene(c, canon, scene_names, *t, n, src, base_dir);
+  }
+
+  // [[technique]]
+  const toml::array* techniques =
+      root.get("technique") ? root.get("technique")->as_array() : nullptr;
+  if (!techniques || techniques->empty()) fail(source_name, "no [[technique]] given");
+  for (const toml::node& n : *techniques) {
+    const toml::table* t = n.as_table();
+    if (!t) fail(src.at(n), "[[technique]] must be a table");
+    TechniqueSweep ts = parse_technique(*t, src, n);
+    check_technique_sweep(ts, c.scenes);
+    c.techniques.push_back(ts);
+  }
+
+  // [[table]] and [[plot]]: what is written from the rows.
+  const std::set<std::string> fields = sweep_fields();
+  parse_tables(root, src, fields, c);
+  parse_plots(root, src, fields, c);
 
   canon["frames"] = c.frames;
   canon["warmup"] = c.warmup;
