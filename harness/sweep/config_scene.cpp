@@ -83,6 +83,117 @@ void parse_objects(const toml::table& t, const Src& src, const std::string& base
 
 }  // namespace
 
+namespace {
+
+// What the scene is measured against ('truth', default by its relief) and at what map size
+// ('truth_resolution').
+void parse_truth_level(const toml::table& t, const Src& src, SceneDesc& s, nlohmann::json& canon) {
+  if (auto* n = t.get("truth")) {
+    const std::string level = string_of(*n, src, "truth");
+    if (level != "sampled" && level != "mesh" && level != "layers" && level != "cells")
+      fail(src.at(*n),
+           "'truth' must be \"sampled\" (the map's heightfield), \"mesh\" (the mesh or pattern "
+           "the map was baked from), \"layers\" (a multilayer map's own layers) or \"cells\" "
+           "(the surface a cell complex's distance maps encode)");
+    s.truth = level == "mesh"     ? TruthLevel::Mesh
+              : level == "layers" ? TruthLevel::Layers
+              : level == "cells"  ? TruthLevel::Cells
+                                  : TruthLevel::Sampled;
+    if (s.truth == TruthLevel::Cells && !s.cell_complex())
+      fail(src.at(*n), "truth = \"cells\" needs a cell-complex relief (relief = { cells = ... })");
+    if (s.truth == TruthLevel::Mesh && s.relief.mesh_path.empty() && !s.relief.pattern_mesh())
+      fail(src.at(*n),
+           "truth = \"mesh\" needs a mesh relief (relief = { mesh = \"...\" }) or "
+           "a pattern (weave, helix)");
+    if (s.truth == TruthLevel::Layers && s.relief.layers == 0)
+      fail(src.at(*n), "truth = \"layers\" needs a multilayer relief (a pattern, or 'layers')");
+    if (s.truth == TruthLevel::Sampled && s.relief.layers > 0)
+      fail(src.at(*n),
+           "a multilayer relief has no single heightfield to sample; its truths are "
+           "\"mesh\" (what it was baked from) and \"layers\" (its own layers)");
+  } else if (s.relief.layers > 0 || s.in_cube()) {
+    s.truth = TruthLevel::Mesh;  // measured against the geometry it stands for
+  }
+  if (auto* n = t.get("truth_resolution")) {
+    if (s.truth != TruthLevel::Sampled || !s.relief.mesh_path.empty())
+      fail(src.at(*n), "scene '" + s.name +
+                           "': 'truth_resolution' applies to the sampled truth of a heightfield "
+                           "(the map at another resolution)");
+    s.truth_texture_res = positive_int(*n, src, "truth_resolution", 2, 8192);
+    canon["truth_resolution"] = s.truth_texture_res;
+  }
+}
+
+// Combinations of keys that are not built (each refused naming the scene).
+void check_scene_combinations(const SceneDesc& s, const Src& src, const toml::node& node) {
+  if (s.projection.active() && s.proxy != Proxy::Box)
+    fail(src.at(node), "scene '" + s.name +
+                           "': reverse_perspective needs proxy = \"box\" (the frustum is drawn)");
+  if (s.projection.active() && s.effects.has(Effect::SelfShadow))
+    fail(src.at(node),
+         "scene '" + s.name + "': self_shadow is not supported with reverse_perspective yet");
+  if (s.relief.layers > 0) {
+    // Not built: layers in a box proxy (its truth would be the mesh clipped to the box), and a
+    // floor under a pattern on a curved base or an impostor (what shows through is behind).
+    const std::string no = "scene '" + s.name + "': a multilayer relief ";
+    if (s.proxy == Proxy::Box)
+      fail(src.at(node), no + "is drawn on its base; proxy = \"box\" "
+                              "is not supported yet");
+    if (s.base.curved() && !s.relief.pattern_mesh())
+      fail(src.at(node), no + "from a mesh file needs the planar base");
+    if (s.base.curved() && s.truth == TruthLevel::Layers)
+      fail(src.at(node), no + "on a curved base has the pattern mesh as its truth, not "
+                              "\"layers\"");
+    if (!s.empty_floor && (s.base.curved() || s.impostor()))
+      fail(src.at(node), no + "on a curved base or as an impostor has an empty floor (its gaps "
+                              "show what lies behind); floor = \"solid\" applies on the plane");
+  }
+  if (s.truth == TruthLevel::Mesh && !s.relief.mesh_path.empty() && !s.impostor() &&
+      s.proxy != Proxy::Box)
+    fail(src.at(node),
+         "scene '" + s.name +
+             "': truth = \"mesh\" needs proxy = \"box\" (the mesh is an object in its box)");
+}
+
+void parse_framing(const toml::table& t, const Src& src, SceneDesc& s) {
+  const bool can_fill =
+      !s.base.curved() && s.proxy == Proxy::Base && s.distance == 0 && s.relief.mesh_path.empty();
+  s.framing = can_fill ? Framing::Fill : Framing::Fit;
+  if (auto* n = t.get("framing")) {
+    const std::string f = string_of(*n, src, "framing");
+    if (f != "fill" && f != "fit")
+      fail(src.at(*n),
+           "'framing' must be \"fill\" (the relief fills the viewport) or \"fit\" "
+           "(the whole quad in view), got \"" +
+               f + "\"");
+    if (f == "fill" && !can_fill)
+      fail(src.at(*n), "scene '" + s.name +
+                           "': framing = \"fill\" needs the planar base drawn itself (no box "
+                           "proxy, no curved base, no baked mesh) and no 'distance'");
+    s.framing = f == "fill" ? Framing::Fill : Framing::Fit;
+  }
+}
+
+// The rest of the scene's canonical description (what keys its cells).
+void describe_scene(const SceneDesc& s, nlohmann::json& canon) {
+  canon["framing"] = s.framing == Framing::Fill ? "fill" : "fit";
+  canon["size"] = s.size;
+  canon["tile"] = s.tile;
+  canon["depth"] = s.depth;
+  canon["quantize"] = s.quantize;
+  canon["effects"] = join_effects(s.effects);
+  canon["light"] = {s.light_position.x, s.light_position.y, s.light_position.z};
+  canon["fov"] = s.fov_deg;
+  canon["distance"] = s.distance;
+  canon["shadow_bias"] = s.shadow_bias;
+  const Material& m = s.material;
+  canon["material"] = {m.ambient.x,  m.ambient.y, m.ambient.z,       m.diffuse.x,
+                       m.diffuse.y,  m.diffuse.z, m.specular.x,      m.specular.y,
+                       m.specular.z, m.shininess, m.shadow_intensity};
+}
+
+}  // namespace
+
 ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string& base_dir,
                         const toml::node& node) {
   ParsedScene parsed;
@@ -135,40 +246,7 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
     s.quantize = n->value<bool>().value();
   }
   if (auto* n = t.get("light")) s.light_position = vec3_in(*n, src, "light", -1e3, 1e3);
-  if (auto* n = t.get("truth")) {
-    const std::string level = string_of(*n, src, "truth");
-    if (level != "sampled" && level != "mesh" && level != "layers" && level != "cells")
-      fail(src.at(*n),
-           "'truth' must be \"sampled\" (the map's heightfield), \"mesh\" (the mesh or pattern "
-           "the map was baked from), \"layers\" (a multilayer map's own layers) or \"cells\" "
-           "(the surface a cell complex's distance maps encode)");
-    s.truth = level == "mesh"     ? TruthLevel::Mesh
-              : level == "layers" ? TruthLevel::Layers
-              : level == "cells"  ? TruthLevel::Cells
-                                  : TruthLevel::Sampled;
-    if (s.truth == TruthLevel::Cells && !s.cell_complex())
-      fail(src.at(*n), "truth = \"cells\" needs a cell-complex relief (relief = { cells = ... })");
-    if (s.truth == TruthLevel::Mesh && s.relief.mesh_path.empty() && !s.relief.pattern_mesh())
-      fail(src.at(*n),
-           "truth = \"mesh\" needs a mesh relief (relief = { mesh = \"...\" }) or "
-           "a pattern (weave, helix)");
-    if (s.truth == TruthLevel::Layers && s.relief.layers == 0)
-      fail(src.at(*n), "truth = \"layers\" needs a multilayer relief (a pattern, or 'layers')");
-    if (s.truth == TruthLevel::Sampled && s.relief.layers > 0)
-      fail(src.at(*n),
-           "a multilayer relief has no single heightfield to sample; its truths are "
-           "\"mesh\" (what it was baked from) and \"layers\" (its own layers)");
-  } else if (s.relief.layers > 0 || s.in_cube()) {
-    s.truth = TruthLevel::Mesh;  // measured against the geometry it stands for
-  }
-  if (auto* n = t.get("truth_resolution")) {
-    if (s.truth != TruthLevel::Sampled || !s.relief.mesh_path.empty())
-      fail(src.at(*n), "scene '" + s.name +
-                           "': 'truth_resolution' applies to the sampled truth of a heightfield "
-                           "(the map at another resolution)");
-    s.truth_texture_res = positive_int(*n, src, "truth_resolution", 2, 8192);
-    canon["truth_resolution"] = s.truth_texture_res;
-  }
+  parse_truth_level(t, src, s, canon);
   s.empty_floor = !s.relief.mesh_path.empty() || s.relief.pattern_mesh();
   if (auto* n = t.get("floor")) {
     const std::string f = string_of(*n, src, "floor");
@@ -210,65 +288,11 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
   canon["floor"] = s.empty_floor ? "empty" : "solid";
   // A heightfield object's faces carry their own reverse perspective; its cube is affine.
   if (!s.heightfield_object()) s.projection.cop = s.relief.reverse_cop;
-  if (s.projection.active() && s.proxy != Proxy::Box)
-    fail(src.at(node), "scene '" + s.name +
-                           "': reverse_perspective needs proxy = \"box\" (the frustum is drawn)");
-  if (s.projection.active() && s.effects.has(Effect::SelfShadow))
-    fail(src.at(node),
-         "scene '" + s.name + "': self_shadow is not supported with reverse_perspective yet");
-  if (s.relief.layers > 0) {
-    // Not built: layers in a box proxy (its truth would be the mesh clipped to the box), and a
-    // floor under a pattern on a curved base or an impostor (what shows through is behind).
-    const std::string no = "scene '" + s.name + "': a multilayer relief ";
-    if (s.proxy == Proxy::Box)
-      fail(src.at(node), no + "is drawn on its base; proxy = \"box\" "
-                              "is not supported yet");
-    if (s.base.curved() && !s.relief.pattern_mesh())
-      fail(src.at(node), no + "from a mesh file needs the planar base");
-    if (s.base.curved() && s.truth == TruthLevel::Layers)
-      fail(src.at(node), no + "on a curved base has the pattern mesh as its truth, not "
-                              "\"layers\"");
-    if (!s.empty_floor && (s.base.curved() || s.impostor()))
-      fail(src.at(node), no + "on a curved base or as an impostor has an empty floor (its gaps "
-                              "show what lies behind); floor = \"solid\" applies on the plane");
-  }
-  if (s.truth == TruthLevel::Mesh && !s.relief.mesh_path.empty() && !s.impostor() &&
-      s.proxy != Proxy::Box)
-    fail(src.at(node),
-         "scene '" + s.name +
-             "': truth = \"mesh\" needs proxy = \"box\" (the mesh is an object in its box)");
+  check_scene_combinations(s, src, node);
   // Framing: fill by default where it applies (a planar quad drawn itself, no stated camera
   // distance); the quad is lengthened for the sweep's views once they are known.
-  const bool can_fill =
-      !s.base.curved() && s.proxy == Proxy::Base && s.distance == 0 && s.relief.mesh_path.empty();
-  s.framing = can_fill ? Framing::Fill : Framing::Fit;
-  if (auto* n = t.get("framing")) {
-    const std::string f = string_of(*n, src, "framing");
-    if (f != "fill" && f != "fit")
-      fail(src.at(*n),
-           "'framing' must be \"fill\" (the relief fills the viewport) or \"fit\" "
-           "(the whole quad in view), got \"" +
-               f + "\"");
-    if (f == "fill" && !can_fill)
-      fail(src.at(*n), "scene '" + s.name +
-                           "': framing = \"fill\" needs the planar base drawn itself (no box "
-                           "proxy, no curved base, no baked mesh) and no 'distance'");
-    s.framing = f == "fill" ? Framing::Fill : Framing::Fit;
-  }
-  canon["framing"] = s.framing == Framing::Fill ? "fill" : "fit";
-  canon["size"] = s.size;
-  canon["tile"] = s.tile;
-  canon["depth"] = s.depth;
-  canon["quantize"] = s.quantize;
-  canon["effects"] = join_effects(s.effects);
-  canon["light"] = {s.light_position.x, s.light_position.y, s.light_position.z};
-  canon["fov"] = s.fov_deg;
-  canon["distance"] = s.distance;
-  canon["shadow_bias"] = s.shadow_bias;
-  const Material& m = s.material;
-  canon["material"] = {m.ambient.x,  m.ambient.y, m.ambient.z,       m.diffuse.x,
-                       m.diffuse.y,  m.diffuse.z, m.specular.x,      m.specular.y,
-                       m.specular.z, m.shininess, m.shadow_intensity};
+  parse_framing(t, src, s);
+  describe_scene(s, canon);
   return parsed;
 }
 
