@@ -11,6 +11,8 @@
 //   relieflab compare BASE NEW [--tolerances FILE]
 //                                        cells that got worse from one run to another; exit
 //                                        status 1 when any did (sweep/compare.h)
+// Every command first loads the techniques built outside the tree from --plugins PATH and
+// $RELIEFLAB_PLUGIN_PATH (technique/plugins.h).
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -27,6 +29,7 @@
 #include "sweep/config.h"
 #include "sweep/runner.h"
 #include "sweep/shard.h"
+#include "technique/plugins.h"
 #include "technique/technique.h"
 #include "technique/technique_docs.h"
 
@@ -38,6 +41,8 @@ void print_list() {
     const rl::TechniqueInfo& info = registry.find(name)->info;
     std::printf("%s — %s\n  citation: %s\n  effects:  %s\n", info.name.c_str(), info.title.c_str(),
                 info.citation.c_str(), rl::join_effects(info.effects).c_str());
+    if (const std::string& plugin = registry.find(name)->plugin; !plugin.empty())
+      std::printf("  plugin:   %s\n", plugin.c_str());
     if (info.cell_complex) {
       std::printf("  draws:    cell-complex reliefs only (relief = { cells = \"mesh.obj\" })\n");
     } else if (info.heightfield_object_only) {
@@ -138,119 +143,126 @@ void run_sweep_command(const std::string& config_path, const std::string& out_di
   rl::run_sweep(config, options);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{
-      "ReliefLab: measure GPU relief-mapping techniques against Embree ray-traced truth.\n"
-      "Sweeps views, resolutions and parameters from TOML configs and writes rows.csv,\n"
-      "Markdown tables and render / truth / error images."};
-  app.require_subcommand(1);
-
-  std::string config_path, out_dir;
+// Every command's arguments, filled in by CLI11.
+struct CliArgs {
+  std::vector<std::string> plugin_paths;
+  std::string config_path, out_dir, shard_text;
   bool quiet = false;
-  CLI::App* run =
-      app.add_subcommand("run", "Run a sweep (the built-in default sweep without CONFIG)");
-  run->add_option("config", config_path, "Sweep config (TOML), e.g. configs/default.toml");
-  run->add_option("-o,--out", out_dir,
-                  "Output folder (default: out/<sweep name>); re-running into it resumes");
-  run->add_flag("-q,--quiet", quiet, "No per-cell progress lines");
-  std::string shard_text;
-  run->add_option("--shard", shard_text,
-                  "Run only shard I of N (0-based), e.g. 2/8: cells sharing a truth trace stay "
-                  "together, shards balanced by estimated cost; merge them with 'merge'");
   std::string merge_out;
   std::vector<std::string> merge_shards;
-  CLI::App* merge = app.add_subcommand(
-      "merge", "Merge the results of a sweep's shards into OUT and write its tables");
-  merge->add_option("out", merge_out, "Output folder of the merged sweep")->required();
-  merge->add_option("shards", merge_shards, "The shards' output folders")->required();
-
   bool markdown = false;
-  CLI::App* list = app.add_subcommand(
-      "list", "List techniques (citation, effects, parameters) and procedural reliefs");
-  list->add_flag("--markdown", markdown,
-                 "The generated Markdown tables (README technique table, parameter tables)");
   std::string docs_root = ".";
   bool docs_update = false;
+  std::vector<std::string> status_dirs;
+  std::string report_dir;
+  std::string base_dir, new_dir, tolerance_file;
+  std::vector<std::string> verify_dirs;
+  bool verify_write = false;
+};
+
+// The commands and their options, bound to `a`.
+void add_commands(CLI::App& app, CliArgs& a) {
+  app.require_subcommand(1);
+  app.fallthrough();  // --plugins may follow the command: `relieflab list --plugins DIR`
+  app.add_option("--plugins", a.plugin_paths,
+                 "Load techniques built outside the tree: a shared object, or a folder of them "
+                 "(repeatable; also $RELIEFLAB_PLUGIN_PATH, ':'-separated)");
+
+  CLI::App* run =
+      app.add_subcommand("run", "Run a sweep (the built-in default sweep without CONFIG)");
+  run->add_option("config", a.config_path, "Sweep config (TOML), e.g. configs/default.toml");
+  run->add_option("-o,--out", a.out_dir,
+                  "Output folder (default: out/<sweep name>); re-running into it resumes");
+  run->add_flag("-q,--quiet", a.quiet, "No per-cell progress lines");
+  run->add_option("--shard", a.shard_text,
+                  "Run only shard I of N (0-based), e.g. 2/8: cells sharing a truth trace stay "
+                  "together, shards balanced by estimated cost; merge them with 'merge'");
+  CLI::App* merge = app.add_subcommand(
+      "merge", "Merge the results of a sweep's shards into OUT and write its tables");
+  merge->add_option("out", a.merge_out, "Output folder of the merged sweep")->required();
+  merge->add_option("shards", a.merge_shards, "The shards' output folders")->required();
+
+  CLI::App* list = app.add_subcommand(
+      "list", "List techniques (citation, effects, parameters) and procedural reliefs");
+  list->add_flag("--markdown", a.markdown,
+                 "The generated Markdown tables (README technique table, parameter tables)");
   CLI::App* docs = app.add_subcommand(
       "docs", "Rewrite the generated tables in README.md and techniques/*/README.md");
-  docs->add_flag("--update", docs_update, "Rewrite the files (required)")->required();
-  docs->add_option("--root", docs_root, "Repository root (default: the current folder)");
+  docs->add_flag("--update", a.docs_update, "Rewrite the files (required)")->required();
+  docs->add_option("--root", a.docs_root, "Repository root (default: the current folder)");
 
-  std::vector<std::string> status_dirs;
   CLI::App* status = app.add_subcommand(
       "status",
       "How far a run, or the shards of one sweep, has got: cells and truth traces "
       "done, per technique");
-  status->add_option("dirs", status_dirs, "Output folder(s): one run or shard, or every shard")
+  status->add_option("dirs", a.status_dirs, "Output folder(s): one run or shard, or every shard")
       ->required();
-  std::string report_dir;
   CLI::App* report = app.add_subcommand(
       "report",
       "Rewrite a run folder's rows.csv, tables, Pareto fronts and HTML report from "
       "its store (a run writes them itself)");
-  report->add_option("dir", report_dir, "The run's output folder")->required();
-  std::string base_dir, new_dir, tolerance_file;
+  report->add_option("dir", a.report_dir, "The run's output folder")->required();
   CLI::App* compare = app.add_subcommand(
       "compare",
       "Compare two runs' results cell by cell; exit status 1 when any cell got worse beyond "
       "tolerance (a CI regression check)");
-  compare->add_option("base", base_dir, "Output folder of the reference run")->required();
-  compare->add_option("new", new_dir, "Output folder of the run to check")->required();
-  compare->add_option("--tolerances", tolerance_file,
+  compare->add_option("base", a.base_dir, "Output folder of the reference run")->required();
+  compare->add_option("new", a.new_dir, "Output folder of the run to check")->required();
+  compare->add_option("--tolerances", a.tolerance_file,
                       "TOML file: [tolerances] metric = { abs = ..., rel = ..., "
                       "lower_is_better = ... } overriding or adding to the defaults");
 
-  std::vector<std::string> verify_dirs;
-  bool verify_write = false;
   CLI::App* verify = app.add_subcommand(
       "verify",
       "Check each result folder's claims (claims.toml) against its rows.csv and its README's "
       "generated verdict section; exit status 1 naming every claim that no longer holds");
-  verify->add_option("dirs", verify_dirs, "Result folders, e.g. results/*")->required();
-  verify->add_flag("--write", verify_write,
+  verify->add_option("dirs", a.verify_dirs, "Result folders, e.g. results/*")->required();
+  verify->add_flag("--write", a.verify_write,
                    "Rewrite the README verdict sections from the claims (failures still fail)");
+}
 
-  CLI11_PARSE(app, argc, argv);
-
+// Runs the command the arguments name; its exit status.
+int run_command(const CLI::App& app, const CliArgs& a) {
   try {
+    std::vector<std::string> plugins = rl::plugin_paths_from_environment();
+    plugins.insert(plugins.end(), a.plugin_paths.begin(), a.plugin_paths.end());
+    rl::load_plugins(plugins);
     if (app.got_subcommand("list")) {
-      markdown ? print_markdown() : print_list();
+      a.markdown ? print_markdown() : print_list();
       return 0;
     }
     if (app.got_subcommand("report")) {
-      const size_t n = rl::rewrite_outputs(report_dir);
+      const size_t n = rl::rewrite_outputs(a.report_dir);
       std::printf("relieflab: wrote %s/report.html and the tables from %zu stored rows\n",
-                  report_dir.c_str(), n);
+                  a.report_dir.c_str(), n);
       return 0;
     }
     if (app.got_subcommand("status")) {
-      std::fputs(rl::format_run_status(rl::run_status(status_dirs)).c_str(), stdout);
+      std::fputs(rl::format_run_status(rl::run_status(a.status_dirs)).c_str(), stdout);
       return 0;
     }
     if (app.got_subcommand("merge")) {
-      const rl::MergeSummary m = rl::merge_shards(merge_out, merge_shards);
+      const rl::MergeSummary m = rl::merge_shards(a.merge_out, a.merge_shards);
       std::printf(
           "relieflab: merged %zu shard(s) into %s: %zu new rows; %zu of %zu cells "
           "present%s\n",
-          m.shards, merge_out.c_str(), m.rows_added, m.cells - m.missing, m.cells,
+          m.shards, a.merge_out.c_str(), m.rows_added, m.cells - m.missing, m.cells,
           m.missing ? " (run the missing shards, or re-run into a shard's folder)" : "");
       return m.missing ? 3 : 0;
     }
     if (app.got_subcommand("compare")) {
       auto tolerances = rl::default_tolerances();
-      if (!tolerance_file.empty()) rl::read_tolerances(tolerance_file, tolerances);
-      const rl::Comparison c = rl::compare_runs(base_dir, new_dir, tolerances);
+      if (!a.tolerance_file.empty()) rl::read_tolerances(a.tolerance_file, tolerances);
+      const rl::Comparison c = rl::compare_runs(a.base_dir, a.new_dir, tolerances);
       std::fputs(rl::format_comparison(c).c_str(), stdout);
       return c.regressed() ? 1 : 0;
     }
-    if (app.got_subcommand("verify")) return verify_folders(verify_dirs, verify_write);
+    if (app.got_subcommand("verify")) return verify_folders(a.verify_dirs, a.verify_write);
     if (app.got_subcommand("docs")) {
-      std::printf("%d file(s) updated\n", update_docs(docs_root));
+      std::printf("%d file(s) updated\n", update_docs(a.docs_root));
       return 0;
     }
-    run_sweep_command(config_path, out_dir, quiet, shard_text);
+    run_sweep_command(a.config_path, a.out_dir, a.quiet, a.shard_text);
     return 0;
   } catch (const rl::ConfigError& e) {
     std::fprintf(stderr, "relieflab: config error: %s\n", e.what());
@@ -259,4 +271,17 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "relieflab: error: %s\n", e.what());
     return 1;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "ReliefLab: measure GPU relief-mapping techniques against Embree ray-traced truth.\n"
+      "Sweeps views, resolutions and parameters from TOML configs and writes rows.csv,\n"
+      "Markdown tables and render / truth / error images."};
+  CliArgs args;
+  add_commands(app, args);
+  CLI11_PARSE(app, argc, argv);
+  return run_command(app, args);
 }

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "core/data_paths.h"
+
 namespace rl {
 namespace {
 
@@ -18,6 +20,9 @@ const ImageBackend* load_backend() {
   std::vector<std::string> candidates;
   if (const char* env = std::getenv("RELIEFLAB_IMAGE_MODULE"); env && *env)
     candidates.push_back(env);
+  // Beside the libraries: in the build folder, or <prefix>/lib when installed.
+  if (const std::string dir = library_dir(); !dir.empty())
+    candidates.push_back(dir + "/librelieflab_oiio.so");
 #ifdef RELIEFLAB_IMAGE_MODULE
   candidates.push_back(RELIEFLAB_IMAGE_MODULE);
 #endif

@@ -50,8 +50,9 @@ struct ImageBackend {
   void (*resize)(const float* pixels, int w, int h, int channels, float* out, int to_w, int to_h);
 };
 
-// The backend, loaded on first use: from $RELIEFLAB_IMAGE_MODULE, else the path the build
-// wrote in, else beside the running program. Throws std::runtime_error naming what it tried.
+// The backend, loaded on first use: from $RELIEFLAB_IMAGE_MODULE, else beside the ReliefLab
+// libraries (the build folder, or <prefix>/lib installed), else the path the build wrote in,
+// else beside the running program. Throws std::runtime_error naming what it tried.
 const ImageBackend& image_backend();
 
 }  // namespace rl

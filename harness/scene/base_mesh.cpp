@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 #include <glm/gtc/constants.hpp>
 
+#include "core/data_paths.h"
 #include "core/error.h"
 #include "relief/mesh_bake.h"
 
@@ -238,8 +239,7 @@ BaseMesh make_base_mesh(const BaseDesc& desc, double size, double tile, bool req
       m.charts.push_back(flat_chart(glm::cross(f[0], f[1]) * h, f[0], f[1], side, tile, s));
   } else if (desc.kind == "teapot" || desc.kind == "file") {
     const bool teapot = desc.kind == "teapot";
-    const std::string path =
-        teapot ? std::string(RELIEFLAB_SOURCE_DIR) + "/assets/meshes/teapot.obj" : desc.path;
+    const std::string path = teapot ? data_root() + "/assets/meshes/teapot.obj" : desc.path;
     const TriangleMesh file = load_mesh(path);
     if (!teapot && require_uvs && file.uvs.empty())
       throw ConfigError("base mesh " + path +

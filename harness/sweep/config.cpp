@@ -9,6 +9,7 @@
 #include <toml++/toml.h>
 #include <nlohmann/json.hpp>
 
+#include "core/data_paths.h"
 #include "core/error.h"
 #include "gl/embedded_files.h"
 #include "sweep/config_scene.h"
@@ -332,7 +333,7 @@ SweepConfig default_sweep_config() {
   auto it = files.find("configs/default.toml");
   if (it == files.end()) throw ConfigError("built-in default config missing from the build");
   return parse_sweep_config(it->second, "<built-in configs/default.toml>",
-                            std::string(RELIEFLAB_SOURCE_DIR) + "/configs");
+                            data_root() + "/configs");
 }
 
 }  // namespace rl

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "core/data_paths.h"
 #include "core/error.h"
 #include "sweep/cells.h"
 
@@ -129,15 +130,14 @@ std::string resolve_path(const std::string& p, const std::string& base_dir, cons
     not_a_folder(path);
     return path.string();
   }
-  for (const fs::path& dir : {fs::path(base_dir), fs::path(RELIEFLAB_SOURCE_DIR)}) {
+  for (const fs::path& dir : {fs::path(base_dir), fs::path(data_root())}) {
     fs::path candidate = dir / path;
     if (fs::exists(candidate)) {
       not_a_folder(candidate);
       return fs::weakly_canonical(candidate).string();
     }
   }
-  fail(src.at(n),
-       "file not found: " + p + " (looked in " + base_dir + " and " + RELIEFLAB_SOURCE_DIR + ")");
+  fail(src.at(n), "file not found: " + p + " (looked in " + base_dir + " and " + data_root() + ")");
 }
 
 bool is_measured(const std::string& name) {

@@ -84,13 +84,27 @@ void TechniqueRegistry::add(TechniqueEntry entry) {
               "technique '" + name + "' parameter '" + p.name + "' (" + param_kind_name(p.kind) +
               ") shares its name, and so its rows.csv column, with technique '" + other_name +
               "''s " + param_kind_name(q.kind) + " parameter: one name, one quantity");
+  declare_columns("technique " + name, entry.info.columns);  // throws on a unit conflict
   entries_.emplace(name, std::move(entry));
+}
+
+namespace {
+std::string* registration_error_sink = nullptr;
+}  // namespace
+
+void set_registration_error_sink(std::string* sink) {
+  registration_error_sink = sink;
 }
 
 void register_or_exit(TechniqueEntry entry) {
   try {
     TechniqueRegistry::instance().add(std::move(entry));
   } catch (const std::logic_error& e) {
+    if (registration_error_sink) {
+      *registration_error_sink +=
+          std::string(registration_error_sink->empty() ? "" : "; ") + e.what();
+      return;
+    }
     std::fprintf(stderr, "relieflab: plugin registration failed: %s\n", e.what());
     std::exit(3);
   }
@@ -98,6 +112,11 @@ void register_or_exit(TechniqueEntry entry) {
 
 void TechniqueRegistry::remove(const std::string& name) {
   entries_.erase(name);
+}
+
+void TechniqueRegistry::set_plugin(const std::string& name, const std::string& path) {
+  auto it = entries_.find(name);
+  if (it != entries_.end()) it->second.plugin = path;
 }
 
 const TechniqueEntry* TechniqueRegistry::find(const std::string& name) const {

@@ -18,6 +18,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/columns.h"
 #include "core/effects.h"
 #include "core/params.h"
 #include "gl/render_target.h"
@@ -55,6 +56,8 @@ struct TechniqueInfo {
   bool planar_only = false;
   // What it promises (technique/contract.h), held to by the contract suite.
   TechniqueContract contract;
+  // The columns its frame_columns() writes (core/columns.h), declared when it registers.
+  std::vector<ColumnSpec> columns{};
 };
 
 // Why a technique cannot render `scene` ("" when it can): effects it does not simulate, a
@@ -123,7 +126,8 @@ class Technique {
   // True when prepare() loaded its precomputation from a cache instead of computing it.
   virtual bool prepared_from_cache() const { return false; }
   // Columns the technique measured during its last G-buffer render, beyond the harness's (a
-  // multi-pass technique's passes and fragments shaded per pixel); named in rows.csv as given.
+  // multi-pass technique's passes and fragments shaded per pixel); named in rows.csv as given,
+  // each declared in describe().columns (the runner refuses one that is not).
   virtual std::vector<std::pair<std::string, double>> frame_columns() const { return {}; }
 
   const ParamValues& params() const { return params_; }
@@ -156,6 +160,7 @@ struct TechniqueEntry {
   // `where`. Empty: every in-range combination is valid.
   std::function<void(const ParamValues&, const std::string& where)> validate;
   std::string source;  // the file that registered it, for messages
+  std::string plugin;  // the shared object it came from (technique/plugins.h); "" if built in
 };
 
 class TechniqueRegistry {
@@ -167,6 +172,8 @@ class TechniqueRegistry {
   void add(TechniqueEntry entry);
   // Unregisters (tests that register throwaway techniques clean up after themselves).
   void remove(const std::string& name);
+  // Records the shared object `name` was loaded from (technique/plugins.h).
+  void set_plugin(const std::string& name, const std::string& path);
   const TechniqueEntry* find(const std::string& name) const;
   std::vector<std::string> names() const;
   // `name`'s defaults overridden by `params`, range-checked and validated; throws ConfigError
@@ -181,8 +188,11 @@ class TechniqueRegistry {
   std::map<std::string, TechniqueEntry> entries_;
 };
 
-// add(), and on a refusal a message on stderr and exit(3): registration runs before main().
+// add(), and on a refusal a message on stderr and exit(3): registration runs before main(),
+// where nothing could catch it. While a plugin loads (technique/plugins.h), a refusal is
+// appended to the sink set here instead, and the loader reports it.
 void register_or_exit(TechniqueEntry entry);
+void set_registration_error_sink(std::string* sink);
 
 template <typename T>
 struct TechniqueRegistrar {

@@ -1,0 +1,42 @@
+#pragma once
+// The columns a row may hold, declared by the code that writes them: the metrics, the truth,
+// the harness's timing, each representation and each technique (TechniqueInfo::columns).
+// Tables, plots, `compare` and the stored-row checks take any declared column, and the README's
+// column reference is generated from the declarations (relieflab docs --update), so a column
+// added tomorrow is usable and documented the day it is declared.
+#include <string>
+#include <vector>
+
+namespace rl {
+
+// A measured number; a flag, stored as a JSON boolean; a text (a label, never a table value);
+// a column that names the cell (technique, scene, view, sizes; parameters are the technique's).
+enum class ColumnKind { Number, Flag, Text, Identity };
+
+struct ColumnSpec {
+  std::string name;     // rows.csv column, e.g. "wrong_pct"
+  std::string unit;     // e.g. "% of pixels", "texels", "ms"; "" for a count or a ratio
+  std::string meaning;  // one sentence a reader of a table needs
+  ColumnKind kind = ColumnKind::Number;
+};
+
+struct DeclaredColumn {
+  ColumnSpec spec;
+  std::string producer;  // e.g. "metrics", "technique depth_slicing"
+};
+
+// Adds `columns`. A name declared again must keep its unit and kind (two techniques may write
+// the same column for the same quantity); otherwise std::logic_error names both producers.
+void declare_columns(const std::string& producer, const std::vector<ColumnSpec>& columns);
+
+// Every declared column, in the order declared (libraries declare at load, lowest layer first).
+const std::vector<DeclaredColumn>& declared_columns();
+const DeclaredColumn* find_column(const std::string& name);
+
+// Declares at load time: `static const ColumnDeclaration columns("metrics", {...});`. A
+// conflict here is a bug in the declaring code: it prints and exits(3), like a technique's.
+struct ColumnDeclaration {
+  ColumnDeclaration(const std::string& producer, const std::vector<ColumnSpec>& columns);
+};
+
+}  // namespace rl

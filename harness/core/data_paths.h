@@ -1,0 +1,16 @@
+#pragma once
+// Where ReliefLab's own files are at run time: the assets (the teapot, the real relief maps)
+// and configs a sweep may name by a path relative to the repository root.
+#include <string>
+
+namespace rl {
+
+// The folder holding assets/ and configs/: $RELIEFLAB_DATA_DIR when set; else, for a library
+// installed under a prefix, <prefix>/share/relieflab (found from the library's own location);
+// else the source tree the library was built from.
+const std::string& data_root();
+
+// The folder the core library was loaded from (the build folder, or <prefix>/lib).
+std::string library_dir();
+
+}  // namespace rl
