@@ -8,7 +8,63 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "core/columns.h"
+
 namespace rl {
+namespace {
+
+// The columns ImageMetrics::named() writes (metrics.h defines each measure).
+const ColumnDeclaration image_metric_columns(
+    "metrics",
+    {{"covered_px", "pixels", "pixels the truth covers"},
+     {"union_px", "pixels", "pixels the technique or the truth covers: wrong_pct's denominator"},
+     {"wrong_pct", "% of union_px",
+      "the headline error: pixels whose coverage disagrees (missed or false) or whose hit lies "
+      "more than one texel from the truth's"},
+     {"missed_pct", "% of covered_px", "pixels the truth covers and the technique leaves empty"},
+     {"false_pct", "% of covered_px", "pixels the technique covers and the truth leaves empty"},
+     {"pos_err_mean", "depth units",
+      "mean world distance of the hit from the truth's, over "
+      "jointly covered pixels, in relief depths"},
+     {"pos_err_rmse", "depth units", "root mean square of the same distance"},
+     {"pos_err_p99", "depth units", "its 99th percentile"},
+     {"pos_err_max", "depth units", "its largest value"},
+     {"pos_err_texels_mean", "texels",
+      "mean distance of the hit from the truth's, in texels of the map, over jointly covered "
+      "pixels"},
+     {"pos_err_texels_rmse", "texels", "root mean square of the same distance"},
+     {"pos_err_texels_p99", "texels", "its 99th percentile"},
+     {"pos_err_texels_max", "texels", "its largest value"},
+     {"artifact_pct", "% of covered_px",
+      "jointly covered pixels whose hit is more than one texel off (quote coverage beside it)"},
+     {"normal_err_mean_deg", "degrees", "mean angle between shading normals, jointly covered"},
+     {"normal_err_p99_deg", "degrees", "its 99th percentile"},
+     {"psnr_db", "dB", "PSNR of the shaded colour over the whole image (capped at 100)"},
+     {"ssim", "", "SSIM of the shaded colour over the whole image (Wang et al. 2004)"},
+     {"shadow_disagree_pct", "% of covered_px",
+      "jointly covered pixels whose self-shadow flag differs from the truth's"},
+     {"object_disagree_pct", "% of covered_px",
+      "jointly covered pixels where one shows a plain scene object and the other the relief"},
+     {"fetches_mean", "fetches", "texture fetches per covered pixel of the final image"},
+     {"fetches_p99", "fetches", "their 99th percentile"},
+     {"fetches_max", "fetches", "their largest value"},
+     {"nonfinite_px", "pixels", "pixels whose output held a NaN or an infinity"},
+     {"truth_bound_texels", "texels",
+      "the largest distance the truth's hit may be off, over the pixels it covers, in texels "
+      "at the view"},
+     {"truth_uncertain_pct", "% of union_px",
+      "pixels the truth covers whose truth bound exceeds 0.05 texel"},
+     {"ao_err_mean", "visibility", "mean |AO - reference AO| over jointly covered pixels"},
+     {"ao_err_p99", "visibility", "its 99th percentile"},
+     {"ao_bias", "visibility", "mean (AO - reference AO): the sign says which side is darker"},
+     {"ao_ref_stderr", "visibility",
+      "the reference AO's own standard error, averaged: the noise floor of ao_err_mean"},
+     {"ao_color_share_pct", "% of the colour error",
+      "the ambient term's AO difference as a share of the colour error, jointly covered"},
+     {"color_bias", "colour", "mean signed colour difference (rgb mean): > 0 brighter"}});
+
+}  // namespace
+
 namespace {
 
 bool finite4(const glm::vec4& v) {

@@ -11,12 +11,41 @@
 
 #include <embree3/rtcore.h>
 
+#include "core/columns.h"
 #include "core/elapsed.h"
 #include "core/embree_util.h"
 #include "core/error.h"
 #include "core/parallel.h"
 
 namespace rl {
+namespace {
+
+// A cubic cell complex's columns (Apaza & Andujar; the sweep writes them from Stats).
+const ColumnDeclaration cell_complex_columns(
+    "relief (cell complex)",
+    {{"cell_grid", "cells", "cells per side of the cell complex's grid"},
+     {"mesh_faces", "triangles", "triangles of the mesh the cell complex encodes"},
+     {"grey_cells", "cells", "cells the surface passes through"},
+     {"domain_faces", "faces", "faces of the grey cells' domain, one relief map each"},
+     {"cell_bytes", "bytes", "GPU memory of the cell complex's textures and buffers"},
+     {"cell_classify_ms", "ms", "time to classify the grid's cells"},
+     {"cell_sample_ms", "ms", "time to sample the domain faces' relief maps"},
+     {"cell_construction_ms", "ms",
+      "time to build the cell complex, grid choice included (also when read from cache)"},
+     {"cell_from_cache", "", "the cell complex came from the precompute cache", ColumnKind::Flag},
+     {"cell_distance_bytes", "bytes", "memory of the distance data for empty-space skipping"},
+     {"cell_ambiguous_regions", "regions",
+      "non-grey regions whose inside / outside votes disagreed (an open or non-manifold mesh)"},
+     {"occluded_fragment_pct", "% of fragments",
+      "surface crossings of the texels' projection lines hidden behind a first crossing "
+      "(Section 3.3.3's occluded fragments)"},
+     {"multi_crossing_pct", "% of texels",
+      "domain-face texels whose projection line crosses the surface more than once"},
+     {"grid_trials", "", "each grid an automatic choice tried, N:occluded %", ColumnKind::Text},
+     {"intersections_per_s", "1/s", "covered pixels per second of frame time"}});
+
+}  // namespace
+
 namespace {
 
 int popcount6(unsigned m) {

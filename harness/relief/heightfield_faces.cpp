@@ -6,7 +6,16 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/columns.h"
+
 namespace rl {
+namespace {
+
+const ColumnDeclaration face_columns("relief (heightfield faces)",
+                                     {{"face_count", "maps",
+                                       "heightfield maps of an object from several heightfields"}});
+
+}  // namespace
 
 std::vector<int> face_set(int count) {
   switch (count) {

@@ -6,10 +6,25 @@
 
 #include <embree3/rtcore.h>
 
+#include "core/columns.h"
 #include "core/embree_util.h"
 #include "core/parallel.h"
 
 namespace rl {
+namespace {
+
+// A multilayer map's columns (the sweep writes them from the bake's LayerStack).
+const ColumnDeclaration layer_columns(
+    "relief (multilayer bake)",
+    {{"layers", "", "depth layers per texel of a multilayer map (0: a heightfield)"},
+     {"layer_overflow_pct", "% of texels",
+      "texels whose ray crossed more surfaces than the map has layers for"},
+     {"layer_odd_pct", "% of texels",
+      "texels with an odd number of crossings (an open or non-manifold mesh)"},
+     {"depth_complexity", "crossings", "the most surface crossings of one texel's ray"}});
+
+}  // namespace
+
 namespace {
 
 constexpr int kMaxCrossings = 256;  // bounds the walk along one bake ray

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <set>
 
+#include "core/columns.h"
 #include "core/hash.h"
 #include "metrics/fragment_cost.h"
 #include "metrics/metrics.h"
@@ -10,6 +11,54 @@
 #include "technique/technique.h"
 
 namespace rl {
+namespace {
+
+// The columns that name a cell (its parameters are declared by its technique), and those the
+// runner measures itself: the view's spread, timing, precompute and memory, the run's labels.
+const ColumnDeclaration cell_identity_columns(
+    "sweep (cell identity)",
+    {{"technique", "", "the technique's registry name", ColumnKind::Identity},
+     {"scene", "", "the config's scene name", ColumnKind::Identity},
+     {"elevation_deg", "degrees", "the view's elevation above the base", ColumnKind::Identity},
+     {"azimuth_deg", "degrees", "the view's azimuth", ColumnKind::Identity},
+     {"texture_res", "texels", "the relief map's resolution asked for", ColumnKind::Identity},
+     {"viewport", "pixels", "the viewport, WxH", ColumnKind::Identity}});
+
+const ColumnDeclaration runner_columns(
+    "sweep (runner)",
+    {{"elev_min_deg", "degrees", "the smallest elevation of the view rays over covered pixels"},
+     {"elev_max_deg", "degrees", "the largest elevation of the view rays over covered pixels"},
+     {"frame_ms", "ms",
+      "median frame time of the colour-only shader (timer queries on a GPU, glFinish + wall "
+      "clock on llvmpipe)"},
+     {"fps", "1/s", "frames per second, 1000 / frame_ms"},
+     {"rays_per_s", "1/s", "viewport pixels x frames per second (Apaza & Andujar's count)"},
+     {"frame_ms_min", "ms", "the fastest timed frame"},
+     {"frame_ms_iqr", "ms", "interquartile range of the timed frames"},
+     {"frames_timed", "frames", "frames the median is over"},
+     {"timing", "", "how frames were timed (timer query or glFinish + wall clock)",
+      ColumnKind::Text},
+     {"precompute_ms", "ms", "the technique's prepare() time (its precompute)"},
+     {"precompute_cached", "",
+      "the precompute came from the cache (precompute_ms is then the "
+      "read)",
+      ColumnKind::Flag},
+     {"memory_bytes", "bytes", "the relief's textures plus the technique's own"},
+     {"ao_precompute_ms", "ms", "time to compute the texture-space AO map"},
+     {"ao_precompute_cached", "", "the AO map came from the cache", ColumnKind::Flag},
+     {"ao_rescale", "", "the AO map's rescale factor for the scene's depth"},
+     {"effects", "", "the effects the scene asks for", ColumnKind::Text},
+     {"texture_size", "texels", "the map's size as built, WxH", ColumnKind::Text},
+     {"renderer", "", "the GL renderer the row was measured on", ColumnKind::Text},
+     {"key", "", "the cell's key in the result store", ColumnKind::Text},
+     {"image_render", "", "the render's PNG, relative to the run's folder", ColumnKind::Text},
+     {"image_truth", "", "the truth's PNG", ColumnKind::Text},
+     {"image_error", "", "the error heat map's PNG", ColumnKind::Text},
+     {"gbuffer", "", "the render's G-buffer (OpenEXR), when exported", ColumnKind::Text},
+     {"gbuffer_truth", "", "the truth's G-buffer (OpenEXR), when exported", ColumnKind::Text}});
+
+}  // namespace
+
 namespace {
 
 // Results change when the harness's measuring changes: bump this when a metric or the truth
@@ -22,56 +71,11 @@ constexpr int kMeasurementVersion = 6;
 
 }  // namespace
 
-const std::vector<std::string>& measured_columns() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> n;
-    ImageMetrics every;  // with the columns only some scenes measure (ambient occlusion)
-    every.has_ao = true;
-    for (const auto& [name, value] : every.named()) n.push_back(name);
-    for (const auto& [name, value] : FragmentCost{}.named()) n.push_back(name);
-    for (const char* c : {"elev_min_deg",
-                          "elev_max_deg",
-                          "frame_ms",
-                          "fps",
-                          "rays_per_s",
-                          "frame_ms_min",
-                          "frame_ms_iqr",
-                          "frames_timed",
-                          "precompute_ms",
-                          "memory_bytes",
-                          "truth_bound",
-                          "truth_flagged",
-                          "truth_subdivision",
-                          "truth_ms",
-                          "truth_unresolved_px",
-                          "layers",
-                          "layer_overflow_pct",
-                          "layer_odd_pct",
-                          "depth_complexity",
-                          "ao_precompute_ms",
-                          "ao_rescale",
-                          "truth_ao_rays",
-                          "cell_grid",
-                          "mesh_faces",
-                          "grey_cells",
-                          "domain_faces",
-                          "cell_bytes",
-                          "cell_classify_ms",
-                          "cell_sample_ms",
-                          "cell_construction_ms",
-                          "cell_distance_bytes",
-                          "cell_ambiguous_regions",
-                          "occluded_fragment_pct",
-                          "multi_crossing_pct",
-                          "intersections_per_s",
-                          "slice_passes",
-                          "fragments_per_pixel",
-                          "fragments_max",
-                          "face_count",
-                          "base_passes"})
-      n.push_back(c);
-    return n;
-  }();
+std::vector<std::string> measured_columns() {
+  std::vector<std::string> names;
+  for (const DeclaredColumn& c : declared_columns())
+    if (c.spec.kind == ColumnKind::Number || c.spec.kind == ColumnKind::Flag)
+      names.push_back(c.spec.name);
   return names;
 }
 

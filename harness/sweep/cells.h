@@ -30,8 +30,9 @@ struct Cell {
 // elevation or view, a [[technique]] block given twice) is dropped and counted in
 // `duplicates`.
 std::vector<Cell> expand_cells(const SweepConfig& config, size_t* duplicates = nullptr);
-// Every numeric column a row measures (image metrics, then cost), e.g. for table values.
-const std::vector<std::string>& measured_columns();
+// Every measured column a row may hold, numbers and flags, as their producers declare them
+// (core/columns.h): what a table, a plot or `compare` may take as a value.
+std::vector<std::string> measured_columns();
 // Every parameter column of the sweep, in order of first appearance.
 std::vector<std::string> parameter_columns(const SweepConfig& config);
 

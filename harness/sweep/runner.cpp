@@ -121,12 +121,13 @@ std::string stored_row_problem(const ResultStore& store, const Cell& cell) {
     auto it = row->find(field);
     if (it == row->end() || *it != value) return "does not name the cell's '" + field + "'";
   }
-  for (const std::string& m : measured_columns()) {
-    auto it = row->find(m);
+  for (const DeclaredColumn& c : declared_columns()) {
+    auto it = row->find(c.spec.name);
     if (it == row->end() || it->is_null()) continue;
-    if (m == "truth_flagged" ? !it->is_boolean() : !it->is_number())
-      return std::string("holds a non-") + (m == "truth_flagged" ? "boolean" : "number") + " in '" +
-             m + "'";
+    const bool flag = c.spec.kind == ColumnKind::Flag;
+    if (c.spec.kind == ColumnKind::Number ? !it->is_number() : flag && !it->is_boolean())
+      return std::string("holds a non-") + (flag ? "boolean" : "number") + " in '" + c.spec.name +
+             "'";
   }
   return "";
 }
@@ -434,6 +435,13 @@ CellMeasure measure_cell(const SweepConfig& config, const SceneDesc& scene, Asse
   }
   out.cost = fragment_cost(counts);
   out.frame_columns = technique->frame_columns();
+  for (const auto& [name, value] : out.frame_columns) {
+    const auto& declared = technique->info().columns;
+    if (std::none_of(declared.begin(), declared.end(),
+                     [&](const ColumnSpec& c) { return c.name == name; }))
+      throw std::logic_error("technique '" + technique->info().name + "' wrote column '" + name +
+                             "', which its describe() does not declare in .columns");
+  }
   out.m = compare_gbuffers(out.g, truth, scene.depth, asset.metric_texel,
                            scene.effects.has(Effect::AmbientOcclusion));
   RenderTarget timing_target(cell.width, cell.height, RenderTarget::Kind::ColorOnly);
@@ -508,6 +516,16 @@ void add_representation_columns(Row& row, const Asset& asset, const CellMeasure&
   if (asset.map.faces) row["face_count"] = asset.map.faces->count();
 }
 
+// Throws std::logic_error naming a column of `row` that no producer declares (core/columns.h)
+// and that is not one of the cell's identity or parameter columns: tables, the report and the
+// README's column reference know only declared columns.
+void check_columns_declared(const Row& row, const Cell& cell) {
+  for (const auto& [name, value] : row.items())
+    if (!find_column(name) && !cell.identity.contains(name))
+      throw std::logic_error("the row of cell " + cell.key + " holds column '" + name +
+                             "', which no producer declares (core/columns.h)");
+}
+
 // Every measured column of a cell's row, beside its identity.
 Row cell_row(const Cell& cell, const SceneDesc& scene, const Camera& camera, const Asset& asset,
              const CellMeasure& c, const TruthView& truth, const std::string& renderer) {
@@ -540,6 +558,7 @@ Row cell_row(const Cell& cell, const SceneDesc& scene, const Camera& camera, con
                  (asset.truth_map ? "@" + std::to_string(scene.truth_texture_res) : "");
   row["renderer"] = renderer;
   row["key"] = cell.key;
+  check_columns_declared(row, cell);
   return row;
 }
 

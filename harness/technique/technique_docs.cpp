@@ -46,7 +46,30 @@ std::string contract_markdown(const TechniqueInfo& info) {
   return out + ".\n\n";
 }
 
+const char* kind_name(ColumnKind k) {
+  switch (k) {
+    case ColumnKind::Number:
+      return "number";
+    case ColumnKind::Flag:
+      return "flag";
+    case ColumnKind::Text:
+      return "text";
+    case ColumnKind::Identity:
+      return "identity";
+  }
+  return "?";
+}
+
 }  // namespace
+
+std::string columns_markdown() {
+  std::string out =
+      "| column | unit | kind | meaning | declared by |\n| --- | --- | --- | --- | --- |\n";
+  for (const DeclaredColumn& c : declared_columns())
+    out += "| `" + c.spec.name + "` | " + cell(c.spec.unit) + " | " + kind_name(c.spec.kind) +
+           " | " + cell(c.spec.meaning) + " | " + cell(c.producer) + " |\n";
+  return out;
+}
 
 std::string techniques_markdown() {
   std::string out =
@@ -94,6 +117,12 @@ std::string interface_markdown(const TechniqueInfo& info) {
                                   : "their bake (its search needs one map)") +
                 ".\n\n";
   out += contract_markdown(info);
+  for (size_t i = 0; i < info.columns.size(); ++i) {
+    const ColumnSpec& c = info.columns[i];
+    out += (i ? "; `" : "Columns it writes beside the harness's: `") + c.name + "` (" +
+           (c.unit.empty() ? "" : c.unit + ": ") + c.meaning + ")" +
+           (i + 1 == info.columns.size() ? ".\n\n" : "");
+  }
   if (info.params.empty()) return out + "Parameters: none.\n";
   out += "| parameter | kind | default | range | meaning |\n| --- | --- | ---: | --- | --- |\n";
   for (const ParamSpec& p : info.params) {
@@ -108,7 +137,8 @@ std::string interface_markdown(const TechniqueInfo& info) {
 }
 
 std::map<std::string, std::string> generated_blocks() {
-  std::map<std::string, std::string> blocks = {{"techniques", techniques_markdown()}};
+  std::map<std::string, std::string> blocks = {{"techniques", techniques_markdown()},
+                                               {"columns", columns_markdown()}};
   const auto& registry = TechniqueRegistry::instance();
   for (const std::string& name : registry.names())
     blocks["interface of " + name] = interface_markdown(registry.find(name)->info);

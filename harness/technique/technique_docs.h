@@ -3,7 +3,8 @@
 // technique README's parameter table cannot drift from describe(). A Markdown file carries a
 // generated block between
 //   <!-- generated: KEY (relieflab docs --update) -->   and   <!-- end generated -->
-// with KEY "techniques" (README.md) or "interface of NAME" (techniques/NAME/README.md).
+// with KEY "techniques" or "columns" (README.md), or "interface of NAME"
+// (techniques/NAME/README.md).
 // `relieflab list --markdown` prints the blocks; `relieflab docs --update` rewrites them in
 // place; tests/test_docs.cpp fails when a committed block differs.
 #include <map>
@@ -15,6 +16,8 @@ namespace rl {
 
 // | technique | what | source | effects | proxies |, one row per registered technique.
 std::string techniques_markdown();
+// | column | unit | kind | meaning | declared by |, every declared column (core/columns.h).
+std::string columns_markdown();
 // Its effects and proxies, then | parameter | kind | default | range | meaning | (or "none").
 std::string interface_markdown(const TechniqueInfo& info);
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/columns.h"
 #include "core/elapsed.h"
 #include "core/hash.h"
 #include "core/parallel.h"
@@ -16,6 +17,27 @@
 #include "truth/reference_ao.h"
 
 namespace rl {
+namespace {
+
+// The truth's columns (the sweep writes them from the trace and the asset's truth).
+const ColumnDeclaration truth_columns(
+    "truth",
+    {{"truth_subdivision", "",
+      "tessellation of a tessellated truth: k per texel, or n per base triangle"},
+     {"truth_bound", "depth units",
+      "the truth's vertical deviation from the surface it stands for (0 for the exact truths)"},
+     {"truth_flagged", "",
+      "truth_uncertain_pct above 0.1 %: wrong_pct could be the truth's own error, not scored",
+      ColumnKind::Flag},
+     {"truth_ms", "ms", "time to trace the truth of this view (shared by its cells)"},
+     {"truth_unresolved_px", "pixels", "covered pixels whose truth ray found no surface (0)"},
+     {"truth_ao_rays", "rays",
+      "hemisphere rays the reference AO of this view traced (cached pixels counted too)"},
+     {"truth", "", "the truth level (source, sampled, model; @N: the map at another resolution)",
+      ColumnKind::Text}});
+
+}  // namespace
+
 namespace {
 
 constexpr double kAboveTop = 1e-6;  // depth units above the top plane where truth rays start

@@ -127,48 +127,51 @@ class DepthSlicing final : public Described<DepthSlicing, Technique> {
  public:
   using Described::Described;
   static TechniqueInfo describe() {
-    return {
-        .name = "depth_slicing",
-        .title = "Relief texture mapping by multi-pass depth slicing",
-        .citation =
-            "Chapter 5, 'RTM - Multi pass for planar objects', Listing 5.2, "
-            "Figures 5.6-5.8",
-        .effects = {Effect::DepthCorrect},
-        .params = {{.name = "slices",
-                    .kind = ParamKind::Int,
-                    .default_value = 32,
-                    .min_value = 1,
-                    .max_value = 256,
-                    .doc = "slice planes (passes per relief texture): the level of detail "
-                           "of Figure 5.7"},
-                   {.name = "view_aligned",
-                    .kind = ParamKind::Bool,
-                    .default_value = 0,
-                    .min_value = 0,
-                    .max_value = 1,
-                    .doc = "slices normal to the view direction across the volume (one set "
-                           "for all faces) instead of parallel to each relief texture "
-                           "(Figure 5.8)"}},
-        .box_proxy = true,
-        .heightfield_object = true,
-        .planar_only = true,
-        .contract = {
-            .answer = Answer::Converging,
-            .max_fetches =
-                [](const RayQuery& q) {
-                  const double slices = q.param("slices");
-                  return q.faces > 1 ? slices * q.faces * (q.faces + 2) : 2 * slices;
-                },
-            .max_fetches_formula = "2 x slices: a depth and a colour per slice fragment; on "
-                                   "an object, slices x faces fragments, each testing every "
-                                   "face and shading from 2 more",
-            .knobs = {{"slices"}},
-            .finest = {{"slices", 256}},
-            .t_error = [](const RayQuery& q) { return slice_spacing(q.param("slices")); },
-            .accuracy = "the first slice behind the surface: within one slice spacing (1 / "
-                        "(slices - 1) of depth over a solid floor, planes 0 to 1 inclusive) "
-                        "along the ray, on surfaces with no feature thinner than a slice",
-            .t_resolution = [](const RayQuery& q) { return slice_spacing(q.param("slices")); }}};
+    return {.name = "depth_slicing",
+            .title = "Relief texture mapping by multi-pass depth slicing",
+            .citation =
+                "Chapter 5, 'RTM - Multi pass for planar objects', Listing 5.2, "
+                "Figures 5.6-5.8",
+            .effects = {Effect::DepthCorrect},
+            .params = {{.name = "slices",
+                        .kind = ParamKind::Int,
+                        .default_value = 32,
+                        .min_value = 1,
+                        .max_value = 256,
+                        .doc = "slice planes (passes per relief texture): the level of detail "
+                               "of Figure 5.7"},
+                       {.name = "view_aligned",
+                        .kind = ParamKind::Bool,
+                        .default_value = 0,
+                        .min_value = 0,
+                        .max_value = 1,
+                        .doc = "slices normal to the view direction across the volume (one set "
+                               "for all faces) instead of parallel to each relief texture "
+                               "(Figure 5.8)"}},
+            .box_proxy = true,
+            .heightfield_object = true,
+            .planar_only = true,
+            .contract = {
+                .answer = Answer::Converging,
+                .max_fetches =
+                    [](const RayQuery& q) {
+                      const double slices = q.param("slices");
+                      return q.faces > 1 ? slices * q.faces * (q.faces + 2) : 2 * slices;
+                    },
+                .max_fetches_formula = "2 x slices: a depth and a colour per slice fragment; on "
+                                       "an object, slices x faces fragments, each testing every "
+                                       "face and shading from 2 more",
+                .knobs = {{"slices"}},
+                .finest = {{"slices", 256}},
+                .t_error = [](const RayQuery& q) { return slice_spacing(q.param("slices")); },
+                .accuracy = "the first slice behind the surface: within one slice spacing (1 / "
+                            "(slices - 1) of depth over a solid floor, planes 0 to 1 inclusive) "
+                            "along the ray, on surfaces with no feature thinner than a slice",
+                .t_resolution = [](const RayQuery& q) { return slice_spacing(q.param("slices")); }},
+            .columns = {{"slice_passes", "passes", "slice passes drawn for the frame"},
+                        {"fragments_per_pixel", "fragments",
+                         "slice fragments shaded per covered pixel, summed over the passes"},
+                        {"fragments_max", "fragments", "the most slice fragments of one pixel"}}};
   }
   ~DepthSlicing() override {
     if (fragment_count_) glDeleteTextures(1, &fragment_count_);

@@ -11,64 +11,68 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
   using Described::Described;
   ~Multilayer() override { release(); }
   static TechniqueInfo describe() {
-    return {.name = "multilayer",
-            .title = "Multilayer relief mapping (non-height-field details, up to 8 layers)",
-            .citation =
-                "Policarpo & Oliveira 2006, 'Relief Mapping of Non-Height-Field Surface Details', "
-                "Sections 3.1-3.2, Algorithms 1-2, Appendix A",
-            .effects = {Effect::SelfShadow, Effect::Silhouette, Effect::DepthCorrect},
-            .params = {{.name = "linear_steps",
-                        .kind = ParamKind::Int,
-                        .default_value = 32,
-                        .min_value = 2,
-                        .max_value = 1024,
-                        .doc = "linear search samples down to depth 1 (Algorithm 1)"},
-                       {.name = "binary_steps",
-                        .kind = ParamKind::Int,
-                        .default_value = 5,
-                        .min_value = 0,
-                        .max_value = 32,
-                        .doc = "binary search refinements (Algorithm 2; Appendix A: 5)"},
-                       {.name = "linear_filter",
-                        .kind = ParamKind::Bool,
-                        .default_value = 0,
-                        .min_value = 0,
-                        .max_value = 1,
-                        .doc = "sample layers with GL_LINEAR instead of the paper's nearest "
-                               "(Section 6: filtering mixes surface and empty texels into skins)"},
-                       {.name = "interface_fix",
-                        .kind = ParamKind::Bool,
-                        .default_value = 1,
-                        .min_value = 0,
-                        .max_value = 1,
-                        .doc = "Section 3.2: of the last inside and outside samples, keep the one "
-                               "on the texel with more layers"},
-                       {.name = "two_pass",
-                        .kind = ParamKind::Bool,
-                        .default_value = 0,
-                        .min_value = 0,
-                        .max_value = 1,
-                        .doc = "pattern on a closed curved base: draw front faces, then back faces "
-                               "(Section 5's 2-pass rendering), not all faces in one pass"}},
-            .impostor = true,
-            .contract = {
-                .answer = Answer::Converging,
-                .surface = Surface::TexelColumns,
-                .max_fetches =
-                    [](const RayQuery& q) {
-                      return (q.param("linear_steps") + q.param("binary_steps") + 1) *
-                                 q.layer_groups +
-                             3;
-                    },
-                .max_fetches_formula = "(linear_steps + binary_steps + 1) x layer groups, + 3 "
-                                       "to shade",
-                .knobs = linear_binary_knobs(),
-                .finest = linear_binary_finest(),
-                .t_error = linear_binary_t_error,
-                .accuracy = "the first entry into the solid to within one linear step / "
-                            "2^binary_steps along the ray, on solids with no part or gap thinner "
-                            "than a linear step",
-                .t_resolution = one_linear_step}};
+    return {
+        .name = "multilayer",
+        .title = "Multilayer relief mapping (non-height-field details, up to 8 layers)",
+        .citation =
+            "Policarpo & Oliveira 2006, 'Relief Mapping of Non-Height-Field Surface Details', "
+            "Sections 3.1-3.2, Algorithms 1-2, Appendix A",
+        .effects = {Effect::SelfShadow, Effect::Silhouette, Effect::DepthCorrect},
+        .params = {{.name = "linear_steps",
+                    .kind = ParamKind::Int,
+                    .default_value = 32,
+                    .min_value = 2,
+                    .max_value = 1024,
+                    .doc = "linear search samples down to depth 1 (Algorithm 1)"},
+                   {.name = "binary_steps",
+                    .kind = ParamKind::Int,
+                    .default_value = 5,
+                    .min_value = 0,
+                    .max_value = 32,
+                    .doc = "binary search refinements (Algorithm 2; Appendix A: 5)"},
+                   {.name = "linear_filter",
+                    .kind = ParamKind::Bool,
+                    .default_value = 0,
+                    .min_value = 0,
+                    .max_value = 1,
+                    .doc = "sample layers with GL_LINEAR instead of the paper's nearest "
+                           "(Section 6: filtering mixes surface and empty texels into skins)"},
+                   {.name = "interface_fix",
+                    .kind = ParamKind::Bool,
+                    .default_value = 1,
+                    .min_value = 0,
+                    .max_value = 1,
+                    .doc = "Section 3.2: of the last inside and outside samples, keep the one "
+                           "on the texel with more layers"},
+                   {.name = "two_pass",
+                    .kind = ParamKind::Bool,
+                    .default_value = 0,
+                    .min_value = 0,
+                    .max_value = 1,
+                    .doc = "pattern on a closed curved base: draw front faces, then back faces "
+                           "(Section 5's 2-pass rendering), not all faces in one pass"}},
+        .impostor = true,
+        .contract = {.answer = Answer::Converging,
+                     .surface = Surface::TexelColumns,
+                     .max_fetches =
+                         [](const RayQuery& q) {
+                           return (q.param("linear_steps") + q.param("binary_steps") + 1) *
+                                      q.layer_groups +
+                                  3;
+                         },
+                     .max_fetches_formula = "(linear_steps + binary_steps + 1) x layer groups, + 3 "
+                                            "to shade",
+                     .knobs = linear_binary_knobs(),
+                     .finest = linear_binary_finest(),
+                     .t_error = linear_binary_t_error,
+                     .accuracy =
+                         "the first entry into the solid to within one linear step / "
+                         "2^binary_steps along the ray, on solids with no part or gap thinner "
+                         "than a linear step",
+                     .t_resolution = one_linear_step},
+        .columns = {{"base_passes", "passes",
+                     "passes over the base: 2 when a pattern on a closed curved base is "
+                     "drawn front faces, then back faces"}}};
   }
 
   // Uploads the layers as the paper stores them: per group of four, one RGBA texel of depths,

@@ -48,15 +48,19 @@ class OmniDirectionalDisplacement final : public Described<OmniDirectionalDispla
                                "fetches): directions in (a, b, x, y), super pixels in "
                                "(x, y, a, b)"}},
             .planar_only = true,
-            .contract = {
-                .answer = Answer::Approximation,
-                .max_fetches =
-                    [](const RayQuery& q) { return (q.param("interpolate") != 0 ? 4 : 1) + 1; },
-                .max_fetches_formula = "1 (4 with interpolate), + 1 to shade",
-                .knobs = {{"spatial"}, {"directions"}},
-                .accuracy = "exact at a super pixel's centre in a sampled direction; "
-                            "elsewhere that sample's depth",
-                .hits_from_inside = false}};
+            .contract = {.answer = Answer::Approximation,
+                         .max_fetches =
+                             [](const RayQuery& q) {
+                               return (q.param("interpolate") != 0 ? 4 : 1) + 1;
+                             },
+                         .max_fetches_formula = "1 (4 with interpolate), + 1 to shade",
+                         .knobs = {{"spatial"}, {"directions"}},
+                         .accuracy = "exact at a super pixel's centre in a sampled direction; "
+                                     "elsewhere that sample's depth",
+                         .hits_from_inside = false},
+            .columns = {{"odd_missed_rays", "rays",
+                         "rays of the 4D map's precompute that left the relief without a hit "
+                         "(stored at depth 1)"}}};
   }
 
   static void validate(const ParamValues& p, const std::string& where) {
