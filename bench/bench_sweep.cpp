@@ -3,8 +3,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include "sweep/config.h"
-#include "sweep/runner.h"
+#include "config/config.h"
+#include "run/runner.h"
 
 namespace rl {
 namespace {

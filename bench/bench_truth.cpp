@@ -13,7 +13,7 @@
 
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
-#include "sweep/config.h"
+#include "config/config.h"
 #include "truth/displaced_truth.h"
 #include "truth/heightfield_truth.h"
 #include "truth/make_truth.h"

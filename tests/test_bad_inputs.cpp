@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "sweep/asset_check.h"
-#include "sweep/config.h"
+#include "run/asset_check.h"
+#include "config/config.h"
 
 namespace rl {
 namespace {

@@ -11,8 +11,8 @@
 
 #include "core/error.h"
 #include "support/test_support.h"
-#include "sweep/compare.h"
-#include "sweep/runner.h"
+#include "output/compare.h"
+#include "run/runner.h"
 #include "technique/shader_technique.h"
 
 namespace rl {

@@ -44,6 +44,15 @@ TEST(Docs, ReadmeTechniqueTableMatchesTheRegistry) {
   expect_block_current(kRepo / "README.md", "techniques");
 }
 
+// Every declared column (core/columns.h), with its unit and meaning, as the producers declare it.
+TEST(Docs, ReadmeColumnReferenceMatchesTheDeclarations) {
+  expect_block_current(kRepo / "README.md", "columns");
+  const std::string table = columns_markdown();
+  for (const char* name : {"wrong_pct", "warp_fetches_per_px", "truth_bound_texels", "frame_ms",
+                           "layer_overflow_pct", "cell_grid", "odd_missed_rays"})
+    EXPECT_NE(table.find(std::string("| `") + name + "` |"), std::string::npos) << name;
+}
+
 TEST(Docs, EveryTechniqueHasAReadmeWithItsCurrentInterface) {
   const auto names = TechniqueRegistry::instance().names();
   ASSERT_FALSE(names.empty());

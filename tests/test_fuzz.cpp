@@ -19,8 +19,8 @@
 #include "core/triangle_mesh.h"
 #include "relief/image_io.h"
 #include "support/test_support.h"
-#include "sweep/asset_check.h"
-#include "sweep/config.h"
+#include "run/asset_check.h"
+#include "config/config.h"
 
 namespace rl {
 namespace {

@@ -10,9 +10,9 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "support/test_support.h"
-#include "sweep/cells.h"
-#include "sweep/config.h"
-#include "sweep/result_store.h"
+#include "run/cells.h"
+#include "config/config.h"
+#include "output/result_store.h"
 
 namespace rl {
 namespace {

@@ -1,8 +1,10 @@
 // The harness's folders form layers, each including only those below it: core; gl, relief and
 // metrics on core; the image module (oiio) on relief's interface to it; scene on relief; truth
-// and technique on scene; sweep on all of those; claims (verdicts checked against a sweep's
-// rows) on sweep's config reading; the CLI on top. A cycle (relief <-> scene once did) fails
-// here, naming the file and include.
+// and technique on scene; a sweep's config on technique; its output (store, tables, report) on
+// config and metrics; its run on output and truth; claims (verdicts checked against a sweep's
+// rows) on output; the CLI on top. A cycle (relief <-> scene once did) fails here, naming the
+// file and include. The build enforces the layers too (cmake/ReliefLabLayers.cmake); this test
+// holds each folder to the layers it may include directly.
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -27,10 +29,15 @@ TEST(Layers, HarnessFoldersIncludeOnlyTheLayersBelowThem) {
       {"scene", {"core", "relief", "scene"}},
       {"truth", {"core", "relief", "scene", "truth"}},
       {"technique", {"core", "gl", "relief", "scene", "technique"}},
-      {"sweep", {"core", "gl", "relief", "scene", "metrics", "truth", "technique", "sweep"}},
-      {"claims", {"core", "sweep", "claims"}},
+      {"config", {"core", "gl", "relief", "scene", "technique", "config"}},
+      {"output", {"core", "relief", "scene", "metrics", "technique", "config", "output"}},
+      {"run",
+       {"core", "gl", "relief", "scene", "metrics", "truth", "technique", "config", "output",
+        "run"}},
+      {"claims", {"core", "config", "output", "claims"}},
       {"cli",
-       {"core", "gl", "relief", "scene", "metrics", "truth", "technique", "sweep", "claims"}},
+       {"core", "gl", "relief", "scene", "metrics", "truth", "technique", "config", "output", "run",
+        "claims"}},
   };
   const fs::path harness = fs::path(RELIEFLAB_SOURCE_DIR) / "harness";
   const std::regex include(R"re(^\s*#\s*include\s+"([a-z_]+)/)re");

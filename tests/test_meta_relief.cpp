@@ -15,8 +15,8 @@
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
-#include "sweep/cells.h"
-#include "sweep/config.h"
+#include "run/cells.h"
+#include "config/config.h"
 #include "technique/shader_technique.h"
 #include "truth/meta_relief_truth.h"
 

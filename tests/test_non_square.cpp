@@ -12,9 +12,9 @@
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
-#include "sweep/cells.h"
-#include "sweep/config.h"
-#include "sweep/result_store.h"
+#include "run/cells.h"
+#include "config/config.h"
+#include "output/result_store.h"
 
 namespace rl {
 namespace {

@@ -9,9 +9,9 @@
 
 #include "core/error.h"
 #include "support/test_support.h"
-#include "sweep/cells.h"
-#include "sweep/config.h"
-#include "sweep/config_technique.h"
+#include "run/cells.h"
+#include "config/config.h"
+#include "config/config_technique.h"
 #include "technique/technique.h"
 
 namespace rl {

@@ -10,7 +10,7 @@
 #include <set>
 
 #include "support/test_support.h"
-#include "sweep/report.h"
+#include "output/report.h"
 
 namespace rl {
 namespace {

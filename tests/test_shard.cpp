@@ -1,4 +1,4 @@
-// Sweeps split into shards (sweep/shard.h): the shards partition the cells, keep every truth
+// Sweeps split into shards (run/shard.h): the shards partition the cells, keep every truth
 // trace's cells together and are dealt out by cost deterministically; merging their stores gives
 // the rows of a single-process run exactly (renders on llvmpipe are deterministic), merging twice
 // changes nothing, and a shard of another config is refused.
@@ -12,9 +12,9 @@
 
 #include "core/error.h"
 #include "support/test_support.h"
-#include "sweep/compare.h"
-#include "sweep/runner.h"
-#include "sweep/shard.h"
+#include "output/compare.h"
+#include "run/runner.h"
+#include "run/shard.h"
 
 namespace rl {
 namespace {

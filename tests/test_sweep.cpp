@@ -14,10 +14,10 @@
 #include <gtest/gtest.h>
 
 #include "support/test_support.h"
-#include "sweep/cells.h"
-#include "sweep/config.h"
-#include "sweep/result_store.h"
-#include "sweep/runner.h"
+#include "run/cells.h"
+#include "config/config.h"
+#include "output/result_store.h"
+#include "run/runner.h"
 
 namespace rl {
 namespace {

@@ -1,8 +1,8 @@
 // Table and plot writers: CSV quoting, declared Markdown layouts, Pareto fronts.
 #include <gtest/gtest.h>
 
-#include "sweep/pareto.h"
-#include "sweep/tables.h"
+#include "output/pareto.h"
+#include "output/tables.h"
 
 namespace rl {
 namespace {

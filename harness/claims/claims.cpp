@@ -6,8 +6,8 @@
 #include <set>
 #include <sstream>
 
+#include "config/config_toml.h"
 #include "core/error.h"
-#include "sweep/config_toml.h"
 
 namespace rl {
 namespace {

@@ -8,7 +8,7 @@
 #include "claims/claims.h"
 #include "core/atomic_write.h"
 #include "core/error.h"
-#include "sweep/report.h"
+#include "output/report.h"
 
 namespace rl {
 namespace {
@@ -282,7 +282,7 @@ int verify_readme(const std::string& dir, const std::string& generated, bool wri
   return 0;
 }
 
-// The report's verdict panel (sweep/report.h), where the folder has a report.
+// The report's verdict panel (output/report.h), where the folder has a report.
 int verify_report_panel(const std::string& dir, const nlohmann::json& verdicts, bool write,
                         std::string& report) {
   const std::string path = dir + "/report.html";

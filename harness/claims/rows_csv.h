@@ -1,5 +1,5 @@
 #pragma once
-// rows.csv read back (sweep/tables.h writes it): one map per row, column -> the cell's text, so
+// rows.csv read back (output/tables.h writes it): one map per row, column -> the cell's text, so
 // a claim filters on exactly what the file says.
 #include <map>
 #include <string>

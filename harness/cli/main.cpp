@@ -1,7 +1,7 @@
 // relieflab: run config-driven sweeps of relief-mapping techniques against Embree truth.
 //   relieflab run [CONFIG] [--out DIR] [--shard I/N]
 //                                        run a sweep (the built-in default without CONFIG),
-//                                        or one deterministic slice of it (sweep/shard.h)
+//                                        or one deterministic slice of it (run/shard.h)
 //   relieflab merge OUT SHARD_DIRS...    merge shards' results and write the tables
 //   relieflab status DIR...              how far a run (or a sweep's shards) has got
 //   relieflab report DIR                 rewrite a run's tables and report from its store
@@ -10,7 +10,7 @@
 //                                        techniques/*/README.md (technique/technique_docs.h)
 //   relieflab compare BASE NEW [--tolerances FILE]
 //                                        cells that got worse from one run to another; exit
-//                                        status 1 when any did (sweep/compare.h)
+//                                        status 1 when any did (output/compare.h)
 // Every command first loads the techniques built outside the tree from --plugins PATH and
 // $RELIEFLAB_PLUGIN_PATH (technique/plugins.h).
 #include <cstdio>
@@ -21,14 +21,14 @@
 #include <CLI/CLI.hpp>
 
 #include "claims/claims.h"
+#include "config/config.h"
 #include "core/atomic_write.h"
 #include "core/error.h"
+#include "output/compare.h"
 #include "relief/pattern_mesh.h"
 #include "relief/procedural.h"
-#include "sweep/compare.h"
-#include "sweep/config.h"
-#include "sweep/runner.h"
-#include "sweep/shard.h"
+#include "run/runner.h"
+#include "run/shard.h"
 #include "technique/plugins.h"
 #include "technique/technique.h"
 #include "technique/technique_docs.h"

@@ -39,6 +39,14 @@ const DeclaredColumn* find_column(const std::string& name) {
   return nullptr;
 }
 
+std::vector<std::string> measured_columns() {
+  std::vector<std::string> names;
+  for (const DeclaredColumn& c : catalog())
+    if (c.spec.kind == ColumnKind::Number || c.spec.kind == ColumnKind::Flag)
+      names.push_back(c.spec.name);
+  return names;
+}
+
 ColumnDeclaration::ColumnDeclaration(const std::string& producer,
                                      const std::vector<ColumnSpec>& columns) {
   try {

@@ -32,6 +32,8 @@ void declare_columns(const std::string& producer, const std::vector<ColumnSpec>&
 // Every declared column, in the order declared (libraries declare at load, lowest layer first).
 const std::vector<DeclaredColumn>& declared_columns();
 const DeclaredColumn* find_column(const std::string& name);
+// The declared numbers and flags: what a table, a plot or `compare` may take as a value.
+std::vector<std::string> measured_columns();
 
 // Declares at load time: `static const ColumnDeclaration columns("metrics", {...});`. A
 // conflict here is a bug in the declaring code: it prints and exits(3), like a technique's.

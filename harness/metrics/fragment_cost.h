@@ -19,7 +19,7 @@
 //   at: the frame's lockstep cost per pixel it drew. Per fragment, a technique of 64 passes of
 //   two fetches each costs 2 like a 2-fetch single pass; per pixel it costs 128. It equals
 //   warp_fetches_mean where every pixel is shaded once, and is the default cost of the Pareto
-//   fronts (sweep/pareto.h).
+//   fronts (output/pareto.h).
 // - iterations_mean / iterations_max: search-loop iterations per shaded fragment
 //   (harness/glsl/search_cost.glsl), over the same fragments. They part from the fetch counts
 //   where a step reads several textures (multilayer groups, cube faces: fewer iterations) or a

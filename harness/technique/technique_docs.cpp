@@ -1,5 +1,6 @@
 #include "technique/technique_docs.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace rl {
@@ -63,9 +64,23 @@ const char* kind_name(ColumnKind k) {
 }  // namespace
 
 std::string columns_markdown() {
+  // In the order a row reads (what names the cell, its errors, the truth's, the run's, the
+  // representation's, the technique's), not the order the libraries happened to load in.
+  auto rank = [](const std::string& producer) {
+    const char* order[] = {"run (cell identity)", "metrics", "truth", "run", "relief", "technique"};
+    for (int k = 0; k < 6; ++k)
+      if (producer.rfind(order[k], 0) == 0) return k;
+    return 6;
+  };
+  std::vector<DeclaredColumn> columns = declared_columns();
+  std::stable_sort(columns.begin(), columns.end(),
+                   [&](const DeclaredColumn& a, const DeclaredColumn& b) {
+                     const int ra = rank(a.producer), rb = rank(b.producer);
+                     return ra != rb ? ra < rb : (ra >= 4 && a.producer < b.producer);
+                   });
   std::string out =
       "| column | unit | kind | meaning | declared by |\n| --- | --- | --- | --- | --- |\n";
-  for (const DeclaredColumn& c : declared_columns())
+  for (const DeclaredColumn& c : columns)
     out += "| `" + c.spec.name + "` | " + cell(c.spec.unit) + " | " + kind_name(c.spec.kind) +
            " | " + cell(c.spec.meaning) + " | " + cell(c.producer) + " |\n";
   return out;

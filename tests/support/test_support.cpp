@@ -14,7 +14,7 @@
 #include "gl/render_target.h"
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
-#include "sweep/runner.h"
+#include "run/runner.h"
 #include "technique/gpu_scene.h"
 #include "truth/make_truth.h"
 

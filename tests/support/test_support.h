@@ -10,7 +10,7 @@
 #include "metrics/metrics.h"
 #include "relief/relief_map.h"
 #include "scene/scene.h"
-#include "sweep/config.h"
+#include "config/config.h"
 #include "technique/technique.h"
 #include "truth/truth_render.h"
 

@@ -1,0 +1,88 @@
+#pragma once
+// Sweep configs (TOML). A config names scenes, techniques with parameter lists, views,
+// viewports and texture resolutions; the harness runs their product. Everything is checked
+// here, before any work: unknown keys, unknown techniques, bad values, missing files and
+// effects a technique cannot simulate are ConfigErrors naming the file, line and key.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/params.h"
+#include "scene/scene.h"
+
+namespace rl {
+
+// A [[plot]] of a config: error against cost per group of rows, with the Pareto front
+// (output/pareto.h draws it).
+struct PlotSpec {
+  // Cost (lower is better): by default the lockstep cost of every shaded fragment per pixel
+  // drawn (metrics/fragment_cost.h), what a GPU would pay, every pass of a multi-pass technique
+  // included; any row column may be chosen.
+  std::string x = "warp_fetches_per_px";
+  std::string y = "wrong_pct";  // error (lower is better): the headline error
+  std::vector<std::string> group = {"scene", "elevation_deg"};
+  bool log_y = true;
+};
+
+// A [[technique]] of a config. Its settings are the Cartesian product of the parameter lists
+// (a parameter not listed takes its default), times the `sets` when given: each set pairs
+// values of several parameters (e.g. min/max samples) and is combined with every product
+// setting; a parameter is listed or in sets, not both (config/config_technique.h).
+struct TechniqueSweep {
+  std::string name;
+  std::vector<std::string> scenes;                         // empty = every scene
+  std::map<std::string, std::vector<double>> param_lists;  // declared parameters only
+  std::vector<ParamValues> sets;                           // paired settings, or none
+  std::string where;                                       // "file:line" for messages
+};
+
+struct TableSpec {
+  std::string file = "table.md";
+  std::string title;
+  std::vector<std::string> rows, columns, values;
+  // How rows that share a table cell combine: "" (the first is shown and the table says how
+  // many were hidden), "mean" or "max" of each value over them (e.g. over scenes and azimuths).
+  std::string aggregate;
+  // "markdown" (default) or "latex" (booktabs, best value per column in bold).
+  std::string format = "markdown";
+};
+
+struct SweepConfig {
+  std::string name = "sweep";
+  std::string source;  // the config file, or "<built-in default>"
+  std::vector<SceneDesc> scenes;
+  std::vector<TechniqueSweep> techniques;
+  std::vector<View> views;
+  std::vector<std::pair<int, int>> viewports;
+  std::vector<int> texture_res;  // 0 = the asset's native resolution
+  int frames = 5;                // timed frames per cell (median reported)
+  int warmup = 1;
+  double heat_map_scale = 4;      // texels at the top of the heat map's colour scale
+  double truth_tolerance = 2e-3;  // stated tessellation tolerance, depth units
+  bool write_images = true;
+  bool write_gbuffers = false;  // raw G-buffers as OpenEXR (output/gbuffer_export.h)
+  std::vector<TableSpec> tables;
+  std::vector<PlotSpec> plots;                         // Pareto plots of error against cost
+  std::map<std::string, std::string> scene_canonical;  // per scene: text of what defines it
+  // Per scene: "file:line" of its [[scene]] table and of its relief = { ... }, so that an asset
+  // that fails to load later is reported where the config asked for it.
+  std::map<std::string, std::pair<std::string, std::string>> scene_sites;
+  std::string canonical;  // canonical text of everything that affects results
+  // The config's own text and the folder its relative paths resolve from: what a shard writes
+  // down so that `relieflab merge` can rebuild the tables (run/shard.h).
+  std::string text, base_dir;
+};
+
+// Parses and validates a config file. Relative paths resolve against the config's folder,
+// then the repository root.
+SweepConfig load_sweep_config(const std::string& path);
+// Parses config text (`source_name` is used in messages and to resolve relative paths).
+SweepConfig parse_sweep_config(const std::string& text, const std::string& source_name,
+                               const std::string& base_dir);
+// The built-in default sweep (configs/default.toml, embedded at build time).
+SweepConfig default_sweep_config();
+
+// The resolution a texture_res entry means for a scene (0 = native).
+int resolve_texture_res(const SceneDesc& scene, int texture_res);
+
+}  // namespace rl

@@ -1,0 +1,54 @@
+#include "config/config_effects.h"
+
+namespace rl {
+
+void parse_effect_options(const toml::table& t, const Src& src, const toml::node& scene_node,
+                          SceneDesc& s, nlohmann::json& canon) {
+  const bool wanted = s.effects.has(Effect::AmbientOcclusion);
+  const toml::node* options = t.get("ambient_occlusion");
+  if (options && !wanted)
+    fail(src.at(*options), "scene '" + s.name +
+                               "': 'ambient_occlusion' options are given but the scene does not "
+                               "ask for the effect (add \"ambient_occlusion\" to 'effects')");
+  if (!wanted) return;
+  // Texture-space AO is a heightfield's: a map of horizons over one surface per texel.
+  const std::string no = "scene '" + s.name + "': ambient_occlusion needs a heightfield relief ";
+  if (s.relief.layers > 0) fail(src.at(scene_node), no + "(not a multilayer one)");
+  if (!s.relief.mesh_path.empty()) fail(src.at(scene_node), no + "(not a baked mesh)");
+  if (s.proxy == Proxy::Box)
+    fail(src.at(scene_node), no + "drawn on its base (not proxy = \"box\")");
+  if (options) {
+    const toml::table* o = options->as_table();
+    if (!o)
+      fail(src.at(*options),
+           "'ambient_occlusion' must be a table, e.g. { map_depth = 0.04, update = \"eq6\" }");
+    check_keys(*o, {"directions", "filter", "map_depth", "update", "samples", "stderr_target"}, src,
+               "ambient_occlusion");
+    if (auto* n = o->get("directions"))
+      s.ao.directions = positive_int(*n, src, "directions", 8, 720);
+    if (auto* n = o->get("filter")) s.ao.filter = boolean_of(*n, src, "filter");
+    if (auto* n = o->get("map_depth")) s.ao.map_depth = number_in(*n, src, "map_depth", 1e-4, 10);
+    if (auto* n = o->get("update")) {
+      const std::string u = string_of(*n, src, "update");
+      if (u != "eq6" && u != "none")
+        fail(src.at(*n),
+             "'update' must be \"eq6\" (Eq. 6 from the stored map) or \"none\" (the "
+             "map as stored), got \"" +
+                 u + "\"");
+      s.ao.update =
+          u == "eq6" ? AmbientOcclusionDesc::Update::Eq6 : AmbientOcclusionDesc::Update::None;
+    }
+    if (auto* n = o->get("samples")) s.ao.samples = positive_int(*n, src, "samples", 1, 65536);
+    if (auto* n = o->get("stderr_target"))
+      s.ao.stderr_target = number_in(*n, src, "stderr_target", 0, 0.5);
+  }
+  canon["ambient_occlusion"] = {
+      {"directions", s.ao.directions},
+      {"filter", s.ao.filter},
+      {"map_depth", s.ao.map_depth},
+      {"update", s.ao.update == AmbientOcclusionDesc::Update::Eq6 ? "eq6" : "none"},
+      {"samples", s.ao.samples},
+      {"stderr_target", s.ao.stderr_target}};
+}
+
+}  // namespace rl

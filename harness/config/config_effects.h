@@ -1,0 +1,17 @@
+#pragma once
+// The options of a [[scene]]'s effects: ambient_occlusion = { ... } (Limberger et al.,
+// Section IV). Parsing only.
+#include <nlohmann/json.hpp>
+
+#include "config/config_toml.h"
+#include "scene/scene.h"
+
+namespace rl {
+
+// Reads `ambient_occlusion` of scene table `t` into s.ao and checks that the scene can have
+// the effect (a heightfield on the plane or a curved base, drawn on its base). Enters the
+// options into `canon` only when the scene asks for the effect, so other scenes keep their keys.
+void parse_effect_options(const toml::table& t, const Src& src, const toml::node& scene_node,
+                          SceneDesc& s, nlohmann::json& canon);
+
+}  // namespace rl

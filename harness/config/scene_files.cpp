@@ -1,0 +1,80 @@
+#include "config/scene_files.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.h"
+#include "core/hash.h"
+#include "relief/image_backend.h"
+#include "relief/mesh_bake.h"
+#include "scene/relief_asset.h"
+
+namespace rl {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A file's content hash, hex.
+std::string content_hash(const std::string& path) {
+  return hex64(file_content_hash(path));
+}
+
+std::string file_name(const std::string& path) {
+  return fs::path(path).filename().string();
+}
+
+// "file.obj:0123abcd...": a file's name and content hash, as canonical descriptions hold it.
+std::string file_id(const std::string& path) {
+  return file_name(path) + ":" + content_hash(path);
+}
+
+// An image relief's native size, and its files' hashes into its canonical description.
+void read_relief_images(ReliefSourceDesc& r, nlohmann::json& canon, const std::string& site) {
+  if (r.normal_path.empty() && r.depth_path.empty()) return;
+  const std::string& sized = r.depth_path.empty() ? r.normal_path : r.depth_path;
+  ImageHeader header;
+  std::string error;
+  if (!image_backend().read_header(sized, header, error))
+    throw ConfigError(site + ": cannot read image " + sized + ": " + error);
+  r.native = {header.width, header.height};
+  for (const std::string* p : {&r.normal_path, &r.depth_path, &r.color_path})
+    if (!p->empty()) canon["files"].push_back({file_name(*p), content_hash(*p)});
+}
+
+}  // namespace
+
+void read_scene_files(ParsedScene& parsed) {
+  SceneDesc& s = parsed.scene;
+  ReliefSourceDesc& r = s.relief;
+  nlohmann::json& canon = parsed.canon;
+  auto mesh_at = [&](const std::string& site, const std::string& path) {
+    try {
+      return load_mesh(path);
+    } catch (const ConfigError& e) {
+      throw ConfigError(site + ": scene '" + s.name + "': " + e.what());
+    }
+  };
+  read_relief_images(r, canon["relief"], parsed.sites.relief);
+  for (size_t i = 0; i < s.meta.layers.size(); ++i)
+    read_relief_images(s.meta.layers[i].relief, canon["meta_relief"]["layers"][i]["relief"],
+                       parsed.sites.relief);
+  if (!r.mesh_path.empty()) {
+    canon["relief"]["mesh"] = file_id(r.mesh_path);
+    // A baked mesh keeps its proportions: the relief depth follows from the footprint.
+    const BakeFrame frame = relief_bake_frame(r, mesh_at(parsed.sites.relief, r.mesh_path));
+    s.depth = s.size * frame.height / frame.side;
+    canon["depth"] = s.depth;
+  }
+  if (s.base.kind == "file") {
+    if (mesh_at(parsed.sites.base, s.base.path).uvs.empty())
+      throw ConfigError(parsed.sites.base + ": base mesh " + s.base.path +
+                        " has no texture coordinates; a relief needs a uv mapping");
+    canon["base_file"] = file_id(s.base.path);
+  }
+  for (size_t i = 0; i < s.objects.size(); ++i) {
+    const std::string& shape = s.objects[i].shape;
+    if (shape != "sphere" && shape != "cube") canon["objects"][i][0] = file_id(shape);
+  }
+}
+
+}  // namespace rl

@@ -1,0 +1,104 @@
+#include "output/result_store.h"
+
+#include <sqlite3.h>
+
+#include <chrono>
+#include <stdexcept>
+#include <thread>
+
+namespace rl {
+namespace {
+
+void check(int rc, sqlite3* db, const std::string& what) {
+  if (rc != SQLITE_OK && rc != SQLITE_DONE && rc != SQLITE_ROW)
+    throw std::runtime_error("result store: " + what + ": " + sqlite3_errmsg(db));
+}
+
+// Runs setup SQL, retrying while another process holds the lock: a store being created or
+// switched to WAL by one process answers SQLITE_BUSY to the others, and some of those paths
+// bypass the busy handler. Up to about 5 s.
+void exec_with_retry(sqlite3* db, const char* sql, const std::string& what) {
+  int rc = SQLITE_OK;
+  for (int attempt = 0; attempt < 500; ++attempt) {
+    rc = sqlite3_exec(db, sql, nullptr, nullptr, nullptr);
+    if (rc != SQLITE_BUSY && rc != SQLITE_LOCKED) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  check(rc, db, what);
+}
+
+struct Statement {
+  sqlite3_stmt* s = nullptr;
+  Statement(sqlite3* db, const char* sql) {
+    check(sqlite3_prepare_v2(db, sql, -1, &s, nullptr), db, sql);
+  }
+  ~Statement() { sqlite3_finalize(s); }
+};
+
+}  // namespace
+
+ResultStore::ResultStore(const std::string& path) : path_(path) {
+  if (sqlite3_open(path.c_str(), &db_) != SQLITE_OK) {
+    std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    throw std::runtime_error("cannot open result store " + path + ": " + msg);
+  }
+  sqlite3_busy_timeout(db_, 5000);
+  exec_with_retry(db_, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;", "pragmas");
+  exec_with_retry(db_,
+                  "CREATE TABLE IF NOT EXISTS rows ("
+                  " key TEXT PRIMARY KEY,"
+                  " row TEXT NOT NULL,"
+                  " written_at TEXT DEFAULT CURRENT_TIMESTAMP)",
+                  "create table");
+}
+
+ResultStore::~ResultStore() {
+  sqlite3_close(db_);
+}
+
+std::set<std::string> ResultStore::keys() const {
+  std::set<std::string> out;
+  Statement st(db_, "SELECT key FROM rows");
+  while (sqlite3_step(st.s) == SQLITE_ROW)
+    out.insert(reinterpret_cast<const char*>(sqlite3_column_text(st.s, 0)));
+  return out;
+}
+
+std::optional<nlohmann::ordered_json> ResultStore::row(const std::string& key) const {
+  Statement st(db_, "SELECT row FROM rows WHERE key = ?");
+  sqlite3_bind_text(st.s, 1, key.c_str(), -1, SQLITE_TRANSIENT);
+  if (sqlite3_step(st.s) != SQLITE_ROW) return std::nullopt;
+  return nlohmann::ordered_json::parse(reinterpret_cast<const char*>(sqlite3_column_text(st.s, 0)));
+}
+
+void ResultStore::insert(const std::string& key, const nlohmann::ordered_json& row) {
+  Statement st(db_, "INSERT OR IGNORE INTO rows (key, row) VALUES (?, ?)");
+  const std::string text = row.dump();
+  sqlite3_bind_text(st.s, 1, key.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(st.s, 2, text.c_str(), -1, SQLITE_TRANSIENT);
+  check(sqlite3_step(st.s), db_, "insert row");
+}
+
+void ResultStore::erase(const std::string& key) {
+  Statement st(db_, "DELETE FROM rows WHERE key = ?");
+  sqlite3_bind_text(st.s, 1, key.c_str(), -1, SQLITE_TRANSIENT);
+  check(sqlite3_step(st.s), db_, "delete row");
+}
+
+size_t ResultStore::merge_from(const std::string& other_path) {
+  Statement attach(db_, "ATTACH DATABASE ? AS other");
+  sqlite3_bind_text(attach.s, 1, other_path.c_str(), -1, SQLITE_TRANSIENT);
+  check(sqlite3_step(attach.s), db_, "attach " + other_path);
+  const int before = sqlite3_total_changes(db_);
+  check(sqlite3_exec(db_,
+                     "INSERT OR IGNORE INTO rows (key, row, written_at) SELECT key, row, "
+                     "written_at FROM other.rows",
+                     nullptr, nullptr, nullptr),
+        db_, "merge");
+  const size_t merged = size_t(sqlite3_total_changes(db_) - before);
+  check(sqlite3_exec(db_, "DETACH DATABASE other", nullptr, nullptr, nullptr), db_, "detach");
+  return merged;
+}
+
+}  // namespace rl

@@ -1,0 +1,154 @@
+#include "run/cells.h"
+
+#include <algorithm>
+#include <set>
+
+#include "config/config_technique.h"
+#include "core/columns.h"
+#include "core/hash.h"
+#include "metrics/fragment_cost.h"
+#include "metrics/metrics.h"
+#include "technique/technique.h"
+
+namespace rl {
+namespace {
+
+// The columns that name a cell (its parameters are declared by its technique), and those the
+// runner measures itself: the view's spread, timing, precompute and memory, the run's labels.
+const ColumnDeclaration cell_identity_columns(
+    "run (cell identity)",
+    {{"technique", "", "the technique's registry name", ColumnKind::Identity},
+     {"scene", "", "the config's scene name", ColumnKind::Identity},
+     {"elevation_deg", "degrees", "the view's elevation above the base", ColumnKind::Identity},
+     {"azimuth_deg", "degrees", "the view's azimuth", ColumnKind::Identity},
+     {"texture_res", "texels", "the relief map's resolution asked for", ColumnKind::Identity},
+     {"viewport", "pixels", "the viewport, WxH", ColumnKind::Identity}});
+
+const ColumnDeclaration runner_columns(
+    "run (runner)",
+    {{"elev_min_deg", "degrees", "the smallest elevation of the view rays over covered pixels"},
+     {"elev_max_deg", "degrees", "the largest elevation of the view rays over covered pixels"},
+     {"frame_ms", "ms",
+      "median frame time of the colour-only shader (timer queries on a GPU, glFinish + wall "
+      "clock on llvmpipe)"},
+     {"fps", "1/s", "frames per second, 1000 / frame_ms"},
+     {"rays_per_s", "1/s", "viewport pixels x frames per second (Apaza & Andujar's count)"},
+     {"frame_ms_min", "ms", "the fastest timed frame"},
+     {"frame_ms_iqr", "ms", "interquartile range of the timed frames"},
+     {"frames_timed", "frames", "frames the median is over"},
+     {"timing", "", "how frames were timed (timer query or glFinish + wall clock)",
+      ColumnKind::Text},
+     {"precompute_ms", "ms", "the technique's prepare() time (its precompute)"},
+     {"precompute_cached", "",
+      "the precompute came from the cache (precompute_ms is then the "
+      "read)",
+      ColumnKind::Flag},
+     {"memory_bytes", "bytes", "the relief's textures plus the technique's own"},
+     {"ao_precompute_ms", "ms", "time to compute the texture-space AO map"},
+     {"ao_precompute_cached", "", "the AO map came from the cache", ColumnKind::Flag},
+     {"ao_rescale", "", "the AO map's rescale factor for the scene's depth"},
+     {"effects", "", "the effects the scene asks for", ColumnKind::Text},
+     {"texture_size", "texels", "the map's size as built, WxH", ColumnKind::Text},
+     {"renderer", "", "the GL renderer the row was measured on", ColumnKind::Text},
+     {"key", "", "the cell's key in the result store", ColumnKind::Text},
+     {"image_render", "", "the render's PNG, relative to the run's folder", ColumnKind::Text},
+     {"image_truth", "", "the truth's PNG", ColumnKind::Text},
+     {"image_error", "", "the error heat map's PNG", ColumnKind::Text},
+     {"gbuffer", "", "the render's G-buffer (OpenEXR), when exported", ColumnKind::Text},
+     {"gbuffer_truth", "", "the truth's G-buffer (OpenEXR), when exported", ColumnKind::Text}});
+
+}  // namespace
+
+namespace {
+
+// Results change when the harness's measuring changes: bump this when a metric or the truth
+// is redefined, so stale rows are not mistaken for current ones.
+// 2: the exact heightfield truth and its bounds; 3: the bound along the surface's own normal;
+// 4: the cost of every shaded fragment (metrics/fragment_cost.h), cone maps safe under
+// filtering, depth slicing without slack on float maps; 6: warp_fetches_per_px, the default
+// Pareto cost (a stored row without it would drop out of the fronts).
+constexpr int kMeasurementVersion = 6;
+
+}  // namespace
+
+std::vector<std::string> parameter_columns(const SweepConfig& config) {
+  std::vector<std::string> cols;
+  for (const TechniqueSweep& ts : config.techniques)
+    for (const ParamSpec& p : TechniqueRegistry::instance().find(ts.name)->info.params)
+      if (std::find(cols.begin(), cols.end(), p.name) == cols.end()) cols.push_back(p.name);
+  return cols;
+}
+
+std::vector<Cell> expand_cells(const SweepConfig& config, size_t* duplicates) {
+  std::vector<Cell> cells;
+  std::set<std::string> keys;
+  if (duplicates) *duplicates = 0;
+  for (size_t si = 0; si < config.scenes.size(); ++si) {
+    const SceneDesc& scene = config.scenes[si];
+    for (const TechniqueSweep& ts : config.techniques) {
+      if (!ts.scenes.empty() &&
+          std::find(ts.scenes.begin(), ts.scenes.end(), scene.name) == ts.scenes.end())
+        continue;
+      const TechniqueInfo& info = TechniqueRegistry::instance().find(ts.name)->info;
+      const std::vector<ParamValues> settings = parameter_settings(ts);
+      for (int tex : config.texture_res) {
+        const int res = resolve_texture_res(scene, tex);
+        for (const auto& [w, h] : config.viewports) {
+          for (const View& view : config.views) {
+            for (const ParamValues& params : settings) {
+              Cell c;
+              c.scene_index = si;
+              c.technique = ts.name;
+              c.params = params;
+              c.texture_res = res;
+              c.width = w;
+              c.height = h;
+              c.view = view;
+              const std::string scene_text = config.scene_canonical.at(scene.name);
+              c.asset_key = hex64(fnv1a64(scene_text + "|res=" + std::to_string(res)));
+              // A truth of a fixed resolution (truth_resolution) is one surface for every
+              // texture resolution of the scene: traced once per view, shared by them all.
+              const std::string truth_source =
+                  scene.truth_texture_res > 0
+                      ? hex64(fnv1a64(scene_text +
+                                      "|truth_res=" + std::to_string(scene.truth_texture_res)))
+                      : c.asset_key;
+              nlohmann::ordered_json truth_id = {{"asset", truth_source},
+                                                 {"w", w},
+                                                 {"h", h},
+                                                 {"el", view.elevation_deg},
+                                                 {"az", view.azimuth_deg},
+                                                 {"tol", config.truth_tolerance},
+                                                 {"v", kMeasurementVersion}};
+              c.truth_key = hex64(fnv1a64(truth_id.dump()));
+              nlohmann::ordered_json id = {
+                  {"truth", c.truth_key},    {"technique", ts.name},
+                  {"params", params},        {"frames", config.frames},
+                  {"warmup", config.warmup}, {"images", config.write_images}};
+              // Only when asked, so cells of sweeps without G-buffers keep their keys.
+              if (config.write_gbuffers) id["gbuffers"] = true;
+              // A shared truth no longer names the asset: the cell must.
+              if (scene.truth_texture_res > 0) id["asset"] = c.asset_key;
+              c.key = hex64(fnv1a64(id.dump()));
+              c.identity["technique"] = ts.name;
+              c.identity["scene"] = scene.name;
+              c.identity["elevation_deg"] = view.elevation_deg;
+              c.identity["azimuth_deg"] = view.azimuth_deg;
+              c.identity["texture_res"] = res;
+              c.identity["viewport"] = std::to_string(w) + "x" + std::to_string(h);
+              for (const ParamSpec& p : info.params) c.identity[p.name] = params.at(p.name);
+              if (!keys.insert(c.key).second) {
+                if (duplicates) ++*duplicates;
+                continue;
+              }
+              cells.push_back(std::move(c));
+            }
+          }
+        }
+      }
+    }
+  }
+  return cells;
+}
+
+}  // namespace rl

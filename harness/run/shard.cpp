@@ -1,0 +1,235 @@
+#include "run/shard.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_write.h"
+#include "core/error.h"
+#include "core/hash.h"
+#include "output/result_store.h"
+#include "run/runner.h"
+
+namespace rl {
+namespace fs = std::filesystem;
+
+ShardSpec parse_shard(const std::string& text) {
+  ShardSpec s;
+  const size_t slash = text.find('/');
+  try {
+    if (slash == std::string::npos) throw std::invalid_argument("no slash");
+    size_t a = 0, b = 0;
+    s.index = std::stoi(text.substr(0, slash), &a);
+    s.count = std::stoi(text.substr(slash + 1), &b);
+    if (a != slash || b != text.size() - slash - 1) throw std::invalid_argument("trailing");
+  } catch (const std::exception&) {
+    throw ConfigError("--shard '" + text + "': give I/N, e.g. 0/4 for the first of four shards");
+  }
+  if (s.count < 1 || s.count > 10000 || s.index < 0 || s.index >= s.count)
+    throw ConfigError("--shard '" + text + "': need 0 <= I < N <= 10000");
+  return s;
+}
+
+double truth_group_cost(const SweepConfig& config, const std::vector<const Cell*>& group) {
+  if (group.empty()) return 0;
+  const SceneDesc& scene = config.scenes[group.front()->scene_index];
+  const double pixels = double(group.front()->width) * group.front()->height;
+  double rays_per_pixel = 1;
+  if (scene.effects.has(Effect::AmbientOcclusion)) rays_per_pixel += scene.ao.samples;
+  if (scene.effects.has(Effect::SelfShadow)) rays_per_pixel += 1;
+  // A truth ray costs about what a shaded pixel of a frame does on these machines (both are a
+  // few hundred ns); each cell renders its G-buffer, warm-up and timed frames.
+  double cost = pixels * rays_per_pixel;
+  for (const Cell* c : group)
+    cost += double(c->width) * c->height * (1 + config.warmup + config.frames);
+  return cost;
+}
+
+std::vector<Cell> shard_cells(const SweepConfig& config, const std::vector<Cell>& cells,
+                              const ShardSpec& shard) {
+  if (!shard.active()) return cells;
+  std::map<std::string, std::vector<const Cell*>> groups;
+  for (const Cell& c : cells) groups[c.truth_key].push_back(&c);
+  std::vector<std::pair<double, std::string>> by_cost;
+  for (const auto& [key, g] : groups) by_cost.push_back({truth_group_cost(config, g), key});
+  std::sort(by_cost.begin(), by_cost.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second < b.second;
+  });
+  std::vector<double> load(size_t(shard.count), 0.0);
+  std::map<std::string, int> owner;
+  for (const auto& [cost, key] : by_cost) {
+    const int s = int(std::min_element(load.begin(), load.end()) - load.begin());
+    load[size_t(s)] += cost;
+    owner[key] = s;
+  }
+  std::vector<Cell> mine;
+  for (const Cell& c : cells)
+    if (owner[c.truth_key] == shard.index) mine.push_back(c);
+  return mine;
+}
+
+namespace {
+
+std::string config_hash(const SweepConfig& config) {
+  return hex64(fnv1a64(config.canonical));
+}
+
+nlohmann::json read_record(const std::string& dir) {
+  const std::string path = dir + "/sweep.json";
+  std::ifstream in(path);
+  if (!in)
+    throw ConfigError(dir +
+                      ": no sweep.json (not the output folder of a relieflab run, or of "
+                      "one older than sharding)");
+  try {
+    nlohmann::json j;
+    in >> j;
+    for (const char* k : {"config_hash", "text", "base_dir", "source", "shard"})
+      if (!j.contains(k) || !j[k].is_string()) throw std::runtime_error(std::string("no ") + k);
+    return j;
+  } catch (const std::exception& e) {
+    throw ConfigError(path + ": unreadable (" + e.what() + ")");
+  }
+}
+
+}  // namespace
+
+void write_sweep_record(const SweepConfig& config, const ShardSpec& shard,
+                        const std::string& out_dir) {
+  const nlohmann::json j = {{"name", config.name},         {"source", config.source},
+                            {"base_dir", config.base_dir}, {"config_hash", config_hash(config)},
+                            {"shard", shard.text()},       {"text", config.text}};
+  write_text_atomic(out_dir + "/sweep.json", j.dump(2) + "\n");
+}
+
+namespace {
+
+// The config every folder ran (they must agree), rebuilt from the first one's record.
+SweepConfig recorded_config(const std::vector<std::string>& dirs) {
+  if (dirs.empty()) throw ConfigError("give the run's output folder(s)");
+  const nlohmann::json first = read_record(dirs.front());
+  for (const std::string& d : dirs) {
+    const nlohmann::json r = read_record(d);
+    if (r["config_hash"] != first["config_hash"])
+      throw ConfigError(d + ": ran another config (" + r["source"].get<std::string>() +
+                        ", config hash " + r["config_hash"].get<std::string>() + ") than " +
+                        dirs.front() + " (" + first["source"].get<std::string>() + ", " +
+                        first["config_hash"].get<std::string>() +
+                        "); shards of one sweep must run the same config");
+    if (!fs::exists(d + "/results.sqlite")) throw ConfigError(d + ": no results.sqlite");
+  }
+  SweepConfig config =
+      parse_sweep_config(first["text"].get<std::string>(), first["source"].get<std::string>(),
+                         first["base_dir"].get<std::string>());
+  if (config_hash(config) != first["config_hash"].get<std::string>())
+    throw ConfigError(dirs.front() +
+                      ": its config reads differently here (its files changed "
+                      "since it ran?); config hash " +
+                      config_hash(config) + " against " + first["config_hash"].get<std::string>());
+  return config;
+}
+
+// How many of `cells` have no row in `store`.
+size_t missing_cells(const std::vector<Cell>& cells, const ResultStore& store) {
+  const std::set<std::string> have = store.keys();
+  size_t n = 0;
+  for (const Cell& c : cells) n += !have.count(c.key);
+  return n;
+}
+
+}  // namespace
+
+RunStatus run_status(const std::vector<std::string>& dirs) {
+  const SweepConfig config = recorded_config(dirs);
+  std::vector<Cell> cells = expand_cells(config);
+  RunStatus s;
+  s.name = config.name;
+  s.source = config.source;
+  if (dirs.size() == 1) {
+    const ShardSpec shard = parse_shard(read_record(dirs.front())["shard"].get<std::string>());
+    if (shard.active()) {
+      cells = shard_cells(config, cells, shard);
+      s.shard = shard.text();
+    }
+  }
+  std::set<std::string> have;
+  for (const std::string& d : dirs) {
+    ResultStore store(d + "/results.sqlite");
+    for (const std::string& k : store.keys()) have.insert(k);
+  }
+  std::map<std::string, std::pair<size_t, size_t>> truths, techniques;
+  std::vector<std::string> order;
+  for (const Cell& c : cells) {
+    const bool done = have.count(c.key) > 0;
+    s.done += done;
+    truths[c.truth_key].first += done;
+    ++truths[c.truth_key].second;
+    if (!techniques.count(c.technique)) order.push_back(c.technique);
+    techniques[c.technique].first += done;
+    ++techniques[c.technique].second;
+  }
+  s.cells = cells.size();
+  s.truths = truths.size();
+  for (const auto& [k, t] : truths) s.truths_done += t.first == t.second;
+  for (const std::string& t : order) s.techniques.push_back({t, techniques[t]});
+  return s;
+}
+
+size_t rewrite_outputs(const std::string& dir) {
+  const SweepConfig config = recorded_config({dir});
+  std::vector<Cell> cells = expand_cells(config);
+  const ShardSpec shard = parse_shard(read_record(dir)["shard"].get<std::string>());
+  cells = shard_cells(config, cells, shard);
+  ResultStore store(dir + "/results.sqlite");
+  // Rows under none of the sweep's keys were measured by another version of the measurement
+  // (cells.cpp's kMeasurementVersion is in every key): rewriting from them would replace the
+  // folder's tables with empty ones.
+  const size_t stored = store.keys().size(), found = cells.size() - missing_cells(cells, store);
+  if (stored > 0 && found == 0)
+    throw ConfigError("report: " + dir + "/results.sqlite holds " + std::to_string(stored) +
+                      " rows, none under this sweep's cell keys: they were measured by another "
+                      "version of relieflab's measurement; run the sweep again (nothing was "
+                      "rewritten)");
+  write_sweep_outputs(config, cells, store, dir);
+  return found;
+}
+
+std::string format_run_status(const RunStatus& s) {
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "sweep '%s' from %s%s: %zu of %zu cells done (%.1f%%), %zu of %zu truth traces "
+                "complete\n",
+                s.name.c_str(), s.source.c_str(),
+                s.shard.empty() ? "" : (", shard " + s.shard).c_str(), s.done, s.cells,
+                s.cells ? 100.0 * s.done / s.cells : 100.0, s.truths_done, s.truths);
+  std::string out = line;
+  for (const auto& [t, c] : s.techniques) {
+    std::snprintf(line, sizeof line, "  %-26s %zu / %zu\n", t.c_str(), c.first, c.second);
+    out += line;
+  }
+  return out;
+}
+
+MergeSummary merge_shards(const std::string& out_dir, const std::vector<std::string>& shard_dirs) {
+  if (shard_dirs.empty()) throw ConfigError("merge: give the shards' output folders");
+  const SweepConfig config = recorded_config(shard_dirs);
+  fs::create_directories(out_dir);
+  MergeSummary summary;
+  summary.shards = shard_dirs.size();
+  ResultStore store(out_dir + "/results.sqlite");
+  for (const std::string& d : shard_dirs)
+    summary.rows_added += store.merge_from(d + "/results.sqlite");
+  const std::vector<Cell> cells = expand_cells(config);
+  summary.cells = cells.size();
+  summary.missing = missing_cells(cells, store);
+  write_sweep_record(config, ShardSpec{}, out_dir);
+  write_sweep_outputs(config, cells, store, out_dir);
+  return summary;
+}
+
+}  // namespace rl
