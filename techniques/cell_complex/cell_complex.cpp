@@ -5,8 +5,7 @@
 #include "relief/cell_complex.h"
 #include "technique/gpu_cell_complex.h"
 #include "technique/scene_uniforms.h"
-#include "technique/shader_technique.h"
-#include "technique/texture_space_geometry.h"
+#include "technique/texture_space_technique.h"
 
 namespace rl {
 namespace {
@@ -34,7 +33,7 @@ std::vector<glm::vec3> proxy_triangles(const CellComplex& cc) {
 
 }  // namespace
 
-class CellComplexRaycast final : public Described<CellComplexRaycast, Technique> {
+class CellComplexRaycast final : public Described<CellComplexRaycast, TextureSpaceTechnique> {
  public:
   using Described::Described;
   static TechniqueInfo describe() {
@@ -77,42 +76,22 @@ class CellComplexRaycast final : public Described<CellComplexRaycast, Technique>
     if (!map.cells) throw std::logic_error("cell_complex prepared without a cell complex");
     proxy_.set(proxy_triangles(*map.cells));
   }
-
-  void render(const FrameInput& frame, RenderTarget::Kind target) override {
-    if (!frame.relief.cells() || !frame.map.cells)
-      throw std::logic_error("cell_complex rendered on a scene without a cell complex");
-    ProgramDesc d = program();
-    d.vertex_file = "harness/glsl/texture_space.vert";
-    if (target == RenderTarget::Kind::GBuffer) d.defines["RL_GBUFFER"] = "1";
-    const GLuint p = ShaderLibrary::shared().program(d);
-    glUseProgram(p);
-    set_scene_uniforms(p, frame.scene, frame.camera);
-    set_cell_complex_uniforms(p, frame.scene, frame.camera, *frame.map.cells,
-                              *frame.relief.cells());
-    frame.relief.bind();
-    proxy_.draw_front_faces();
-  }
-
-  // Probe rays are in the cube's texture space (u, v, depth), any direction; t counts
-  // multiples of the direction. The search runs along the whole chord of the grid.
-  std::vector<ProbeHit> probe(const ReliefMap& map, const GpuRelief& relief,
-                              const std::vector<ProbeRay>& rays, glm::dvec2) override {
-    if (rays.empty()) return {};
-    if (!map.cells || !relief.cells())
-      throw std::logic_error("cell_complex probed without a cell complex");
-    ProgramDesc d = program();
-    d.vertex_file = "harness/glsl/fullscreen.vert";
-    d.defines["RL_PROBE"] = "1";
-    const GLuint p = ShaderLibrary::shared().program(d);
-    set_cell_table_uniforms(p, *map.cells, *relief.cells());
-    const GBuffer out = run_probe_pass(p, rays, [&] { relief.bind(); });
-    return decode_probe_hits(out, rays.size());
-  }
-
   size_t memory_bytes() const override { return proxy_.bytes(); }
 
- private:
-  ProgramDesc program() const {
+ protected:
+  std::string missing_data(const ReliefMap& map, const GpuRelief& relief) const override {
+    return map.cells && relief.cells() ? "" : "a cell complex";
+  }
+  void set_frame_uniforms(GLuint p, const FrameInput& frame) const override {
+    set_cell_complex_uniforms(p, frame.scene, frame.camera, *frame.map.cells,
+                              *frame.relief.cells());
+  }
+  // Probe rays are in the cube's texture space (u, v, depth), any direction; t counts
+  // multiples of the direction. The search runs along the whole chord of the grid.
+  void set_probe_uniforms(GLuint p, const ReliefMap& map, const GpuRelief& relief) const override {
+    set_cell_table_uniforms(p, *map.cells, *relief.cells());
+  }
+  ProgramDesc program() const override {
     ProgramDesc d;
     d.owner = info().name;
     d.fragment_files = {"techniques/cell_complex/cell_complex_main.glsl"};
@@ -120,7 +99,6 @@ class CellComplexRaycast final : public Described<CellComplexRaycast, Technique>
     d.defines["RL_BINARY_STEPS"] = std::to_string(int(param("binary_steps")));
     return d;
   }
-  PositionBuffer proxy_;
 };
 
 RL_REGISTER_TECHNIQUE(CellComplexRaycast);

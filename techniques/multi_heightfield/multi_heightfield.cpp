@@ -4,12 +4,11 @@
 #include "relief/heightfield_faces.h"
 #include "technique/gpu_heightfield_faces.h"
 #include "technique/scene_uniforms.h"
-#include "technique/shader_technique.h"
-#include "technique/texture_space_geometry.h"
+#include "technique/texture_space_technique.h"
 
 namespace rl {
 
-class MultiHeightfield final : public Described<MultiHeightfield, Technique> {
+class MultiHeightfield final : public Described<MultiHeightfield, TextureSpaceTechnique> {
  public:
   using Described::Described;
   static TechniqueInfo describe() {
@@ -51,42 +50,23 @@ class MultiHeightfield final : public Described<MultiHeightfield, Technique> {
     if (!map.faces) throw std::logic_error("multi_heightfield prepared without heightfield faces");
     std::vector<glm::vec3> tris;
     for (int f = 0; f < kCubeFaces; ++f) append_cube_face(tris, {0, 0, 0}, f, 1);
-    cube_.set(tris);
+    proxy_.set(tris);
   }
 
-  void render(const FrameInput& frame, RenderTarget::Kind target) override {
-    if (!frame.map.faces || !frame.relief.faces())
-      throw std::logic_error("multi_heightfield rendered on a scene without heightfield faces");
-    ProgramDesc d = program();
-    d.vertex_file = "harness/glsl/texture_space.vert";
-    if (target == RenderTarget::Kind::GBuffer) d.defines["RL_GBUFFER"] = "1";
-    const GLuint p = ShaderLibrary::shared().program(d);
-    glUseProgram(p);
-    set_scene_uniforms(p, frame.scene, frame.camera);
+ protected:
+  std::string missing_data(const ReliefMap& map, const GpuRelief& relief) const override {
+    return map.faces && relief.faces() ? "" : "heightfield faces";
+  }
+  void set_frame_uniforms(GLuint p, const FrameInput& frame) const override {
     set_texture_space_uniforms(p, frame.scene, frame.camera);
     set_heightfield_faces_uniforms(p, *frame.map.faces);
-    frame.relief.bind();
-    cube_.draw_front_faces();
   }
-
   // Probe rays are in the cube's texture space, any direction, starting inside the cube; t
   // counts multiples of the direction. The search runs to the ray's exit from the cube.
-  std::vector<ProbeHit> probe(const ReliefMap& map, const GpuRelief& relief,
-                              const std::vector<ProbeRay>& rays, glm::dvec2) override {
-    if (rays.empty()) return {};
-    if (!map.faces || !relief.faces())
-      throw std::logic_error("multi_heightfield probed without heightfield faces");
-    ProgramDesc d = program();
-    d.vertex_file = "harness/glsl/fullscreen.vert";
-    d.defines["RL_PROBE"] = "1";
-    const GLuint p = ShaderLibrary::shared().program(d);
+  void set_probe_uniforms(GLuint p, const ReliefMap& map, const GpuRelief&) const override {
     set_heightfield_faces_uniforms(p, *map.faces);
-    const GBuffer out = run_probe_pass(p, rays, [&] { relief.bind(); });
-    return decode_probe_hits(out, rays.size());
   }
-
- private:
-  ProgramDesc program() const {
+  ProgramDesc program() const override {
     ProgramDesc d;
     d.owner = info().name;
     d.fragment_files = {"techniques/multi_heightfield/multi_heightfield.glsl"};
@@ -94,7 +74,6 @@ class MultiHeightfield final : public Described<MultiHeightfield, Technique> {
     d.defines["RL_BINARY_STEPS"] = std::to_string(int(param("binary_steps")));
     return d;
   }
-  PositionBuffer cube_;
 };
 
 RL_REGISTER_TECHNIQUE(MultiHeightfield);
