@@ -226,18 +226,51 @@ bool planar_in_shadow(const TruthSurface& truth, const PlanarBase& base, const S
   return truth.occluded(h.point, l, t_start, std::min(1.0, -h.point.z / l.z));
 }
 
-// The render's ray counts, the shadow rays without the AO's occlusion rays.
-template <typename Truth>
-void fill_stats(TruthStats* stats, const Truth& truth, std::chrono::steady_clock::time_point start,
-                uint64_t primary0, uint64_t shadow0, uint64_t ao_rays, uint64_t ao_traced,
-                uint64_t ao_cached_px, long unresolved) {
-  if (!stats) return;
-  stats->trace_ms = ms_since(start);
-  stats->primary_rays = truth.primary_rays() - primary0;
-  stats->shadow_rays = truth.shadow_rays() - shadow0 - ao_traced;
-  stats->ao_rays = ao_rays;
-  stats->ao_cached_px = ao_cached_px;
-  stats->unresolved = unresolved;
+// The loop every truth render shares: one camera ray per pixel, on all cores; the scene's plain
+// objects, where one lies in front of the relief's hit; the ray counts. The render's own part,
+// `trace(g, i, eye, dir, in_front)`, traces the relief and writes pixel i, after asking
+// `in_front(distance)`, which writes the object pixel when an object lies nearer than the
+// relief's hit (any distance where it missed) and says so.
+struct TruthCounters {
+  std::atomic<uint64_t> ao_rays{0};    // hemisphere directions sampled
+  std::atomic<uint64_t> ao_traced{0};  // those traced (the truth counts them as shadow rays)
+  std::atomic<long> unresolved{0};
+};
+
+template <typename Truth, typename Trace>
+GBuffer trace_pixels(const Truth& truth, const SceneDesc& scene, const Camera& camera,
+                     const ObjectsTruth* objects, AoTruthCache* ao_cache, TruthStats* stats,
+                     TruthCounters& counters, Trace trace) {
+  const auto start = std::chrono::steady_clock::now();
+  const uint64_t primary0 = truth.primary_rays(), shadow0 = truth.shadow_rays();
+  const size_t ao_reused0 = ao_cache ? ao_cache->reused() : 0;
+  GBuffer g;
+  g.resize(camera.width, camera.height);
+  parallel_for(
+      size_t(camera.width) * camera.height,
+      [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+          glm::dvec3 eye, dir;
+          camera.pixel_ray(int(i % camera.width), int(i / camera.width), eye, dir);
+          auto in_front = [&](double relief_distance) {
+            if (!objects) return false;
+            const ObjectHit oh = objects->intersect(eye, dir, relief_distance);
+            if (oh.hit) write_object_pixel(g, i, oh, scene, dir);
+            return oh.hit;
+          };
+          trace(g, i, eye, dir, in_front);
+        }
+      },
+      256);
+  if (stats) {
+    stats->trace_ms = ms_since(start);
+    stats->primary_rays = truth.primary_rays() - primary0;
+    stats->shadow_rays = truth.shadow_rays() - shadow0 - counters.ao_traced.load();
+    stats->ao_rays = counters.ao_rays.load();
+    stats->ao_cached_px = ao_cache ? ao_cache->reused() - ao_reused0 : 0;
+    stats->unresolved = counters.unresolved.load();
+  }
+  return g;
 }
 
 }  // namespace
@@ -249,14 +282,9 @@ AoSampling ao_sampling(const SceneDesc& scene) {
 GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const SceneDesc& scene,
                      const Camera& camera, EffectSet effects, TruthStats* stats,
                      const ObjectsTruth* objects, AoTruthCache* ao_cache) {
-  const auto start = std::chrono::steady_clock::now();
-  const uint64_t primary0 = truth.primary_rays(), shadow0 = truth.shadow_rays();
   const PlanarBase base = planar_base(scene);
   const bool shadows = effects.has(Effect::SelfShadow);
   const bool ambient_occlusion = effects.has(Effect::AmbientOcclusion);
-  // Hemisphere directions sampled, and those traced (the truth counts them as occlusion rays).
-  std::atomic<uint64_t> ao_rays{0}, ao_traced{0};
-  const size_t ao_reused0 = ao_cache ? ao_cache->reused() : 0;
   // Rays end just below the deepest point of the map (not clamped at 1: a map reaching depth 1
   // would put its deepest hits exactly on the end of the ray, where rounding can lose them).
   const double bottom = double(truth.max_depth()) + 1e-4;
@@ -266,79 +294,58 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
   const double rounding_world =
       truth.rounding_bound() *
       std::max({glm::length(base.dpdu()), glm::length(base.dpdv()), base.depth});
-  GBuffer g;
-  g.resize(camera.width, camera.height);
-  std::atomic<long> unresolved{0};
-  const size_t pixels = size_t(camera.width) * camera.height;
-
-  parallel_for(
-      pixels,
-      [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) {
-          const int x = int(i % camera.width), y = int(i / camera.width);
-          glm::dvec3 eye, dir;
-          camera.pixel_ray(x, y, eye, dir);
-          glm::dvec3 o = base.texture_from_world(eye);
-          glm::dvec3 d = base.texture_direction(dir);  // t stays the world distance
-          const ReverseProjection& projection = scene.projection;
-          if (projection.active() && d.z > 0) {
-            // Lines stay lines: the ray through the eye and its point at depth 1, projected.
-            const glm::dvec3 far = o + d * ((1.0 - o.z) / d.z);
-            o = projection.texture_from_affine(o);
-            d = projection.texture_from_affine(far) - o;
-          }
-          double t_start = 0;
-          TruthHit h;
-          const bool relief =
-              trace_primary(truth, map, scene, o, d, bottom, t_start, h, unresolved);
-          const glm::dvec3 world =
-              projection.active() ? base.world_from_texture(projection.affine_from_texture(h.point))
-                                  : eye + dir * (t_start + h.t);
-          if (objects) {
-            // An object in front of the relief's hit (or anywhere, where the relief is missed).
-            const ObjectHit oh = objects->intersect(
-                eye, dir, relief ? glm::length(world - eye) : std::numeric_limits<double>::max());
-            if (oh.hit) {
-              write_object_pixel(g, i, oh, scene, dir);
-              continue;
-            }
-          }
-          if (!relief) continue;
-          const glm::dvec2 uv(h.point.x, h.point.y);
-          const Surface surface = planar_surface(base, map, h, uv, dir);
-          const glm::dvec3 to_light = glm::normalize(scene.light_position - world);
-          const bool in_shadow = shadows && planar_in_shadow(truth, base, scene, h, world);
-          AoEstimate ao;
-          if (ambient_occlusion) {
-            // Hemisphere rays from the hit up to where they leave the relief at the top plane
-            // (nothing above it blocks), through the tiling as the AO map wraps.
-            ao = reference_ao_at(ao_cache, i, h.point, base.normal(), [&] {
-              return reference_ao(ao_sampling(scene), ao_seed(i), base.normal(),
-                                  glm::normalize(base.dpdu()), [&](const glm::dvec3& w) {
-                                    const glm::dvec3 l = base.texture_direction(w);
-                                    const double t_exit = -h.point.z / l.z;
-                                    const double t0 = 1e-4 / std::max(1.0, glm::length(l));
-                                    if (!(t_exit > t0)) return false;  // at the top: open
-                                    ++ao_traced;
-                                    return truth.occluded(h.point, l, t0, t_exit);
-                                  });
-            });
-            ao_rays += uint64_t(ao.rays);
-          }
-          const glm::dvec3& n = surface.normal;
-          write_relief_pixel(
-              g, i, scene, surface.albedo, n, world, to_light, dir, uv, in_shadow, ao,
-              // Every planar truth is exact (vertical 0) or a mesh traced as it is, so the
-              // shading normal stands in for the geometric one; a tessellated planar truth
-              // would have to supply its own (as DisplacedHit does).
-              truth_hit_bound(vertical_world, rounding_world, base.normal(), n, n, dir, world));
-        }
-      },
-      256);
-
-  fill_stats(stats, truth, start, primary0, shadow0, ao_rays.load(), ao_traced.load(),
-             ao_cache ? ao_cache->reused() - ao_reused0 : 0, unresolved.load());
-  return g;
+  TruthCounters counters;
+  auto trace = [&](GBuffer& g, size_t i, const glm::dvec3& eye, const glm::dvec3& dir,
+                   auto&& in_front) {
+    glm::dvec3 o = base.texture_from_world(eye);
+    glm::dvec3 d = base.texture_direction(dir);  // t stays the world distance
+    const ReverseProjection& projection = scene.projection;
+    if (projection.active() && d.z > 0) {
+      // Lines stay lines: the ray through the eye and its point at depth 1, projected.
+      const glm::dvec3 far = o + d * ((1.0 - o.z) / d.z);
+      o = projection.texture_from_affine(o);
+      d = projection.texture_from_affine(far) - o;
+    }
+    double t_start = 0;
+    TruthHit h;
+    const bool relief =
+        trace_primary(truth, map, scene, o, d, bottom, t_start, h, counters.unresolved);
+    const glm::dvec3 world = projection.active()
+                                 ? base.world_from_texture(projection.affine_from_texture(h.point))
+                                 : eye + dir * (t_start + h.t);
+    // An object in front of the relief's hit (or anywhere, where the relief is missed).
+    if (in_front(relief ? glm::length(world - eye) : std::numeric_limits<double>::max())) return;
+    if (!relief) return;
+    const glm::dvec2 uv(h.point.x, h.point.y);
+    const Surface surface = planar_surface(base, map, h, uv, dir);
+    const glm::dvec3 to_light = glm::normalize(scene.light_position - world);
+    const bool in_shadow = shadows && planar_in_shadow(truth, base, scene, h, world);
+    AoEstimate ao;
+    if (ambient_occlusion) {
+      // Hemisphere rays from the hit up to where they leave the relief at the top plane
+      // (nothing above it blocks), through the tiling as the AO map wraps.
+      ao = reference_ao_at(ao_cache, i, h.point, base.normal(), [&] {
+        return reference_ao(ao_sampling(scene), ao_seed(i), base.normal(),
+                            glm::normalize(base.dpdu()), [&](const glm::dvec3& w) {
+                              const glm::dvec3 l = base.texture_direction(w);
+                              const double t_exit = -h.point.z / l.z;
+                              const double t0 = 1e-4 / std::max(1.0, glm::length(l));
+                              if (!(t_exit > t0)) return false;  // at the top: open
+                              ++counters.ao_traced;
+                              return truth.occluded(h.point, l, t0, t_exit);
+                            });
+      });
+      counters.ao_rays += uint64_t(ao.rays);
+    }
+    const glm::dvec3& n = surface.normal;
+    write_relief_pixel(
+        g, i, scene, surface.albedo, n, world, to_light, dir, uv, in_shadow, ao,
+        // Every planar truth is exact (vertical 0) or a mesh traced as it is, so the shading
+        // normal stands in for the geometric one; a tessellated planar truth would have to
+        // supply its own (as DisplacedHit does).
+        truth_hit_bound(vertical_world, rounding_world, base.normal(), n, n, dir, world));
+  };
+  return trace_pixels(truth, scene, camera, objects, ao_cache, stats, counters, trace);
 }
 
 namespace {
@@ -348,76 +355,55 @@ template <typename WorldTruth>
 GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const SceneDesc& scene,
                            const Camera& camera, EffectSet effects, TruthStats* stats,
                            const ObjectsTruth* objects, AoTruthCache* ao_cache) {
-  const auto start = std::chrono::steady_clock::now();
-  const uint64_t primary0 = truth.primary_rays(), shadow0 = truth.shadow_rays();
   const bool shadows = effects.has(Effect::SelfShadow);
   const bool ambient_occlusion = effects.has(Effect::AmbientOcclusion);
-  // Hemisphere directions sampled, and those traced (the truth counts them as occlusion rays).
-  std::atomic<uint64_t> ao_rays{0}, ao_traced{0};
-  const size_t ao_reused0 = ao_cache ? ao_cache->reused() : 0;
   const double far = camera.far_plane;
   const double vertical_world = truth.vertical_bound() * scene.depth;
   const double rounding_world = truth.rounding_bound() * std::max(scene.size, scene.depth);
-  GBuffer g;
-  g.resize(camera.width, camera.height);
-  parallel_for(
-      size_t(camera.width) * camera.height,
-      [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) {
-          glm::dvec3 eye, dir;
-          camera.pixel_ray(int(i % camera.width), int(i / camera.width), eye, dir);
-          const DisplacedHit h = truth.intersect(eye, dir, far);
-          if (objects) {
-            const ObjectHit oh = objects->intersect(eye, dir, h.hit ? h.t : far);
-            if (oh.hit) {
-              write_object_pixel(g, i, oh, scene, dir);
-              continue;
-            }
-          }
-          if (!h.hit) continue;
-          // Shading as the shaders do it: the map's normal in the base's frame at the hit, or
-          // the surface's own normal and colour (a pattern).
-          glm::dvec3 n = h.surface_normal, albedo = h.albedo;
-          if (!h.has_surface) {
-            const glm::dvec3 tn = decode_normal(map.surface_relief(h.uv.x, h.uv.y));
-            n = glm::normalize(tn.x * h.tangent + tn.y * h.bitangent + tn.z * h.normal);
-            albedo = glm::dvec3(map.sample_color(h.uv.x, h.uv.y));
-          }
-          const glm::dvec3 to_light = glm::normalize(scene.light_position - h.position);
-          bool in_shadow = false;
-          if (shadows) {
-            if (glm::dot(h.normal, to_light) <= 0) {
-              in_shadow = true;  // light at or below the base's tangent plane, as the shaders
-            } else {
-              const double reach = glm::length(scene.light_position - h.position);
-              in_shadow = truth.occluded(h.position, to_light, 1e-4 * scene.depth, reach);
-            }
-          }
-          AoEstimate ao;
-          if (ambient_occlusion) {
-            // Hemisphere rays about the base's normal, as far as they stay within the relief's
-            // shell over a locally flat base: the relief occludes itself, while the base's own
-            // shape (a handle over the body) is what no texture-space AO can know.
-            const double below_top = scene.depth * map.surface_depth(h.uv.x, h.uv.y) + 1e-6;
-            ao = reference_ao_at(ao_cache, i, h.position, h.normal, [&] {
-              return reference_ao(
-                  ao_sampling(scene), ao_seed(i), h.normal, h.tangent, [&](const glm::dvec3& w) {
-                    const double rise = std::max(glm::dot(w, h.normal), 1e-6);
-                    ++ao_traced;
-                    return truth.occluded(h.position, w, 1e-4 * scene.depth, below_top / rise);
-                  });
+  TruthCounters counters;
+  auto trace = [&](GBuffer& g, size_t i, const glm::dvec3& eye, const glm::dvec3& dir,
+                   auto&& in_front) {
+    const DisplacedHit h = truth.intersect(eye, dir, far);
+    if (in_front(h.hit ? h.t : far) || !h.hit) return;
+    // Shading as the shaders do it: the map's normal in the base's frame at the hit, or the
+    // surface's own normal and colour (a pattern).
+    glm::dvec3 n = h.surface_normal, albedo = h.albedo;
+    if (!h.has_surface) {
+      const glm::dvec3 tn = decode_normal(map.surface_relief(h.uv.x, h.uv.y));
+      n = glm::normalize(tn.x * h.tangent + tn.y * h.bitangent + tn.z * h.normal);
+      albedo = glm::dvec3(map.sample_color(h.uv.x, h.uv.y));
+    }
+    const glm::dvec3 to_light = glm::normalize(scene.light_position - h.position);
+    bool in_shadow = false;
+    if (shadows) {
+      if (glm::dot(h.normal, to_light) <= 0) {
+        in_shadow = true;  // light at or below the base's tangent plane, as the shaders
+      } else {
+        const double reach = glm::length(scene.light_position - h.position);
+        in_shadow = truth.occluded(h.position, to_light, 1e-4 * scene.depth, reach);
+      }
+    }
+    AoEstimate ao;
+    if (ambient_occlusion) {
+      // Hemisphere rays about the base's normal, as far as they stay within the relief's shell
+      // over a locally flat base: the relief occludes itself, while the base's own shape (a
+      // handle over the body) is what no texture-space AO can know.
+      const double below_top = scene.depth * map.surface_depth(h.uv.x, h.uv.y) + 1e-6;
+      ao = reference_ao_at(ao_cache, i, h.position, h.normal, [&] {
+        return reference_ao(
+            ao_sampling(scene), ao_seed(i), h.normal, h.tangent, [&](const glm::dvec3& w) {
+              const double rise = std::max(glm::dot(w, h.normal), 1e-6);
+              ++counters.ao_traced;
+              return truth.occluded(h.position, w, 1e-4 * scene.depth, below_top / rise);
             });
-            ao_rays += uint64_t(ao.rays);
-          }
-          write_relief_pixel(g, i, scene, albedo, n, h.position, to_light, dir, h.uv, in_shadow, ao,
-                             truth_hit_bound(vertical_world, rounding_world, h.normal,
-                                             h.geometric_normal, n, dir, h.position));
-        }
-      },
-      256);
-  fill_stats(stats, truth, start, primary0, shadow0, ao_rays.load(), ao_traced.load(),
-             ao_cache ? ao_cache->reused() - ao_reused0 : 0, 0);
-  return g;
+      });
+      counters.ao_rays += uint64_t(ao.rays);
+    }
+    write_relief_pixel(g, i, scene, albedo, n, h.position, to_light, dir, h.uv, in_shadow, ao,
+                       truth_hit_bound(vertical_world, rounding_world, h.normal, h.geometric_normal,
+                                       n, dir, h.position));
+  };
+  return trace_pixels(truth, scene, camera, objects, ao_cache, stats, counters, trace);
 }
 
 }  // namespace
