@@ -10,9 +10,9 @@
 #include <set>
 
 #include "core/error.h"
-#include "support/test_support.h"
 #include "output/compare.h"
 #include "run/runner.h"
+#include "support/test_support.h"
 #include "technique/shader_technique.h"
 
 namespace rl {
@@ -151,6 +151,38 @@ TEST(Compare, CellsOnOneSideAndEmptyColumnsAreReported) {
   EXPECT_EQ(c.matched_by_identity, 1u);
   EXPECT_EQ(c.only_base.size(), 1u);
   EXPECT_EQ(c.only_new.size(), 1u);
+}
+
+// A CI check must not pass a broken run: an empty run or another sweep (nothing matches) and
+// one shard of several or a run cut short (base cells missing) fail unless a subset is meant.
+TEST(Compare, AnEmptyOrPartialNewRunFails) {
+  auto row = [](const std::string& scene, double el) {
+    return nlohmann::ordered_json{
+        {"technique", "normal"}, {"scene", scene},     {"elevation_deg", el}, {"azimuth_deg", 30},
+        {"viewport", "64x64"},   {"texture_res", 256}, {"wrong_pct", 1.0}};
+  };
+  const std::map<std::string, nlohmann::ordered_json> base = {
+      {"a", row("s", 45)}, {"b", row("s", 20)}, {"c", row("t", 45)}};
+  Comparison empty = compare_rows(base, {}, default_tolerances());
+  EXPECT_FALSE(empty.regressed());
+  EXPECT_TRUE(empty.failed());
+  EXPECT_NE(format_comparison(empty).find("-> INCOMPLETE: no cell of the base run"),
+            std::string::npos)
+      << format_comparison(empty);
+  Comparison other = compare_rows(base, {{"z", row("u", 45)}}, default_tolerances());
+  EXPECT_TRUE(other.failed());
+  Comparison shard = compare_rows(base, {{"a", row("s", 45)}}, default_tolerances());
+  EXPECT_TRUE(shard.failed());
+  EXPECT_NE(format_comparison(shard).find("2 cell(s) of the base run are missing"),
+            std::string::npos)
+      << format_comparison(shard);
+  shard.allow_missing = true;
+  EXPECT_FALSE(shard.failed()) << format_comparison(shard);
+  EXPECT_NE(format_comparison(shard).find("-> ok"), std::string::npos);
+  // Extra cells in the new run are reported and do not fail it (a sweep that grew).
+  std::map<std::string, nlohmann::ordered_json> grown = base;
+  grown["d"] = row("v", 45);
+  EXPECT_FALSE(compare_rows(base, grown, default_tolerances()).failed());
 }
 
 TEST(Compare, ToleranceFilesAreChecked) {

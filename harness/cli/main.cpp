@@ -8,9 +8,10 @@
 //   relieflab list [--markdown]          techniques with citation, effects and parameters
 //   relieflab docs --update [--root DIR] rewrite the generated tables in README.md and
 //                                        techniques/*/README.md (technique/technique_docs.h)
-//   relieflab compare BASE NEW [--tolerances FILE]
+//   relieflab compare BASE NEW [--tolerances FILE] [--allow-missing]
 //                                        cells that got worse from one run to another; exit
-//                                        status 1 when any did (output/compare.h)
+//                                        status 1 when any did, or when the new run lacks
+//                                        cells of the base (output/compare.h)
 // Every command first loads the techniques built outside the tree from --plugins PATH and
 // $RELIEFLAB_PLUGIN_PATH (technique/plugins.h).
 #include <cstdio>
@@ -125,16 +126,17 @@ int verify_folders(const std::vector<std::string>& dirs, bool write) {
   return failures ? 1 : 0;
 }
 
-// `relieflab run [CONFIG] [--out DIR] [--shard I/N]`.
+// `relieflab run [CONFIG] [--out DIR] [--shard I/N]`; `shard_text` is null without --shard
+// (an empty --shard "" is a mistake, not "every cell").
 void run_sweep_command(const std::string& config_path, const std::string& out_dir, bool quiet,
-                       const std::string& shard_text) {
+                       const std::string* shard_text) {
   rl::SweepConfig config =
       config_path.empty() ? rl::default_sweep_config() : rl::load_sweep_config(config_path);
   rl::RunOptions options;
   options.out_dir = out_dir.empty() ? "out/" + config.name : out_dir;
   options.progress = !quiet;
-  if (!shard_text.empty()) {
-    options.shard = rl::parse_shard(shard_text);
+  if (shard_text) {
+    options.shard = rl::parse_shard(*shard_text);
     // Shards run at once must not share a store: one folder each unless told otherwise.
     if (out_dir.empty() && options.shard.active())
       options.out_dir += "-shard-" + std::to_string(options.shard.index) + "-of-" +
@@ -147,6 +149,7 @@ void run_sweep_command(const std::string& config_path, const std::string& out_di
 struct CliArgs {
   std::vector<std::string> plugin_paths;
   std::string config_path, out_dir, shard_text;
+  CLI::Option* shard_option = nullptr;
   bool quiet = false;
   std::string merge_out;
   std::vector<std::string> merge_shards;
@@ -156,6 +159,7 @@ struct CliArgs {
   std::vector<std::string> status_dirs;
   std::string report_dir;
   std::string base_dir, new_dir, tolerance_file;
+  bool allow_missing = false;
   std::vector<std::string> verify_dirs;
   bool verify_write = false;
 };
@@ -174,9 +178,10 @@ void add_commands(CLI::App& app, CliArgs& a) {
   run->add_option("-o,--out", a.out_dir,
                   "Output folder (default: out/<sweep name>); re-running into it resumes");
   run->add_flag("-q,--quiet", a.quiet, "No per-cell progress lines");
-  run->add_option("--shard", a.shard_text,
-                  "Run only shard I of N (0-based), e.g. 2/8: cells sharing a truth trace stay "
-                  "together, shards balanced by estimated cost; merge them with 'merge'");
+  a.shard_option =
+      run->add_option("--shard", a.shard_text,
+                      "Run only shard I of N (0-based), e.g. 2/8: cells sharing a truth trace stay "
+                      "together, shards balanced by estimated cost; merge them with 'merge'");
   CLI::App* merge = app.add_subcommand(
       "merge", "Merge the results of a sweep's shards into OUT and write its tables");
   merge->add_option("out", a.merge_out, "Output folder of the merged sweep")->required();
@@ -205,12 +210,16 @@ void add_commands(CLI::App& app, CliArgs& a) {
   CLI::App* compare = app.add_subcommand(
       "compare",
       "Compare two runs' results cell by cell; exit status 1 when any cell got worse beyond "
-      "tolerance (a CI regression check)");
+      "tolerance, when no cell matched, or when cells of the base run are missing from the new "
+      "one (a CI regression check)");
   compare->add_option("base", a.base_dir, "Output folder of the reference run")->required();
   compare->add_option("new", a.new_dir, "Output folder of the run to check")->required();
   compare->add_option("--tolerances", a.tolerance_file,
                       "TOML file: [tolerances] metric = { abs = ..., rel = ..., "
                       "lower_is_better = ... } overriding or adding to the defaults");
+  compare->add_flag("--allow-missing", a.allow_missing,
+                    "Report cells of the base run missing from the new run instead of failing "
+                    "(comparing a subset on purpose)");
 
   CLI::App* verify = app.add_subcommand(
       "verify",
@@ -253,16 +262,18 @@ int run_command(const CLI::App& app, const CliArgs& a) {
     if (app.got_subcommand("compare")) {
       auto tolerances = rl::default_tolerances();
       if (!a.tolerance_file.empty()) rl::read_tolerances(a.tolerance_file, tolerances);
-      const rl::Comparison c = rl::compare_runs(a.base_dir, a.new_dir, tolerances);
+      rl::Comparison c = rl::compare_runs(a.base_dir, a.new_dir, tolerances);
+      c.allow_missing = a.allow_missing;
       std::fputs(rl::format_comparison(c).c_str(), stdout);
-      return c.regressed() ? 1 : 0;
+      return c.failed() ? 1 : 0;
     }
     if (app.got_subcommand("verify")) return verify_folders(a.verify_dirs, a.verify_write);
     if (app.got_subcommand("docs")) {
       std::printf("%d file(s) updated\n", update_docs(a.docs_root));
       return 0;
     }
-    run_sweep_command(a.config_path, a.out_dir, a.quiet, a.shard_text);
+    run_sweep_command(a.config_path, a.out_dir, a.quiet,
+                      a.shard_option->count() ? &a.shard_text : nullptr);
     return 0;
   } catch (const rl::ConfigError& e) {
     std::fprintf(stderr, "relieflab: config error: %s\n", e.what());

@@ -204,14 +204,28 @@ std::string format_comparison(const Comparison& c) {
   };
   one_side("only in the base run", c.only_base);
   one_side("only in the new run", c.only_new);
+  const std::string incomplete = c.incomplete();
   std::snprintf(line, sizeof line,
                 "%zu cells matched (%zu by key, %zu by identity): %zu worse, %zu better, %zu "
-                "only in base, %zu only in new -> %s\n",
+                "only in base, %zu only in new -> %s",
                 c.matched_by_key + c.matched_by_identity, c.matched_by_key, c.matched_by_identity,
                 c.worse.size(), c.better.size(), c.only_base.size(), c.only_new.size(),
-                c.regressed() ? "REGRESSED" : "ok");
+                c.regressed()        ? "REGRESSED"
+                : incomplete.empty() ? "ok"
+                                     : "INCOMPLETE");
   out += line;
-  return out;
+  if (!incomplete.empty()) out += ": " + incomplete;
+  return out + "\n";
+}
+
+std::string Comparison::incomplete() const {
+  if (matched_by_key + matched_by_identity == 0)
+    return "no cell of the base run is in the new run (an empty run, or another sweep)";
+  if (!only_base.empty() && !allow_missing)
+    return std::to_string(only_base.size()) +
+           " cell(s) of the base run are missing from the new run (one shard of several, or a "
+           "run cut short; --allow-missing compares a subset on purpose)";
+  return "";
 }
 
 }  // namespace rl

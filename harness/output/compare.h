@@ -41,7 +41,15 @@ struct Comparison {
   std::vector<CellChange> worse, better;
   std::vector<std::string> only_base, only_new;  // cells present on one side only
   size_t matched_by_key = 0, matched_by_identity = 0;
+  // Cells of the base run absent from the new run are tolerated (comparing a subset on
+  // purpose); by default they fail the comparison.
+  bool allow_missing = false;
   bool regressed() const { return !worse.empty(); }
+  // Why the new run cannot pass as the base run's equal ("" when it can): no cell matched (an
+  // empty run, another sweep), or base cells missing from it (one shard of several, a run cut
+  // short) unless allow_missing. A CI check must not pass a broken run.
+  std::string incomplete() const;
+  bool failed() const { return regressed() || !incomplete().empty(); }
 };
 
 // Rows as the result store holds them (keyed); `tolerances` as above.
@@ -59,7 +67,7 @@ Comparison compare_runs(const std::string& base_dir, const std::string& new_dir,
                         const std::map<std::string, MetricTolerance>& tolerances);
 
 // The report a person reads: regressions per technique and metric, improvements, one-sided
-// cells, and a last line saying whether it regressed.
+// cells, and a last line saying whether it regressed or was incomplete.
 std::string format_comparison(const Comparison& c);
 
 }  // namespace rl
