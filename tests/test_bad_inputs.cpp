@@ -6,9 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include "config/config.h"
 #include "core/error.h"
 #include "run/asset_check.h"
-#include "config/config.h"
+#include "support/test_support.h"
 
 namespace rl {
 namespace {
@@ -54,6 +55,20 @@ TEST(BadInputs, EveryCorpusInputIsRefusedWithAClearMessage) {
     for (const std::string& e : expect)
       EXPECT_NE(message.find(e), std::string::npos) << "expected '" << e << "' in: " << message;
   }
+}
+
+// Mistakes on the command line (issue 35): an empty --shard ran every cell; a device as the
+// config gave a raw filesystem error. Both are refused naming what was given.
+TEST(BadInputs, CommandLineMistakesAreRefused) {
+  std::string out;
+  const std::string config = kCorpus + "/../shard_sweep.toml";
+  EXPECT_EQ(test::run_cli(
+                "run " + config + " --shard '' -q --out " + test::scratch_dir("empty-shard"), out),
+            2)
+      << out;
+  EXPECT_NE(out.find("--shard '': give I/N"), std::string::npos) << out;
+  EXPECT_EQ(test::run_cli("run /dev/zero", out), 2) << out;
+  EXPECT_NE(out.find("/dev/zero: is not a regular file"), std::string::npos) << out;
 }
 
 }  // namespace

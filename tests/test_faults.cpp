@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <nlohmann/json.hpp>
@@ -176,6 +177,40 @@ TEST(Faults, ReportRefusesAStoreOfAnotherMeasurementVersion) {
   const std::string after((std::istreambuf_iterator<char>(after_file)), {});
   EXPECT_EQ(after, before);
   EXPECT_NE(before.find("relief,bricks,"), std::string::npos);
+}
+
+// Hostile input, issue 35: a link planted in the output folder under a name the run owns would
+// send the log (or the pictures) outside it, and a FIFO as the log hung `report`. The run,
+// `report` and `merge` refuse such a folder before writing anything, naming the entry.
+TEST(Faults, LinksAndDevicesPlantedInTheOutputFolderAreRefused) {
+  const std::string dir = test::scratch_dir("planted");
+  const std::string config = write_small_sweep(dir, "images = true\n");
+  const std::string outside = dir + "/outside.txt";
+  std::ofstream(outside) << "precious\n";
+  std::string output;
+  auto refused = [&](const std::string& out, const std::string& entry, const std::string& why) {
+    EXPECT_NE(test::run_cli("run " + config + " --out " + out + " -q", output), 0) << output;
+    EXPECT_NE(output.find(out + "/" + entry + " is " + why), std::string::npos) << output;
+    EXPECT_FALSE(fs::exists(out + "/results.sqlite")) << "wrote before refusing";
+  };
+  fs::create_directories(dir + "/a");
+  fs::create_symlink(outside, dir + "/a/run.log");
+  refused(dir + "/a", "run.log", "a symbolic link");
+  fs::create_directories(dir + "/b");
+  fs::create_directories(dir + "/elsewhere");
+  fs::create_directory_symlink(dir + "/elsewhere", dir + "/b/images");
+  refused(dir + "/b", "images", "a symbolic link");
+  EXPECT_TRUE(fs::is_empty(dir + "/elsewhere"));
+  std::ifstream in(outside);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_EQ(text, "precious\n");
+  // A finished run whose log was replaced by a FIFO: `report` stops at once, naming it.
+  const std::string out = dir + "/c";
+  ASSERT_EQ(test::run_cli("run " + config + " --out " + out + " -q", output), 0) << output;
+  fs::remove(out + "/run.log");
+  ASSERT_EQ(mkfifo((out + "/run.log").c_str(), 0644), 0);
+  EXPECT_NE(test::run_cli("report " + out, output), 0) << output;
+  EXPECT_NE(output.find(out + "/run.log is not a regular file"), std::string::npos) << output;
 }
 
 }  // namespace

@@ -9,8 +9,8 @@
 #include <regex>
 #include <set>
 
-#include "support/test_support.h"
 #include "output/report.h"
+#include "support/test_support.h"
 
 namespace rl {
 namespace {
@@ -42,7 +42,10 @@ TEST(Report, ChromiumRendersEveryTablePlotAndPicture) {
   ASSERT_EQ(status, 0) << "chromium missing: run scripts/install-deps.sh";
 
   const std::string dir = test::scratch_dir("report");
+  // The config's text and a table title carry markup that would end or hide the page's data
+  // script if embedded as it is (hostile-input issue 35): the report must render regardless.
   const SweepConfig config = test::run_sweep_in(R"(
+# a comment <!--<script> that an HTML parser must never see as markup </script> & more
 [sweep]
 name = "report_test"
 elevations = [45, 20]
@@ -75,6 +78,7 @@ group = ["scene", "elevation_deg", "technique", "linear_steps"]
 
 [[table]]
 file = "a.md"
+title = "errors <!--<script>alert(1)</script>"
 rows = ["scene", "elevation_deg", "technique", "linear_steps"]
 values = ["wrong_pct", "fetches_mean"]
 [[table]]
@@ -130,6 +134,9 @@ values = ["psnr_db"]
   EXPECT_EQ(kinds.size(), 3u);
   EXPECT_NE(dom.find("id=\"rl-config\""), std::string::npos);
   EXPECT_NE(dom.find("name = \"report_test\""), std::string::npos);  // the config text
+  // The markup in the config came through as text, escaped, and ran nothing.
+  EXPECT_NE(dom.find("errors &lt;!--&lt;script&gt;alert(1)&lt;/script&gt;"), std::string::npos);
+  EXPECT_EQ(dom.find("<script>alert(1)"), std::string::npos);
   // A screenshot of the rendered page.
   const std::string shot = dir + "/report.png";
   run_command(

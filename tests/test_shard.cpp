@@ -4,6 +4,7 @@
 // changes nothing, and a shard of another config is refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -11,10 +12,11 @@
 #include <sstream>
 
 #include "core/error.h"
-#include "support/test_support.h"
 #include "output/compare.h"
+#include "output/result_store.h"
 #include "run/runner.h"
 #include "run/shard.h"
+#include "support/test_support.h"
 
 namespace rl {
 namespace {
@@ -134,6 +136,60 @@ TEST(Shard, MergedShardsEqualASingleProcessRun) {
       << out;
   EXPECT_EQ(test::run_cli("merge " + dir + "/merged4 " + shard_dirs[0], out), 3) << out;
   EXPECT_NE(out.find("run the missing shards"), std::string::npos) << out;
+}
+
+// Hostile input, issue 35: the config hash covered scenes, frames and tolerance only, so shards
+// of a sweep with other parameters merged; a merge into another sweep's folder mixed their rows;
+// and a corrupt stored row was published in rows.csv and the tables.
+TEST(Shard, MergeRefusesOtherSweepsAndPublishesNoCorruptRow) {
+  const std::string dir = test::scratch_dir("shards-hostile");
+  const std::string views = "[45, 5]";
+  const SweepConfig c = parse_sweep_config(small_default_text(views), "shard_test.toml", ".");
+  std::vector<std::string> shard_dirs;
+  for (int i = 0; i < 2; ++i) {
+    RunOptions o;
+    o.out_dir = dir + "/shard" + std::to_string(i);
+    o.progress = false;
+    o.shard = {i, 2};
+    run_sweep(c, o);
+    shard_dirs.push_back(o.out_dir);
+  }
+  // The same scenes and views, other relief settings: another sweep.
+  std::string text = small_default_text(views);
+  const std::string steps = "linear_steps = [8, 16, 32, 64]";
+  text.replace(text.find(steps), steps.size(), "linear_steps = [8, 16]");
+  RunOptions o;
+  o.out_dir = dir + "/other";
+  o.progress = false;
+  o.shard = {1, 2};
+  run_sweep(parse_sweep_config(text, "shard_test.toml", "."), o);
+  auto refused = [&](const std::string& out, const std::vector<std::string>& shards,
+                     const std::string& expect) {
+    try {
+      merge_shards(out, shards);
+      ADD_FAILURE() << "merged into " << out;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
+    }
+  };
+  refused(dir + "/merged", {shard_dirs[0], dir + "/other"}, dir + "/other: ran another config");
+  refused(dir + "/other", shard_dirs, dir + "/other holds another sweep");
+  EXPECT_FALSE(std::filesystem::exists(dir + "/merged"));
+  // A row whose measure is text: left out of the merged outputs and counted as missing.
+  {
+    ResultStore store(shard_dirs[0] + "/results.sqlite");
+    const std::string key = *store.keys().begin();
+    nlohmann::ordered_json row = *store.row(key);
+    row["wrong_pct"] = "banana";
+    store.erase(key);
+    store.insert(key, row);
+  }
+  const MergeSummary m = merge_shards(dir + "/merged", shard_dirs);
+  EXPECT_EQ(m.missing, 1u);
+  std::ifstream csv(dir + "/merged/rows.csv");
+  const std::string rows((std::istreambuf_iterator<char>(csv)), {});
+  EXPECT_EQ(rows.find("banana"), std::string::npos);
+  EXPECT_EQ(size_t(std::count(rows.begin(), rows.end(), '\n')), m.cells);  // header + cells - 1
 }
 
 }  // namespace

@@ -163,6 +163,12 @@ void add_scene(SweepConfig& c, json& canon, std::set<std::string>& scene_names,
   c.scene_sites[c.scenes.back().name] = {parsed.sites.scene, parsed.sites.relief};
 }
 
+std::string join_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
 // [[table]]s, or the default table of the headline errors and costs by scene, view and
 // setting.
 void parse_tables(const toml::table& root, const Src& src, const std::set<std::string>& fields,
@@ -181,6 +187,16 @@ void parse_tables(const toml::table& root, const Src& src, const std::set<std::s
       if (auto* v = t->get("file")) spec.file = string_of(*v, src, "file");
       if (spec.file.find('/') != std::string::npos || spec.file.find("..") != std::string::npos)
         fail(src.at(*t->get("file")), "table 'file' must be a plain file name");
+      const toml::node& at = t->get("file") ? *t->get("file") : tn;
+      const auto& owned = run_owned_names();
+      if (std::find(owned.begin(), owned.end(), spec.file) != owned.end())
+        fail(src.at(at), "table 'file' \"" + spec.file +
+                             "\" is a name the run writes itself; choose another (the run owns: " +
+                             join_names(owned) + ")");
+      for (const TableSpec& other : c.tables)
+        if (other.file == spec.file)
+          fail(src.at(at), "table 'file' \"" + spec.file +
+                               "\" is already another [[table]]'s: the second would overwrite it");
       if (auto* v = t->get("title")) spec.title = string_of(*v, src, "title");
       if (auto* v = t->get("rows")) spec.rows = string_list(*v, src, "rows");
       if (auto* v = t->get("columns")) spec.columns = string_list(*v, src, "columns");
@@ -242,7 +258,7 @@ void parse_plots(const toml::table& root, const Src& src, const std::set<std::st
       if (auto* v = t->get("x")) p.x = string_of(*v, src, "x");
       if (auto* v = t->get("y")) p.y = string_of(*v, src, "y");
       if (auto* v = t->get("group")) p.group = string_list(*v, src, "group");
-      if (auto* v = t->get("log_y")) p.log_y = number(*v, src, "log_y") != 0;
+      if (auto* v = t->get("log_y")) p.log_y = number_or_flag(*v, src, "log_y") != 0;
       for (const std::string& m : {p.x, p.y})
         if (!is_measured(m))
           fail(src.at(pn),
@@ -316,6 +332,10 @@ SweepConfig load_sweep_config(const std::string& path) {
   if (fs::is_directory(path))
     throw ConfigError(path + ": is a folder; give a sweep config file (.toml), e.g. " +
                       (fs::path(path) / "sweep.toml").string());
+  if (!fs::is_regular_file(path))
+    throw ConfigError(path +
+                      ": is not a regular file (a device, FIFO or socket); give a sweep "
+                      "config file (.toml)");
   // A config is a page of text: a huge file is not one (and would be echoed in messages).
   if (fs::file_size(path) > (1u << 20))
     throw ConfigError(path + ": is " + std::to_string(fs::file_size(path)) +
@@ -326,6 +346,23 @@ SweepConfig load_sweep_config(const std::string& path) {
   ss << in.rdbuf();
   std::string dir = fs::absolute(path).parent_path().string();
   return parse_sweep_config(ss.str(), path, dir);
+}
+
+const std::vector<std::string>& run_owned_names() {
+  static const std::vector<std::string> names = {"results.sqlite",
+                                                 "results.sqlite-journal",
+                                                 "results.sqlite-wal",
+                                                 "results.sqlite-shm",
+                                                 "rows.csv",
+                                                 "sweep.json",
+                                                 "run.log",
+                                                 "pareto.md",
+                                                 "report.html",
+                                                 "report_assets",
+                                                 "images",
+                                                 "plots",
+                                                 "gbuffers"};
+  return names;
 }
 
 SweepConfig default_sweep_config() {

@@ -73,6 +73,10 @@ struct SweepConfig {
   std::string text, base_dir;
 };
 
+// What a run writes into its output folder beside its tables (output/, run/): a [[table]]
+// 'file' may not take one of these names, nor another table's.
+const std::vector<std::string>& run_owned_names();
+
 // Parses and validates a config file. Relative paths resolve against the config's folder,
 // then the repository root.
 SweepConfig load_sweep_config(const std::string& path);

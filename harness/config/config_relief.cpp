@@ -127,8 +127,8 @@ void parse_image_relief(const toml::table& t, const toml::node& node, const Src&
            "'convention' must be \"height\" (1 = top) or \"depth\" (0 = top), got \"" + c + "\"");
     r.height_convention = c == "height";
   }
-  if (auto* n = t.get("flip_green")) r.flip_green = number(*n, src, "flip_green") != 0;
-  if (auto* n = t.get("normalize")) r.normalize = number(*n, src, "normalize") != 0;
+  if (auto* n = t.get("flip_green")) r.flip_green = number_or_flag(*n, src, "flip_green") != 0;
+  if (auto* n = t.get("normalize")) r.normalize = number_or_flag(*n, src, "normalize") != 0;
   // The native size (any aspect) and the files' hashes come from read_scene_files().
   canon["convention"] = r.height_convention ? "height" : "depth";
   canon["flip_green"] = r.flip_green;

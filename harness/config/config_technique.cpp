@@ -39,7 +39,8 @@ std::vector<ParamValues> parse_sets(const toml::node& n, const Src& src,
       const std::string key(k.str());
       const ParamSpec* spec = find_param(info, key);
       if (!spec) unknown_param(info, src.at(v), key);
-      const double value = number(v, src, key);
+      const double value =
+          spec->kind == ParamKind::Bool ? number_or_flag(v, src, key) : number(v, src, key);
       check_param_value(*spec, value, src.at(v) + ": technique '" + info.name + "'");
       set[key] = value;
     }
@@ -82,7 +83,7 @@ TechniqueSweep parse_technique(const toml::table& t, const Src& src, const toml:
     }
     const ParamSpec* spec = find_param(entry->info, key);
     if (!spec) unknown_param(entry->info, src.at(v), key);
-    std::vector<double> values = number_list(v, src, key);
+    std::vector<double> values = number_list(v, src, key, spec->kind == ParamKind::Bool);
     for (double value : values)
       check_param_value(*spec, value, src.at(v) + ": technique '" + ts.name + "'");
     ts.param_lists[key] = values;

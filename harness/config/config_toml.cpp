@@ -37,8 +37,16 @@ double number(const toml::node& n, const Src& src, const std::string& key) {
       fail(src.at(n), "'" + key + "' must be a finite number, got " + format_number(*v));
     return *v;
   }
-  if (n.is_boolean()) return n.value<bool>().value() ? 1.0 : 0.0;
+  if (n.is_boolean())
+    fail(src.at(n), "'" + key + "' must be a number, got " +
+                        (n.value<bool>().value() ? "true" : "false") +
+                        " (true and false are for flags)");
   fail(src.at(n), "'" + key + "' must be a number");
+}
+
+double number_or_flag(const toml::node& n, const Src& src, const std::string& key) {
+  if (n.is_boolean()) return n.value<bool>().value() ? 1.0 : 0.0;
+  return number(n, src, key);
 }
 
 std::string format_number(double v) {
@@ -90,13 +98,17 @@ std::string plain_name(const toml::node& n, const Src& src, const std::string& k
 }
 
 // A scalar or an array of scalars, as a list of numbers.
-std::vector<double> number_list(const toml::node& n, const Src& src, const std::string& key) {
+std::vector<double> number_list(const toml::node& n, const Src& src, const std::string& key,
+                                bool flags) {
+  auto one = [&](const toml::node& e) {
+    return flags ? number_or_flag(e, src, key) : number(e, src, key);
+  };
   std::vector<double> out;
   if (const toml::array* a = n.as_array()) {
     if (a->empty()) fail(src.at(n), "'" + key + "' must not be empty");
-    for (const toml::node& e : *a) out.push_back(number(e, src, key));
+    for (const toml::node& e : *a) out.push_back(one(e));
   } else {
-    out.push_back(number(n, src, key));
+    out.push_back(one(n));
   }
   return out;
 }
@@ -120,10 +132,14 @@ glm::dvec3 vec3_of(const toml::node& n, const Src& src, const std::string& key) 
 std::string resolve_path(const std::string& p, const std::string& base_dir, const Src& src,
                          const toml::node& n) {
   fs::path path(p);
-  // A folder is never an asset (an empty path resolves to the config's own folder).
+  // A folder is never an asset (an empty path resolves to the config's own folder), nor is a
+  // device, FIFO or socket: reading /dev/zero as an image or a mesh never ends.
   auto not_a_folder = [&](const fs::path& found) {
     if (p.empty() || fs::is_directory(found))
       fail(src.at(n), "'" + p + "' is a folder, not a file (" + found.string() + ")");
+    if (!fs::is_regular_file(found))
+      fail(src.at(n),
+           "'" + p + "' is not a regular file (a device, FIFO or socket: " + found.string() + ")");
   };
   if (path.is_absolute()) {
     if (!fs::exists(path)) fail(src.at(n), "file not found: " + p);

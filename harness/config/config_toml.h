@@ -22,8 +22,11 @@ struct Src {
 // Fails on a key of `t` not in `allowed`, listing the known ones.
 void check_keys(const toml::table& t, const std::set<std::string>& allowed, const Src& src,
                 const std::string& section);
-// A finite number (nan and inf are refused); bools as 0/1.
+// A finite number (nan and inf are refused; so are true and false: `depth = true` is a slip,
+// not 1).
 double number(const toml::node& n, const Src& src, const std::string& key);
+// The same, or true / false as 1 / 0: for flags and bool parameters, which also take 0 and 1.
+double number_or_flag(const toml::node& n, const Src& src, const std::string& key);
 // A number, or each of 3, in the closed range [lo, hi], named in the message when it is not.
 double number_in(const toml::node& n, const Src& src, const std::string& key, double lo, double hi);
 glm::dvec3 vec3_in(const toml::node& n, const Src& src, const std::string& key, double lo,
@@ -36,8 +39,9 @@ bool boolean_of(const toml::node& n, const Src& src, const std::string& key);
 // A string that names files and folders: 1 to 64 of [A-Za-z0-9._-], not "." or "..", so it
 // can never lead outside the output folder.
 std::string plain_name(const toml::node& n, const Src& src, const std::string& key);
-// A scalar or an array of scalars, as a list.
-std::vector<double> number_list(const toml::node& n, const Src& src, const std::string& key);
+// A scalar or an array of scalars, as a list (with `flags`, true / false as 1 / 0).
+std::vector<double> number_list(const toml::node& n, const Src& src, const std::string& key,
+                                bool flags = false);
 std::vector<std::string> string_list(const toml::node& n, const Src& src, const std::string& key);
 glm::dvec3 vec3_of(const toml::node& n, const Src& src, const std::string& key);
 int positive_int(const toml::node& n, const Src& src, const std::string& key, int lo, int hi);

@@ -333,12 +333,23 @@ pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px
 
 namespace {
 
-// JSON for a <script> element: a "</" inside (a config's text) must not end it.
+// JSON for a <script> element: no text from a config (a comment, a title, a name) may change
+// the page's structure. "</script>" would end the element and "<!--" followed by "<script"
+// would keep the next "</script>" from ending it (the report then shows nothing), so every
+// '<', '>' and '&' is written as its JSON unicode escape, which JSON.parse undoes.
 std::string script_json(const nlohmann::json& value) {
-  std::string json = value.dump();
-  for (size_t at = 0; (at = json.find("</", at)) != std::string::npos; at += 3)
-    json.replace(at, 2, "<\\/");
-  return json;
+  std::string out;
+  for (char ch : value.dump()) {
+    if (ch == '<')
+      out += "\\u003c";
+    else if (ch == '>')
+      out += "\\u003e";
+    else if (ch == '&')
+      out += "\\u0026";
+    else
+      out += ch;
+  }
+  return out;
 }
 
 const char* const kVerdictsOpen = "<script type=\"application/json\" id=\"rl-verdicts\">";

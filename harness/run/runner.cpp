@@ -1,9 +1,14 @@
 #include "run/runner.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -14,6 +19,7 @@
 #include <glm/glm.hpp>
 
 #include "core/elapsed.h"
+#include "core/error.h"
 #include "gl/context.h"
 #include "gl/frame_timer.h"
 #include "gl/render_target.h"
@@ -23,6 +29,7 @@
 #include "output/pareto.h"
 #include "output/report.h"
 #include "output/result_store.h"
+#include "output/run_folder.h"
 #include "output/tables.h"
 #include "relief/cell_complex.h"
 #include "relief/heightfield_faces.h"
@@ -92,17 +99,30 @@ struct Asset {
   std::map<std::string, std::pair<std::unique_ptr<Technique>, double>> prepared;
 };
 
+// The run's log, appended to. Opened without following a link (check_run_folder refused one
+// already; this closes the window between the check and the open).
 class Log {
  public:
-  explicit Log(const std::string& path) : file_(path, std::ios::app) {}
+  explicit Log(const std::string& path)
+      : fd_(::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644)) {
+    if (fd_ < 0)
+      throw ConfigError(path + ": cannot open the run log (" + std::strerror(errno) + ")");
+  }
+  ~Log() { ::close(fd_); }
+  Log(const Log&) = delete;
+  Log& operator=(const Log&) = delete;
   void line(const std::string& s) {
     std::fprintf(stderr, "%s\n", s.c_str());
-    file_ << s << "\n";
-    file_.flush();
+    const std::string text = s + "\n";
+    for (size_t done = 0; done < text.size();) {
+      const ssize_t n = ::write(fd_, text.data() + done, text.size() - done);
+      if (n <= 0) break;  // a full disk loses log lines, not the run
+      done += size_t(n);
+    }
   }
 
  private:
-  std::ofstream file_;
+  int fd_;
 };
 
 // Why the stored row of `cell` cannot stand for it ("" when it can). The store is a file in the
@@ -644,6 +664,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   check_sweep_assets(config);
 
   fs::create_directories(options.out_dir);
+  check_run_folder(options.out_dir);
   write_sweep_record(config, options.shard, options.out_dir);
   Log log(options.out_dir + "/run.log");
   ResultStore store(options.out_dir + "/results.sqlite");
@@ -724,12 +745,25 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   return summary;
 }
 
-void write_sweep_outputs(const SweepConfig& config, const std::vector<Cell>& cells,
-                         const ResultStore& store, const std::string& out_dir) {
+size_t write_sweep_outputs(const SweepConfig& config, const std::vector<Cell>& cells,
+                           const ResultStore& store, const std::string& out_dir) {
   // Outputs from the store, in the config's cell order: the rows of these cells only.
   std::vector<Row> rows;
-  for (const Cell& c : cells)
-    if (auto r = store.row(c.key)) rows.push_back(*r);
+  size_t left_out = 0;
+  const std::set<std::string> stored = store.keys();
+  for (const Cell& c : cells) {
+    if (!stored.count(c.key)) continue;
+    if (const std::string problem = stored_row_problem(store, c); !problem.empty()) {
+      std::fprintf(stderr,
+                   "relieflab: warning: the stored row of %s / %s (key %s) %s; left out of the "
+                   "outputs (running the sweep into this folder measures it again)\n",
+                   c.technique.c_str(), config.scenes[c.scene_index].name.c_str(), c.key.c_str(),
+                   problem.c_str());
+      ++left_out;
+      continue;
+    }
+    rows.push_back(*store.row(c.key));
+  }
   std::vector<std::string> leading = {"technique",   "scene",       "elevation_deg",
                                       "azimuth_deg", "texture_res", "viewport"};
   for (const auto& p : parameter_columns(config)) leading.push_back(p);
@@ -742,6 +776,7 @@ void write_sweep_outputs(const SweepConfig& config, const std::vector<Cell>& cel
     fronts += write_pareto_plots(rows, p, parameter_columns(config), out_dir) + "\n";
   write_text_atomic(out_dir + "/pareto.md", fronts);
   write_report(config, rows, parameter_columns(config), out_dir);
+  return left_out;
 }
 
 }  // namespace rl

@@ -31,8 +31,11 @@ struct SweepSummary {
 
 SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options);
 
-// rows.csv, the tables and the Pareto fronts of `cells` from the rows `store` has of them.
-void write_sweep_outputs(const SweepConfig& config, const std::vector<Cell>& cells,
-                         const ResultStore& store, const std::string& out_dir);
+// rows.csv, the tables and the Pareto fronts of `cells` from the rows `store` has of them. A
+// stored row that cannot stand for its cell (cut short, text where a measure belongs, another
+// cell's identity: the checks a run makes before reusing one) is left out with a warning on
+// stderr, never published; returns how many were left out.
+size_t write_sweep_outputs(const SweepConfig& config, const std::vector<Cell>& cells,
+                           const ResultStore& store, const std::string& out_dir);
 
 }  // namespace rl

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/hash.h"
 #include "output/result_store.h"
+#include "output/run_folder.h"
 #include "run/runner.h"
 
 namespace rl {
@@ -75,8 +76,18 @@ std::vector<Cell> shard_cells(const SweepConfig& config, const std::vector<Cell>
 
 namespace {
 
+// What determines a sweep's cells: its canonical scenes and settings, and every cell's key
+// (technique and parameters, view, viewport, texture resolution, measurement version), so
+// shards of another sweep cannot merge. Runs recorded before the cells counted carry the
+// first version (the canonical text alone), which is still read.
 std::string config_hash(const SweepConfig& config) {
-  return hex64(fnv1a64(config.canonical));
+  std::string all = config.canonical;
+  for (const Cell& c : expand_cells(config)) all += "|" + c.key;
+  return "2:" + hex64(fnv1a64(all));
+}
+
+std::string config_hash_as_recorded(const SweepConfig& config, const std::string& recorded) {
+  return recorded.rfind("2:", 0) == 0 ? config_hash(config) : hex64(fnv1a64(config.canonical));
 }
 
 nlohmann::json read_record(const std::string& dir) {
@@ -126,12 +137,31 @@ SweepConfig recorded_config(const std::vector<std::string>& dirs) {
   SweepConfig config =
       parse_sweep_config(first["text"].get<std::string>(), first["source"].get<std::string>(),
                          first["base_dir"].get<std::string>());
-  if (config_hash(config) != first["config_hash"].get<std::string>())
+  const std::string recorded = first["config_hash"].get<std::string>();
+  if (config_hash_as_recorded(config, recorded) != recorded)
     throw ConfigError(dirs.front() +
                       ": its config reads differently here (its files changed "
                       "since it ran?); config hash " +
-                      config_hash(config) + " against " + first["config_hash"].get<std::string>());
+                      config_hash_as_recorded(config, recorded) + " against " + recorded);
   return config;
+}
+
+// A merge writes into a new folder or one of the same sweep (a shard's own, or an earlier
+// merge): the rows of another sweep would mix with these, and its tables be replaced.
+void refuse_another_sweep(const std::string& out_dir, const nlohmann::json& shards) {
+  if (fs::exists(out_dir + "/sweep.json")) {
+    const nlohmann::json there = read_record(out_dir);
+    if (there["config_hash"] != shards["config_hash"])
+      throw ConfigError("merge: " + out_dir + " holds another sweep (" +
+                        there["source"].get<std::string>() + ", config hash " +
+                        there["config_hash"].get<std::string>() + ") than the shards (" +
+                        shards["config_hash"].get<std::string>() +
+                        "); merge into a new folder (nothing was written)");
+  } else if (fs::exists(out_dir + "/results.sqlite")) {
+    throw ConfigError("merge: " + out_dir +
+                      " holds a result store but no sweep.json: not a run of this sweep; merge "
+                      "into a new folder (nothing was written)");
+  }
 }
 
 // How many of `cells` have no row in `store`.
@@ -181,6 +211,7 @@ RunStatus run_status(const std::vector<std::string>& dirs) {
 }
 
 size_t rewrite_outputs(const std::string& dir) {
+  check_run_folder(dir);
   const SweepConfig config = recorded_config({dir});
   std::vector<Cell> cells = expand_cells(config);
   const ShardSpec shard = parse_shard(read_record(dir)["shard"].get<std::string>());
@@ -195,8 +226,7 @@ size_t rewrite_outputs(const std::string& dir) {
                       " rows, none under this sweep's cell keys: they were measured by another "
                       "version of relieflab's measurement; run the sweep again (nothing was "
                       "rewritten)");
-  write_sweep_outputs(config, cells, store, dir);
-  return found;
+  return found - write_sweep_outputs(config, cells, store, dir);
 }
 
 std::string format_run_status(const RunStatus& s) {
@@ -218,7 +248,9 @@ std::string format_run_status(const RunStatus& s) {
 MergeSummary merge_shards(const std::string& out_dir, const std::vector<std::string>& shard_dirs) {
   if (shard_dirs.empty()) throw ConfigError("merge: give the shards' output folders");
   const SweepConfig config = recorded_config(shard_dirs);
+  refuse_another_sweep(out_dir, read_record(shard_dirs.front()));
   fs::create_directories(out_dir);
+  check_run_folder(out_dir);
   MergeSummary summary;
   summary.shards = shard_dirs.size();
   ResultStore store(out_dir + "/results.sqlite");
@@ -228,7 +260,7 @@ MergeSummary merge_shards(const std::string& out_dir, const std::vector<std::str
   summary.cells = cells.size();
   summary.missing = missing_cells(cells, store);
   write_sweep_record(config, ShardSpec{}, out_dir);
-  write_sweep_outputs(config, cells, store, out_dir);
+  summary.missing += write_sweep_outputs(config, cells, store, out_dir);  // unusable rows
   return summary;
 }
 

@@ -1,0 +1,29 @@
+#include "output/run_folder.h"
+
+#include <filesystem>
+
+#include "config/config.h"
+#include "core/error.h"
+
+namespace rl {
+
+void check_run_folder(const std::string& dir) {
+  namespace fs = std::filesystem;
+  for (const std::string& name : run_owned_names()) {
+    const fs::path p = fs::path(dir) / name;
+    std::error_code ec;
+    const fs::file_status st = fs::symlink_status(p, ec);
+    if (ec || !fs::exists(st)) continue;
+    if (fs::is_symlink(st))
+      throw ConfigError(p.string() +
+                        " is a symbolic link: a run writes its own files in its output folder "
+                        "and follows no link there (remove it, or choose another --out)");
+    const bool folder = name.find('.') == std::string::npos;  // images, plots, gbuffers, ...
+    if (folder ? !fs::is_directory(st) : !fs::is_regular_file(st))
+      throw ConfigError(p.string() + " is not a " + (folder ? "folder" : "regular file") +
+                        ": the run writes its own " + (folder ? "folder" : "file") +
+                        " there (remove it, or choose another --out)");
+  }
+}
+
+}  // namespace rl
