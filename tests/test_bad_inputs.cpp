@@ -69,6 +69,13 @@ TEST(BadInputs, CommandLineMistakesAreRefused) {
   EXPECT_NE(out.find("--shard '': give I/N"), std::string::npos) << out;
   EXPECT_EQ(test::run_cli("run /dev/zero", out), 2) << out;
   EXPECT_NE(out.find("/dev/zero: is not a regular file"), std::string::npos) << out;
+  // A byte that is not UTF-8 in --out failed after the whole sweep (JSON holds only UTF-8):
+  // refused before anything is measured or created.
+  const std::string latin1 = test::scratch_dir("latin1") + "/caf\xE9";
+  EXPECT_EQ(test::run_cli("run " + config + " -q --out '" + latin1 + "'", out), 2) << out;
+  EXPECT_NE(out.find("the output folder"), std::string::npos) << out;
+  EXPECT_NE(out.find("caf\\xE9 is not valid UTF-8"), std::string::npos) << out;
+  EXPECT_FALSE(fs::exists(latin1));
 }
 
 }  // namespace

@@ -62,6 +62,17 @@ TEST(Docs, EveryTechniqueHasAReadmeWithItsCurrentInterface) {
   }
 }
 
+// A user of the repository has no ../shared/ folder: a README cites the paper itself.
+TEST(Docs, TechniqueReadmesCiteNoPathOutsideTheRepository) {
+  for (const std::string& name : TechniqueRegistry::instance().names()) {
+    const fs::path readme = kRepo / "techniques" / name / "README.md";
+    if (!fs::exists(readme)) continue;  // a plugin's README lives with it
+    std::ifstream in(readme);
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    EXPECT_EQ(text.find("../shared"), std::string::npos) << readme;
+  }
+}
+
 TEST(Docs, TechniqueTableListsEveryTechniqueAndItsParameters) {
   const std::string table = techniques_markdown();
   for (const std::string& name : TechniqueRegistry::instance().names()) {

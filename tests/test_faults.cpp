@@ -3,6 +3,7 @@
 // one output folder at once do not trip over each other's temporary files; a corrupt stored
 // row is dropped with a warning and its cell measured again.
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -211,6 +212,62 @@ TEST(Faults, LinksAndDevicesPlantedInTheOutputFolderAreRefused) {
   ASSERT_EQ(mkfifo((out + "/run.log").c_str(), 0644), 0);
   EXPECT_NE(test::run_cli("report " + out, output), 0) << output;
   EXPECT_NE(output.find(out + "/run.log is not a regular file"), std::string::npos) << output;
+}
+
+// Misleading messages and read-only media (issue 35): an edited shard field in sweep.json was
+// reported as a --shard option never given; an empty store file as "no such table:
+// other.rows"; status, compare and report could not read a run on read-only media.
+TEST(Faults, DamagedRecordsAndReadOnlyRunsAreNamedOrRead) {
+  const std::string dir = test::scratch_dir("damaged-records");
+  const std::string config = write_small_sweep(dir, "images = false\n");
+  const std::string out = dir + "/out";
+  std::string output;
+  ASSERT_EQ(test::run_cli("run " + config + " --out " + out + " -q", output), 0) << output;
+  // Read-only: the folder and its files lose their write permission (as on read-only media);
+  // root writes regardless, so as root the commands run as nobody (setpriv), for whom the
+  // folder is read-only.
+  fs::permissions(out, fs::perms::owner_write | fs::perms::group_write | fs::perms::others_write,
+                  fs::perm_options::remove);
+  for (const auto& e : fs::directory_iterator(out))
+    fs::permissions(e.path(), fs::perms::owner_write, fs::perm_options::remove);
+  // (Where nobody cannot reach the build, e.g. a checkout under /root, the permissions alone.)
+  const std::string nobody = "setpriv --reuid=65534 --regid=65534 --clear-groups ";
+  const bool as_nobody =
+      geteuid() == 0 && std::system((nobody + "sh -c 'test -x " + RELIEFLAB_CLI + " && test -r " +
+                                     out + "/results.sqlite' 2>/dev/null")
+                                        .c_str()) == 0;
+  const std::string as = as_nobody ? nobody : "";
+  auto read_only = [&](const std::string& args) {
+    std::string text;
+    FILE* pipe = popen((as + RELIEFLAB_CLI + " " + args + " 2>&1").c_str(), "r");
+    char buf[4096];
+    while (pipe && fgets(buf, sizeof buf, pipe)) text += buf;
+    const int status = pipe ? pclose(pipe) : -1;
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << args << ": " << text;
+    return text;
+  };
+  EXPECT_NE(read_only("status " + out).find("4 of 4 cells done"), std::string::npos);
+  EXPECT_NE(read_only("compare " + out + " " + out).find("4 cells matched"), std::string::npos);
+  fs::permissions(out, fs::perms::owner_write, fs::perm_options::add);
+  for (const auto& e : fs::directory_iterator(out))
+    fs::permissions(e.path(), fs::perms::owner_write, fs::perm_options::add);
+  // An empty file as a shard's store.
+  const std::string empty = dir + "/empty";
+  fs::create_directories(empty);
+  fs::copy_file(out + "/sweep.json", empty + "/sweep.json");
+  std::ofstream(empty + "/results.sqlite").close();
+  EXPECT_NE(test::run_cli("merge " + dir + "/merged " + out + " " + empty, output), 0) << output;
+  EXPECT_NE(output.find(empty + "/results.sqlite: not a ReliefLab result store"), std::string::npos)
+      << output;
+  // An edited shard field.
+  std::ifstream in(out + "/sweep.json");
+  std::string record((std::istreambuf_iterator<char>(in)), {});
+  in.close();
+  record.replace(record.find("\"shard\": \"0/1\""), 14, "\"shard\": \"x/y\"");
+  std::ofstream(out + "/sweep.json") << record;
+  EXPECT_NE(test::run_cli("report " + out, output), 0) << output;
+  EXPECT_NE(output.find(out + "/sweep.json: its 'shard' field 'x/y' is not I/N"), std::string::npos)
+      << output;
 }
 
 }  // namespace

@@ -39,11 +39,12 @@ void parse_mesh_relief(const toml::table& t, const toml::node& node, const Src& 
   canon["up"] = r.mesh_up;
   if (auto* n = t.get("reverse_perspective")) {
     r.reverse_cop = number(*n, src, "reverse_perspective");
-    if (!(r.reverse_cop > 1) || !std::isfinite(r.reverse_cop))
+    if (!(r.reverse_cop > 1) || !(r.reverse_cop <= 1e4))
       fail(src.at(*n),
            "'reverse_perspective' is the depth of the centre of projection below the "
-           "top, in box depths: it must be > 1, got " +
-               std::to_string(r.reverse_cop));
+           "top, in box depths: it must be > 1 and at most 1e4 (beyond, the projection is "
+           "orthographic to float precision: leave the key out), got " +
+               format_number(r.reverse_cop));
     canon["reverse_perspective"] = r.reverse_cop;
   }
   canon["resolution"] = r.native.width;

@@ -13,4 +13,12 @@ const std::string& data_root();
 // The folder the core library was loaded from (the build folder, or <prefix>/lib).
 std::string library_dir();
 
+// Whether `text` is well-formed UTF-8 (no stray continuation byte, overlong form, surrogate or
+// code point past U+10FFFF).
+bool is_utf8(const std::string& text);
+// Throws ConfigError naming `what` when `path` is not UTF-8: the run records its paths in JSON
+// (sweep.json, the store, the report), which holds only UTF-8, and must refuse such a path
+// before measuring anything, not after.
+void require_utf8_path(const std::string& path, const std::string& what);
+
 }  // namespace rl

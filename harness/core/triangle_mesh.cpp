@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -64,12 +65,30 @@ TriangleMesh load_mesh(const std::string& path) {
   }
   const double extent = glm::length(m.hi - m.lo);
   double largest_area = 0;
+  glm::dvec3 largest_centre(0);
   for (const glm::uvec3& t : m.triangles) {
     const glm::dvec3 a(m.positions[t.x]), b(m.positions[t.y]), c(m.positions[t.z]);
-    largest_area = std::max(largest_area, 0.5 * glm::length(glm::cross(b - a, c - a)));
+    const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
+    if (area > largest_area) largest_area = area, largest_centre = (a + b + c) / 3.0;
   }
-  if (!(extent > 0) || !(largest_area > 1e-12 * extent * extent))
+  if (!(extent > 0) || !(largest_area > 0))
     throw ConfigError("mesh " + path + " is degenerate: every triangle has zero area");
+  if (!(largest_area > 1e-12 * extent * extent)) {
+    // Triangles with area, dwarfed by the extent: a vertex far from the rest.
+    size_t far = 0;
+    for (size_t i = 1; i < m.positions.size(); ++i)
+      if (glm::length(glm::dvec3(m.positions[i]) - largest_centre) >
+          glm::length(glm::dvec3(m.positions[far]) - largest_centre))
+        far = i;
+    const glm::vec3 p = m.positions[far];
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  ": its triangles are slivers beside its extent of %.3g (the largest has area "
+                  "%.3g): vertex %zu lies at (%.3g, %.3g, %.3g), far from the rest (a stray "
+                  "vertex?)",
+                  extent, largest_area, far, p.x, p.y, p.z);
+    throw ConfigError("mesh " + path + text);
+  }
   return m;
 }
 

@@ -128,10 +128,18 @@ std::map<std::string, nlohmann::ordered_json> read_run_rows(const std::string& d
   const std::string path = dir + "/results.sqlite";
   if (!std::filesystem::exists(path))
     throw ConfigError(dir + ": no results.sqlite (is it a relieflab run's output folder?)");
-  ResultStore store(path);
+  const ResultStore store(path, ResultStore::Access::ReadOnly);
   std::map<std::string, nlohmann::ordered_json> rows;
-  for (const std::string& k : store.keys())
-    if (auto r = store.row(k)) rows[k] = *r;
+  for (const std::string& k : store.keys()) {
+    try {
+      if (auto r = store.row(k)) rows[k] = *r;
+    } catch (const nlohmann::json::exception&) {
+      // A row cut short counts as missing: a new run missing a base cell fails the comparison.
+      std::fprintf(stderr,
+                   "relieflab: warning: %s: the row of key %s is not valid JSON; left out\n",
+                   path.c_str(), k.c_str());
+    }
+  }
   return rows;
 }
 

@@ -3,8 +3,12 @@
 #include <sqlite3.h>
 
 #include <chrono>
+#include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 #include <thread>
+
+#include "core/error.h"
 
 namespace rl {
 namespace {
@@ -35,9 +39,59 @@ struct Statement {
   ~Statement() { sqlite3_finalize(s); }
 };
 
+// `path` as an SQLite URI with `query` ("mode=ro", "immutable=1"): the characters a URI
+// gives meaning to are percent-encoded.
+std::string sqlite_uri(const std::string& path, const char* query) {
+  std::string out = "file:";
+  for (unsigned char c : path) {
+    if (c == '?' || c == '#' || c == '%' || c <= 0x20 || c >= 0x7F) {
+      char hex[4];
+      std::snprintf(hex, sizeof hex, "%%%02X", c);
+      out += hex;
+    } else {
+      out += char(c);
+    }
+  }
+  return out + "?" + query;
+}
+
+// Whether the store holds ReliefLab's table (an empty file or another database does not).
+bool has_rows_table(sqlite3* db) {
+  sqlite3_stmt* s = nullptr;
+  if (sqlite3_prepare_v2(db, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = 'rows'",
+                         -1, &s, nullptr) != SQLITE_OK)
+    return false;
+  const bool found = sqlite3_step(s) == SQLITE_ROW;
+  sqlite3_finalize(s);
+  return found;
+}
+
+// Opens `path` for reading only: as it is ("mode=ro", seeing rows a live run has not yet
+// checkpointed), else, where even that needs a write (read-only media), as an unchanging file.
+sqlite3* open_read_only(const std::string& path) {
+  if (!std::filesystem::is_regular_file(path))
+    throw ConfigError(path + ": no result store there (not a regular file)");
+  for (const char* query : {"mode=ro", "immutable=1"}) {
+    sqlite3* db = nullptr;
+    const int rc = sqlite3_open_v2(sqlite_uri(path, query).c_str(), &db,
+                                   SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr);
+    if (rc == SQLITE_OK && has_rows_table(db)) return db;
+    const bool readable = rc == SQLITE_OK && sqlite3_exec(db, "SELECT count(*) FROM sqlite_master",
+                                                          nullptr, nullptr, nullptr) == SQLITE_OK;
+    sqlite3_close(db);
+    if (readable)
+      throw ConfigError(path + ": not a ReliefLab result store (it holds no rows table)");
+  }
+  throw ConfigError(path + ": cannot read the result store (not an SQLite database?)");
+}
+
 }  // namespace
 
-ResultStore::ResultStore(const std::string& path) : path_(path) {
+ResultStore::ResultStore(const std::string& path, Access access) : path_(path) {
+  if (access == Access::ReadOnly) {
+    db_ = open_read_only(path);
+    return;
+  }
   if (sqlite3_open(path.c_str(), &db_) != SQLITE_OK) {
     std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
@@ -87,6 +141,9 @@ void ResultStore::erase(const std::string& key) {
 }
 
 size_t ResultStore::merge_from(const std::string& other_path) {
+  {
+    const ResultStore other(other_path, Access::ReadOnly);  // throws naming a non-store
+  }
   Statement attach(db_, "ATTACH DATABASE ? AS other");
   sqlite3_bind_text(attach.s, 1, other_path.c_str(), -1, SQLITE_TRANSIENT);
   check(sqlite3_step(attach.s), db_, "attach " + other_path);

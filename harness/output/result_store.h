@@ -17,7 +17,12 @@ namespace rl {
 
 class ResultStore {
  public:
-  explicit ResultStore(const std::string& path);
+  // ReadOnly: status, compare and report, which only read, open the store without creating or
+  // locking anything, so a run on read-only media (an archive, a mounted snapshot) reads; a
+  // file that is not a ReliefLab store (no rows table: an empty or foreign file) throws
+  // ConfigError naming it.
+  enum class Access { ReadWrite, ReadOnly };
+  explicit ResultStore(const std::string& path, Access access = Access::ReadWrite);
   ~ResultStore();
   ResultStore(const ResultStore&) = delete;
   ResultStore& operator=(const ResultStore&) = delete;
@@ -28,7 +33,8 @@ class ResultStore {
   void insert(const std::string& key, const nlohmann::ordered_json& row);
   // Removes a row (one found corrupt, so that its cell is measured again).
   void erase(const std::string& key);
-  // Copies every row of another store whose key this one lacks; returns how many.
+  // Copies every row of another store whose key this one lacks; returns how many. Throws
+  // ConfigError naming `other_path` when it is not a ReliefLab store.
   size_t merge_from(const std::string& other_path);
 
  private:

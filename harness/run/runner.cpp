@@ -18,6 +18,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/data_paths.h"
 #include "core/elapsed.h"
 #include "core/error.h"
 #include "gl/context.h"
@@ -655,6 +656,9 @@ std::string done_line(const SweepSummary& summary, const RunOptions& options, si
 // measurement and its row, each stage handing the next a plain value; then the outputs.
 SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   const auto start = Clock::now();
+  require_utf8_path(options.out_dir, "the output folder");
+  require_utf8_path(config.source, "the config");
+  require_utf8_path(config.base_dir, "the config's folder");
   SweepSummary summary;
   size_t duplicates = 0;
   const std::vector<Cell> all_cells = expand_cells(config, &duplicates);

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_write.h"
+#include "core/data_paths.h"
 #include "core/error.h"
 #include "core/hash.h"
 #include "output/result_store.h"
@@ -108,6 +109,18 @@ nlohmann::json read_record(const std::string& dir) {
   }
 }
 
+// The shard a folder's run measured, from its sweep.json (an edited field is named as the
+// file's, not as a --shard option the user never gave).
+ShardSpec recorded_shard(const std::string& dir) {
+  const std::string text = read_record(dir)["shard"].get<std::string>();
+  try {
+    return parse_shard(text);
+  } catch (const ConfigError&) {
+    throw ConfigError(dir + "/sweep.json: its 'shard' field '" + text +
+                      "' is not I/N (was the file edited?)");
+  }
+}
+
 }  // namespace
 
 void write_sweep_record(const SweepConfig& config, const ShardSpec& shard,
@@ -181,7 +194,7 @@ RunStatus run_status(const std::vector<std::string>& dirs) {
   s.name = config.name;
   s.source = config.source;
   if (dirs.size() == 1) {
-    const ShardSpec shard = parse_shard(read_record(dirs.front())["shard"].get<std::string>());
+    const ShardSpec shard = recorded_shard(dirs.front());
     if (shard.active()) {
       cells = shard_cells(config, cells, shard);
       s.shard = shard.text();
@@ -189,7 +202,7 @@ RunStatus run_status(const std::vector<std::string>& dirs) {
   }
   std::set<std::string> have;
   for (const std::string& d : dirs) {
-    ResultStore store(d + "/results.sqlite");
+    const ResultStore store(d + "/results.sqlite", ResultStore::Access::ReadOnly);
     for (const std::string& k : store.keys()) have.insert(k);
   }
   std::map<std::string, std::pair<size_t, size_t>> truths, techniques;
@@ -214,9 +227,9 @@ size_t rewrite_outputs(const std::string& dir) {
   check_run_folder(dir);
   const SweepConfig config = recorded_config({dir});
   std::vector<Cell> cells = expand_cells(config);
-  const ShardSpec shard = parse_shard(read_record(dir)["shard"].get<std::string>());
+  const ShardSpec shard = recorded_shard(dir);
   cells = shard_cells(config, cells, shard);
-  ResultStore store(dir + "/results.sqlite");
+  const ResultStore store(dir + "/results.sqlite", ResultStore::Access::ReadOnly);
   // Rows under none of the sweep's keys were measured by another version of the measurement
   // (cells.cpp's kMeasurementVersion is in every key): rewriting from them would replace the
   // folder's tables with empty ones.
@@ -247,6 +260,7 @@ std::string format_run_status(const RunStatus& s) {
 
 MergeSummary merge_shards(const std::string& out_dir, const std::vector<std::string>& shard_dirs) {
   if (shard_dirs.empty()) throw ConfigError("merge: give the shards' output folders");
+  require_utf8_path(out_dir, "merge: the output folder");
   const SweepConfig config = recorded_config(shard_dirs);
   refuse_another_sweep(out_dir, read_record(shard_dirs.front()));
   fs::create_directories(out_dir);
