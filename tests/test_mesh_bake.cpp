@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "core/triangle_mesh.h"
 #include "relief/mesh_bake.h"
 #include "support/test_support.h"
 #include "truth/mesh_truth.h"
@@ -78,6 +79,62 @@ TEST(MeshBake, UnreadableMeshIsAConfigError) {
 
 namespace rl {
 namespace {
+
+// A closed solid has no boundary and no non-manifold edge; a hole's rim and a fin are counted,
+// with vertices split by the file (per-face copies) welded by position first.
+TEST(MeshClosure, CountsHolesAndFinsOfAWeldedMesh) {
+  TriangleMesh cube;
+  const glm::vec3 corner[8] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                               {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const int quads[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                           {2, 3, 7, 6}, {1, 2, 6, 5}, {0, 4, 7, 3}};
+  for (const auto& q : quads) {  // each face its own copy of its corners, as an OBJ with normals
+    const uint32_t base = uint32_t(cube.positions.size());
+    for (int k = 0; k < 4; ++k) cube.positions.push_back(corner[q[k]]);
+    cube.triangles.push_back({base, base + 1, base + 2});
+    cube.triangles.push_back({base, base + 2, base + 3});
+  }
+  EXPECT_TRUE(mesh_closure(cube).closed());
+  TriangleMesh holed = cube;
+  holed.triangles.pop_back();  // half of one face gone: its three edges lose a neighbour
+  EXPECT_EQ(mesh_closure(holed).boundary_edges, 3);
+  EXPECT_EQ(mesh_closure(holed).non_manifold_edges, 0);
+  TriangleMesh fin = cube;
+  fin.positions.push_back({0.5f, 0.5f, 2.0f});
+  fin.triangles.push_back({4 + 1, 4 + 2, uint32_t(fin.positions.size() - 1)});  // on the top edge
+  EXPECT_EQ(mesh_closure(fin).non_manifold_edges, 1);
+  EXPECT_EQ(mesh_closure(fin).boundary_edges, 2);
+}
+
+// The teapot is open at the spout and under the lid: encoded as a cell complex, the run says so.
+TEST(MeshClosure, AnOpenMeshWhereASolidIsNeededIsWarnedInTheLog) {
+  const std::string dir = test::scratch_dir("open-cells");
+  test::run_sweep_in(R"(
+[sweep]
+name = "open"
+views = [[45, 30]]
+viewports = [32]
+frames = 1
+warmup = 0
+images = false
+[[scene]]
+name = "teapot_cells"
+relief = { cells = "assets/meshes/teapot.obj", grid = 2, resolution = 16 }
+[[technique]]
+name = "cell_complex"
+)",
+                     dir);
+  std::ifstream in(dir + "/out/run.log");
+  const std::string log((std::istreambuf_iterator<char>(in)), {});
+  const TriangleMesh teapot =
+      load_mesh(std::string(RELIEFLAB_SOURCE_DIR) + "/assets/meshes/teapot.obj");
+  const MeshClosure c = mesh_closure(teapot);
+  ASSERT_FALSE(c.closed());
+  EXPECT_NE(log.find("scene teapot_cells: mesh "), std::string::npos) << log;
+  EXPECT_NE(log.find("is not closed (" + std::to_string(c.boundary_edges) + " boundary edge(s)"),
+            std::string::npos)
+      << log;
+}
 
 TEST(ReverseProjection, RoundTripsAndKeepsLinesStraight) {
   const ReverseProjection p{3.0};

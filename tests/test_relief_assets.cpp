@@ -147,3 +147,27 @@ TEST(Images, MissingFileOrAlphaIsAClearError) {
 
 }  // namespace
 }  // namespace rl
+
+namespace rl {
+namespace {
+
+// A float map beyond [0, 1] (tests/bad_inputs/assets/depth_beyond_one.pfm: file values 0, 0.5,
+// 1 and 2 per row, height convention) is refused without normalize (test_bad_inputs) and
+// rescaled with it to span [0, 1] exactly, in order: it was clamped first, then normalized.
+TEST(ReliefImages, NormalizeRescalesAFloatMapBeyondZeroToOne) {
+  ReliefImageSource src;
+  src.depth_path =
+      std::string(RELIEFLAB_SOURCE_DIR) + "/tests/bad_inputs/assets/depth_beyond_one.pfm";
+  src.normalize = true;
+  const ReliefMap map = load_relief_images(src, 1.0);
+  EXPECT_FLOAT_EQ(map.min_depth(), 0.0f);
+  EXPECT_FLOAT_EQ(map.max_depth(), 1.0f);
+  // Heights 0, 0.5, 1, 2 are depths 1, 0.5, 0, -1: rescaled 1, 0.75, 0.5, 0.
+  EXPECT_FLOAT_EQ(map.depth_texel(0, 0), 1.0f);
+  EXPECT_FLOAT_EQ(map.depth_texel(1, 0), 0.75f);
+  EXPECT_FLOAT_EQ(map.depth_texel(2, 0), 0.5f);
+  EXPECT_FLOAT_EQ(map.depth_texel(3, 0), 0.0f);
+}
+
+}  // namespace
+}  // namespace rl

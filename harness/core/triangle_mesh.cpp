@@ -1,8 +1,14 @@
 #include "core/triangle_mesh.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <tuple>
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -11,8 +17,90 @@
 #include "core/error.h"
 
 namespace rl {
+namespace {
+
+// Bytes of a PLY scalar type, 0 when unknown.
+size_t ply_type_size(const std::string& t) {
+  if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+  if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+  if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32")
+    return 4;
+  if (t == "double" || t == "float64") return 8;
+  return 0;
+}
+
+// A PLY header states its element counts; Assimp believes them, so a file declaring 10 M faces
+// and holding 4 became 10 M triangles to bake. Checks the data can hold what the header
+// declares: a line per element in ASCII, the smallest size of each element in binary (a face's
+// list at least a triangle). Throws ConfigError naming the file.
+void check_ply_counts(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line, format;
+  struct Element {
+    std::string name;
+    long long count = 0;
+    size_t min_bytes = 0;
+  };
+  std::vector<Element> elements;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream words(line);
+    std::string word;
+    words >> word;
+    if (word == "end_header") break;
+    if (word == "format") words >> format;
+    if (word == "element") {
+      Element e;
+      words >> e.name >> e.count;
+      elements.push_back(e);
+    }
+    if (word == "property" && !elements.empty()) {
+      std::string type, count_type, item_type;
+      words >> type;
+      if (type == "list") {
+        words >> count_type >> item_type;
+        const size_t items = elements.back().name == "face" ? 3 : 0;
+        elements.back().min_bytes += ply_type_size(count_type) + items * ply_type_size(item_type);
+      } else {
+        elements.back().min_bytes += ply_type_size(type);
+      }
+    }
+  }
+  if (!in) return;  // no header end: Assimp's own error names it
+  const std::streamoff data_start = in.tellg();
+  long long declared = 0, lines = 0;
+  long double bytes = 0;
+  for (const Element& e : elements) {
+    if (e.count < 0)
+      throw ConfigError("mesh " + path + ": element " + e.name + " has a negative count");
+    declared += e.count;
+    bytes += (long double)e.count * (long double)e.min_bytes;
+  }
+  std::string description;
+  for (const Element& e : elements)
+    description += (description.empty() ? "" : ", ") + std::to_string(e.count) + " " + e.name;
+  if (format == "ascii") {
+    for (std::string data; std::getline(in, data);)
+      lines += data.find_first_not_of(" \t\r") != std::string::npos;
+    if (lines < declared)
+      throw ConfigError("mesh " + path + ": its header declares " + description + " (" +
+                        std::to_string(declared) + " lines of data) but it holds " +
+                        std::to_string(lines) + " (cut short, or a wrong count)");
+    return;
+  }
+  const long double size = (long double)std::filesystem::file_size(path) - (long double)data_start;
+  if (size < bytes)
+    throw ConfigError("mesh " + path + ": its header declares " + description + ", at least " +
+                      std::to_string((long long)bytes) + " bytes of data, but it holds " +
+                      std::to_string((long long)size) + " (cut short, or a wrong count)");
+}
+
+}  // namespace
 
 TriangleMesh load_mesh(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (extension == ".ply") check_ply_counts(path);
   Assimp::Importer importer;
   const aiScene* scene =
       importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
@@ -90,6 +178,28 @@ TriangleMesh load_mesh(const std::string& path) {
     throw ConfigError("mesh " + path + text);
   }
   return m;
+}
+
+MeshClosure mesh_closure(const TriangleMesh& mesh) {
+  // Weld: one id per distinct position.
+  std::map<std::tuple<float, float, float>, uint32_t> ids;
+  std::vector<uint32_t> id(mesh.positions.size());
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
+    const glm::vec3& p = mesh.positions[i];
+    id[i] = ids.emplace(std::make_tuple(p.x, p.y, p.z), uint32_t(ids.size())).first->second;
+  }
+  std::map<std::pair<uint32_t, uint32_t>, int> uses;
+  for (const glm::uvec3& t : mesh.triangles) {
+    const uint32_t v[3] = {id[t.x], id[t.y], id[t.z]};
+    if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;  // collapsed by the weld
+    for (int k = 0; k < 3; ++k) ++uses[std::minmax(v[k], v[(k + 1) % 3])];
+  }
+  MeshClosure c;
+  for (const auto& [edge, n] : uses) {
+    c.boundary_edges += n == 1;
+    c.non_manifold_edges += n > 2;
+  }
+  return c;
 }
 
 }  // namespace rl

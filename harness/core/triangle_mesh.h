@@ -22,4 +22,13 @@ struct TriangleMesh {
 // out of range (beyond 1e15), malformed or degenerate.
 TriangleMesh load_mesh(const std::string& path);
 
+// How far a mesh is from closing a solid: its edges (vertices welded by position, since a file
+// may split a vertex by uv or normal) used by one triangle only (a hole's rim) and by more
+// than two (non-manifold).
+struct MeshClosure {
+  long boundary_edges = 0, non_manifold_edges = 0;
+  bool closed() const { return boundary_edges == 0 && non_manifold_edges == 0; }
+};
+MeshClosure mesh_closure(const TriangleMesh& mesh);
+
 }  // namespace rl

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 
 #include "core/atomic_write.h"
@@ -69,6 +70,39 @@ Image resized(const Image& img, int w, int h) {
   return r;
 }
 
+// The depths a map's file holds, in ReliefLab's convention (0 = top). A float image (EXR, TIFF,
+// PFM) may hold any value: one outside [0, 1] was clamped silently, and normalize, applied
+// after the clamp, could not undo it. Out-of-range depths are now rescaled by normalize or
+// refused, naming the file and the values it holds (read_image refuses non-finite texels).
+struct DepthRange {
+  float lo = 0, hi = 0;
+};
+DepthRange depth_range(const Image& depth, int channel, const ReliefImageSource& src) {
+  DepthRange r{std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()};
+  float file_lo = std::numeric_limits<float>::max(), file_hi = std::numeric_limits<float>::lowest();
+  long outside = 0;
+  for (int y = 0; y < depth.height; ++y)
+    for (int x = 0; x < depth.width; ++x) {
+      const float v = depth.at(x, y, channel);
+      const float d = src.height_convention ? 1.0f - v : v;
+      file_lo = std::min(file_lo, v);
+      file_hi = std::max(file_hi, v);
+      r.lo = std::min(r.lo, d);
+      r.hi = std::max(r.hi, d);
+      outside += d < -1e-6f || d > 1.0f + 1e-6f;
+    }
+  if (outside && !src.normalize) {
+    char range[96];
+    std::snprintf(range, sizeof range, "%.6g to %.6g", file_lo, file_hi);
+    throw ConfigError((src.depth_path.empty() ? src.normal_path : src.depth_path) + ": " +
+                      std::to_string(outside) + " texel(s) lie outside [0, 1] (its values span " +
+                      range +
+                      "): set normalize = true to rescale the map to [0, 1], or rescale the file "
+                      "(a GeoTIFF's nodata value shows as one too)");
+  }
+  return r;
+}
+
 }  // namespace
 
 ReliefMap load_relief_images(const ReliefImageSource& src, double depth_per_texel) {
@@ -100,12 +134,14 @@ ReliefMap load_relief_images(const ReliefImageSource& src, double depth_per_texe
   map.relief.resize(static_cast<size_t>(w) * h);
   map.color.assign(map.relief.size(), glm::vec4(0.5f, 0.5f, 0.5f, 1.0f));
   const int depth_channel = src.depth_path.empty() ? 3 : 0;
+  const DepthRange range = depth_range(depth, depth_channel, src);
   for (int y = 0; y < h; ++y) {
     const int file_row = h - 1 - y;  // file's top row is v = 1
     for (int x = 0; x < w; ++x) {
       float d = depth.at(x, file_row, depth_channel);
       if (src.height_convention) d = 1.0f - d;
       glm::vec4 t(0.5f, 0.5f, 1.0f, std::clamp(d, 0.0f, 1.0f));
+      if (src.normalize && range.hi > range.lo) t.a = (d - range.lo) / (range.hi - range.lo);
       if (has_normals) {
         t.r = normal.at(x, file_row, 0);
         t.g = normal.at(x, file_row, 1);
@@ -114,11 +150,6 @@ ReliefMap load_relief_images(const ReliefImageSource& src, double depth_per_texe
       }
       map.relief[map.index(x, y)] = t;
     }
-  }
-  if (src.normalize) {
-    const float lo = map.min_depth(), hi = map.max_depth();
-    if (hi > lo)
-      for (auto& t : map.relief) t.a = (t.a - lo) / (hi - lo);
   }
   if (!has_normals) normals_from_depth(map, depth_per_texel);
   if (!src.color_path.empty()) {

@@ -8,7 +8,33 @@
 
 namespace rl {
 
-void check_sweep_assets(const SweepConfig& config) {
+namespace {
+
+// What the mesh of `r` must close a solid for ("" when an open mesh is fine: a heightfield bake
+// from the top sees only its upper surface).
+std::string needs_closed_mesh(const ReliefSourceDesc& r) {
+  if (r.cells.active) return "a cubic cell complex classifies cells inside and outside";
+  if (r.faces >= 2) return "an object from several heightfields is the intersection of solids";
+  if (r.layers > 0) return "a multilayer bake pairs entries and exits";
+  return "";
+}
+
+// The run log's warning for an open mesh, or "".
+std::string closure_warning(const SceneDesc& scene, const TriangleMesh& mesh) {
+  const std::string why = needs_closed_mesh(scene.relief);
+  if (why.empty()) return "";
+  const MeshClosure c = mesh_closure(mesh);
+  if (c.closed()) return "";
+  return "relieflab: warning: scene " + scene.name + ": mesh " + scene.relief.mesh_path +
+         " is not closed (" + std::to_string(c.boundary_edges) + " boundary edge(s), " +
+         std::to_string(c.non_manifold_edges) + " non-manifold edge(s)), and " + why +
+         ": expect errors where rays pass through its gaps, counted against it";
+}
+
+}  // namespace
+
+std::vector<std::string> check_sweep_assets(const SweepConfig& config) {
+  std::vector<std::string> warnings;
   for (const SceneDesc& scene : config.scenes) {
     // Where the config asked for the asset: "file:line: scene 'name', key: ".
     auto sites = config.scene_sites.find(scene.name);
@@ -22,7 +48,9 @@ void check_sweep_assets(const SweepConfig& config) {
     try {
       const ReliefSourceDesc& r = scene.relief;
       if (!r.normal_path.empty() || !r.depth_path.empty()) load_relief_images(image_source(r), 1.0);
-      if (!r.mesh_path.empty()) load_mesh(r.mesh_path);
+      if (!r.mesh_path.empty())
+        if (std::string w = closure_warning(scene, load_mesh(r.mesh_path)); !w.empty())
+          warnings.push_back(std::move(w));
       where = at(true, "meta_relief");
       for (const MetaLayerDesc& layer : scene.meta.layers)
         if (!layer.relief.normal_path.empty() || !layer.relief.depth_path.empty())
@@ -35,6 +63,7 @@ void check_sweep_assets(const SweepConfig& config) {
       throw ConfigError(where + e.what());
     }
   }
+  return warnings;
 }
 
 }  // namespace rl

@@ -665,7 +665,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   const std::vector<Cell> cells = shard_cells(config, all_cells, options.shard);
   summary.cells = cells.size();
   // Every image decoded and every mesh loaded before the output folder is touched.
-  check_sweep_assets(config);
+  const std::vector<std::string> asset_warnings = check_sweep_assets(config);
 
   fs::create_directories(options.out_dir);
   check_run_folder(options.out_dir);
@@ -678,6 +678,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   GlContext& gl = GlContext::shared();
   summary.renderer = gl.renderer();
   log_plan(log, config, options, summary, all_cells.size(), duplicates, dropped, gl);
+  for (const std::string& w : asset_warnings) log.line(w);
 
   const size_t todo = cells.size() - summary.already_done;
   size_t finished = 0;
