@@ -9,6 +9,8 @@
 #include "config/config.h"
 #include "core/error.h"
 #include "run/asset_check.h"
+#include "run/cells.h"
+#include "run/memory_estimate.h"
 #include "support/test_support.h"
 
 namespace rl {
@@ -45,6 +47,7 @@ TEST(BadInputs, EveryCorpusInputIsRefusedWithAClearMessage) {
     try {
       const SweepConfig config = load_sweep_config(file.string());
       check_sweep_assets(config);
+      refuse_cells_beyond_memory(config, expand_cells(config));
     } catch (const ConfigError& e) {
       message = e.what();
     }

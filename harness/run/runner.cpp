@@ -38,6 +38,7 @@
 #include "relief/meta_relief.h"
 #include "run/asset_check.h"
 #include "run/cells.h"
+#include "run/memory_estimate.h"
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 #include "technique/technique.h"
@@ -666,6 +667,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   summary.cells = cells.size();
   // Every image decoded and every mesh loaded before the output folder is touched.
   const std::vector<std::string> asset_warnings = check_sweep_assets(config);
+  refuse_cells_beyond_memory(config, cells);  // sizes known once the files are read
 
   fs::create_directories(options.out_dir);
   check_run_folder(options.out_dir);

@@ -1,0 +1,70 @@
+#include "run/memory_estimate.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "core/error.h"
+
+namespace rl {
+namespace {
+
+constexpr double kBytesPerPixel = 300;      // 2 G-buffers of 5 vec4 + targets + metrics
+constexpr double kBytesPerTexel = 100;      // map, colour, GPU copies, mip and AO levels
+constexpr double kBytesPerCellTexel = 20;   // distance, normal and colour per face texel
+constexpr double kFacesPerSurfaceCell = 3;  // domain faces of a grey cell, at most
+
+std::string gib(double bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f GiB", bytes / (1024.0 * 1024.0 * 1024.0));
+  return text;
+}
+
+}  // namespace
+
+MemoryEstimate estimate_cell_memory(const SweepConfig& config, const Cell& cell) {
+  const SceneDesc& scene = config.scenes[cell.scene_index];
+  const ReliefSourceDesc& r = scene.relief;
+  const MapSize size = r.size_at(cell.texture_res);
+  const double pixels = double(cell.width) * cell.height;
+  const double texels = double(size.width) * size.height;
+  const double viewport = pixels * kBytesPerPixel;
+  const double maps = texels * kBytesPerTexel * std::max(1, r.faces);
+  double cells = 0;
+  if (r.cells.active) {
+    const double n = r.cells.grid > 0 ? r.cells.grid : r.cells.grid_max;
+    cells = 6 * n * n * kFacesPerSurfaceCell * texels * kBytesPerCellTexel;  // texels per face
+  }
+  MemoryEstimate e;
+  e.bytes = viewport + maps + cells;
+  if (cells >= viewport && cells >= maps)
+    e.what = "its cell complex's maps (" + gib(cells) + ")";
+  else if (maps >= viewport)
+    e.what = "its relief maps (" + gib(maps) + ")";
+  else
+    e.what = "its G-buffers (" + gib(viewport) + ")";
+  return e;
+}
+
+double physical_memory_bytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+  return pages > 0 && page > 0 ? double(pages) * double(page) : 0.0;
+}
+
+void refuse_cells_beyond_memory(const SweepConfig& config, const std::vector<Cell>& cells) {
+  const double have = physical_memory_bytes();
+  if (have <= 0) return;
+  for (const Cell& c : cells) {
+    const MemoryEstimate e = estimate_cell_memory(config, c);
+    if (e.bytes <= have) continue;
+    const SceneDesc& scene = config.scenes[c.scene_index];
+    throw ConfigError(config.source + ": scene '" + scene.name + "' at viewport " +
+                      std::to_string(c.width) + "x" + std::to_string(c.height) + ", texture_res " +
+                      std::to_string(c.texture_res) + " needs about " + gib(e.bytes) + ", mostly " +
+                      e.what + ", and this machine has " + gib(have) +
+                      ": lower the viewport, texture_res or grid (nothing was run)");
+  }
+}
+
+}  // namespace rl
