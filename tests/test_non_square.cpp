@@ -8,13 +8,13 @@
 #include <gtest/gtest.h>
 
 #include "../techniques/relief_robust/safety_radius.h"
+#include "config/config.h"
+#include "output/result_store.h"
 #include "relief/image_io.h"
+#include "run/cells.h"
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
-#include "run/cells.h"
-#include "config/config.h"
-#include "output/result_store.h"
 
 namespace rl {
 namespace {
@@ -187,6 +187,51 @@ depth = 0.05
     if (cell.rfind("odd ", 0) != 0) {
       EXPECT_NEAR(wrong.at(0), wrong.at(90), 0.5) << cell;
     }
+}
+
+}  // namespace
+}  // namespace rl
+
+namespace rl {
+namespace {
+
+// Hostile input, issue 35: an 8192 x 2 depth map rendered black for every technique while the
+// truth covered the view: fill framing puts the camera closer to the 2-texel side than the
+// near plane's old floor of 1e-3. The exact walk now agrees with the truth on every pixel.
+TEST(NonSquare, AMapOfExtremeAspectIsDrawn) {
+  const std::string dir = test::scratch_dir("extreme-aspect");
+  std::filesystem::create_directories(dir);
+  const int w = 8192, h = 2;
+  std::vector<float> px(size_t(w) * h * 3, 0.5f);
+  write_png(dir + "/line.png", w, h, 3, px);
+  const SweepConfig config = test::run_sweep_in(R"(
+[sweep]
+name = "extreme"
+views = [[45, 30]]
+viewports = [32]
+frames = 1
+warmup = 0
+images = false
+[[scene]]
+name = "line"
+relief = { depth = "line.png", convention = "depth" }
+[[technique]]
+name = "relief_exact"
+[[technique]]
+name = "normal"
+)",
+                                                dir);
+  ResultStore store(dir + "/out/results.sqlite");
+  for (const Cell& c : expand_cells(config)) {
+    SCOPED_TRACE(c.technique);
+    const auto row = store.row(c.key);
+    ASSERT_TRUE(row);
+    EXPECT_EQ(double((*row)["covered_px"]), 32.0 * 32.0);
+    EXPECT_EQ(double((*row)["missed_pct"]), 0.0);  // was 100: nothing drawn
+    if (c.technique == "relief_exact") {
+      EXPECT_EQ(double((*row)["wrong_pct"]), 0.0);
+    }
+  }
 }
 
 }  // namespace

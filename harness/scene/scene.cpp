@@ -174,7 +174,11 @@ Camera make_camera(const SceneDesc& scene, const View& view, int width, int heig
     cam.target = glm::dvec3(0);
     cam.eye = dir * distance;
     cam.up = glm::dvec3(-std::sin(el) * std::cos(az), -std::sin(el) * std::sin(az), std::cos(el));
-    cam.near_plane = std::max(1e-3, 0.5 * (distance * std::sin(el) - scene.depth));
+    // A map of extreme aspect (8192 x 2) frames its short side from closer than 1e-3: the
+    // near plane shrinks with the distance there, or it clipped the whole relief away (every
+    // technique drew nothing while the ray-traced truth covered the view).
+    cam.near_plane =
+        std::max(std::min(1e-3, 1e-3 * distance), 0.5 * (distance * std::sin(el) - scene.depth));
     cam.far_plane = 2 * distance + 2 * scene.size;
     return cam;
   }
