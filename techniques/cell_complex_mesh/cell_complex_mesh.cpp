@@ -73,10 +73,12 @@ class CellComplexMesh final : public Described<CellComplexMesh, CellTriangles> {
                    {.name = "max_edge_texels",
                     .kind = ParamKind::Float,
                     .default_value = 6,
-                    .min_value = 1,
+                    .min_value = 1.5,
                     .max_value = 1e6,
                     .doc = "a triangle with an edge longer than this many texels of its level "
-                           "is dropped: it would join two sheets across a depth discontinuity"}},
+                           "is dropped: it would join two sheets across a depth discontinuity "
+                           "(at least 1.5: below the diagonal of a texel, sqrt 2, every "
+                           "triangle went and nothing was drawn)"}},
         .cell_complex = true,
         .contract = {.answer = Answer::Approximation,
                      .max_fetches = [](const RayQuery&) { return 0; },
