@@ -15,12 +15,14 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include "config/config.h"
 #include "core/error.h"
 #include "core/triangle_mesh.h"
+#include "output/compare.h"
 #include "relief/image_io.h"
-#include "support/test_support.h"
 #include "run/asset_check.h"
-#include "config/config.h"
+#include "run/shard.h"
+#include "support/test_support.h"
 
 namespace rl {
 namespace {
@@ -225,6 +227,62 @@ TEST(Fuzz, ImageAndMeshLoadersAcceptOrRefuseCleanly) {
       3, 400);
   for (const std::string& f : ri.failures) ADD_FAILURE() << f;
   for (const std::string& f : rm.failures) ADD_FAILURE() << f;
+}
+
+// The commands that read a finished run (issue 35): status, compare, report and merge, on a
+// run folder whose sweep.json or results.sqlite is damaged byte by byte. Each must finish
+// with the folder's outputs rewritten or refuse with a ConfigError, or an error naming the
+// damaged store; anything else is a failure. A crash ends the test binary; a hang, its CTest
+// timeout.
+TEST(Fuzz, RunFoldersForStatusCompareReportAndMergeFailCleanly) {
+  const std::string dir = test::scratch_dir("fuzz-runs-" + std::to_string(::getpid()));
+  test::run_sweep_in(R"(
+[sweep]
+name = "fuzzed"
+views = [[45, 30], [20, 30]]
+viewports = [16]
+frames = 1
+warmup = 0
+images = false
+[[scene]]
+name = "bricks"
+relief = { procedural = "bricks", resolution = 16 }
+[[technique]]
+name = "relief"
+linear_steps = [4, 8]
+)",
+                     dir);
+  const std::string run = dir + "/out";
+  const std::string record = read_file(run + "/sweep.json");
+  const std::string store = read_file(run + "/results.sqlite");
+  long input = 0;
+  auto commands = [&](const std::string& bytes, const char* file) {
+    const std::string damaged = dir + "/damaged-" + std::to_string(input++ % 4);
+    fs::remove_all(damaged);
+    fs::copy(run, damaged, fs::copy_options::recursive);
+    std::ofstream(damaged + "/" + file, std::ios::binary | std::ios::trunc) << bytes;
+    try {
+      run_status({damaged});
+      compare_rows(read_run_rows(run), read_run_rows(damaged), default_tolerances());
+      rewrite_outputs(damaged);
+      fs::remove_all(damaged + "-merged");
+      merge_shards(damaged + "-merged", {damaged});
+    } catch (const std::runtime_error& e) {
+      // A store SQLite cannot read names its file; anything else propagates as a failure.
+      if (dynamic_cast<const ConfigError*>(&e) ||
+          std::string(e.what()).find(damaged) == std::string::npos)
+        throw;
+      throw ConfigError(e.what());
+    }
+  };
+  const FuzzResult rr = fuzz(
+      "record", {record}, [&](const std::string& b) { commands(b, "sweep.json"); }, 5, 60);
+  const FuzzResult rs = fuzz(
+      "store", {store}, [&](const std::string& b) { commands(b, "results.sqlite"); }, 6, 60);
+  for (const std::string& f : rr.failures) ADD_FAILURE() << f;
+  for (const std::string& f : rs.failures) ADD_FAILURE() << f;
+  EXPECT_GT(rr.refused, 0);
+  EXPECT_GT(rs.refused + rs.accepted, 0);
 }
 
 }  // namespace

@@ -15,7 +15,8 @@ namespace {
 
 void check(int rc, sqlite3* db, const std::string& what) {
   if (rc != SQLITE_OK && rc != SQLITE_DONE && rc != SQLITE_ROW)
-    throw std::runtime_error("result store: " + what + ": " + sqlite3_errmsg(db));
+    throw std::runtime_error(std::string("result store ") + sqlite3_db_filename(db, "main") + ": " +
+                             what + ": " + sqlite3_errmsg(db));
 }
 
 // Runs setup SQL, retrying while another process holds the lock: a store being created or
@@ -114,8 +115,10 @@ ResultStore::~ResultStore() {
 std::set<std::string> ResultStore::keys() const {
   std::set<std::string> out;
   Statement st(db_, "SELECT key FROM rows");
+  // A damaged file can hold a NULL where the schema forbids one (found by test_fuzz).
   while (sqlite3_step(st.s) == SQLITE_ROW)
-    out.insert(reinterpret_cast<const char*>(sqlite3_column_text(st.s, 0)));
+    if (const unsigned char* key = sqlite3_column_text(st.s, 0))
+      out.insert(reinterpret_cast<const char*>(key));
   return out;
 }
 
@@ -123,7 +126,9 @@ std::optional<nlohmann::ordered_json> ResultStore::row(const std::string& key) c
   Statement st(db_, "SELECT row FROM rows WHERE key = ?");
   sqlite3_bind_text(st.s, 1, key.c_str(), -1, SQLITE_TRANSIENT);
   if (sqlite3_step(st.s) != SQLITE_ROW) return std::nullopt;
-  return nlohmann::ordered_json::parse(reinterpret_cast<const char*>(sqlite3_column_text(st.s, 0)));
+  const unsigned char* text = sqlite3_column_text(st.s, 0);
+  if (!text) return std::nullopt;  // a NULL row in a damaged file: as good as missing
+  return nlohmann::ordered_json::parse(reinterpret_cast<const char*>(text));
 }
 
 void ResultStore::insert(const std::string& key, const nlohmann::ordered_json& row) {
