@@ -302,17 +302,27 @@ std::vector<size_t> measuring_order(const std::vector<Cell>& cells) {
 // ---- assets ---------------------------------------------------------------------------------
 
 // The map (and the truth's own map where truth_resolution asks for one), the base, the truth,
-// the texel sizes, the AO map and the GPU textures of one (scene, texture resolution).
+// the texel sizes, the AO map and the GPU textures of one (scene, texture resolution). With
+// `progress`, each stage is announced on stderr as it starts: a cell complex or an AO map can
+// take minutes, and the per-cell progress line says nothing until the first cell is done.
 std::unique_ptr<Asset> build_asset(const SweepConfig& config, const SceneDesc& scene,
-                                   const Cell& cell) {
+                                   const Cell& cell, bool progress) {
   const auto t0 = Clock::now();
+  auto stage = [&](const char* what) {
+    if (progress)
+      std::fprintf(stderr, "relieflab: scene %s at texture_res %d: %s (%.1f s so far)\n",
+                   scene.name.c_str(), cell.texture_res, what, ms_since(t0) / 1000.0);
+  };
   auto asset = std::make_unique<Asset>();
+  stage(scene.relief.cells.active ? "building the relief (a cubic cell complex)"
+                                  : "building the relief map");
   asset->map = build_relief_asset(scene, cell.texture_res);
   if (scene.truth_texture_res > 0 &&
       scene.relief.size_at(scene.truth_texture_res) != scene.relief.size_at(cell.texture_res))
     asset->truth_map =
         std::make_unique<ReliefMap>(build_relief_asset(scene, scene.truth_texture_res));
   asset->objects = std::make_unique<ObjectPass>(scene.objects);
+  stage("building the truth's Embree scene");
   if (scene.base.curved()) {
     // One base mesh for the GPU, the truth and the texel size.
     const BaseMesh mesh = make_base_mesh(scene.base, scene.size, scene.tile);
@@ -334,6 +344,7 @@ std::unique_ptr<Asset> build_asset(const SweepConfig& config, const SceneDesc& s
     asset->metric_texel = texel_world(
         scene, scene.truth_texture_res > 0 ? scene.truth_texture_res : cell.texture_res);
   }
+  if (scene.effects.has(Effect::AmbientOcclusion)) stage("computing the ambient occlusion map");
   const AoMap ao = attach_ao_map(asset->map, scene, asset->texel_world);
   asset->ao_ms = ao.compute_ms;
   asset->ao_from_cache = ao.from_cache;
@@ -698,7 +709,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     if (done.count(cell.key)) continue;
     const SceneDesc& scene = config.scenes[cell.scene_index];
     if (cell.asset_key != asset_key) {
-      asset = build_asset(config, scene, cell);
+      asset = build_asset(config, scene, cell, options.progress);
       asset_key = cell.asset_key;
       truth_key.clear();
       ++summary.asset_builds;
