@@ -11,9 +11,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include "config/config.h"
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
-#include "config/config.h"
 #include "truth/displaced_truth.h"
 #include "truth/heightfield_truth.h"
 #include "truth/make_truth.h"

@@ -9,10 +9,10 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "support/test_support.h"
-#include "run/cells.h"
 #include "config/config.h"
 #include "output/result_store.h"
+#include "run/cells.h"
+#include "support/test_support.h"
 
 namespace rl {
 namespace {

@@ -7,16 +7,16 @@
 
 #include <gtest/gtest.h>
 
+#include "config/config.h"
 #include "gl/context.h"
 #include "gl/shader_library.h"
 #include "relief/heightfield_reference.h"
 #include "relief/meta_relief.h"
 #include "relief/procedural.h"
+#include "run/cells.h"
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
-#include "run/cells.h"
-#include "config/config.h"
 #include "technique/shader_technique.h"
 #include "truth/meta_relief_truth.h"
 

@@ -7,11 +7,11 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "support/test_support.h"
-#include "run/cells.h"
 #include "config/config.h"
 #include "config/config_technique.h"
+#include "core/error.h"
+#include "run/cells.h"
+#include "support/test_support.h"
 #include "technique/technique.h"
 
 namespace rl {

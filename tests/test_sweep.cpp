@@ -13,11 +13,11 @@
 
 #include <gtest/gtest.h>
 
-#include "support/test_support.h"
-#include "run/cells.h"
 #include "config/config.h"
 #include "output/result_store.h"
+#include "run/cells.h"
 #include "run/runner.h"
+#include "support/test_support.h"
 
 namespace rl {
 namespace {

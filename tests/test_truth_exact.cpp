@@ -14,11 +14,11 @@
 #include <gtest/gtest.h>
 
 #include "metrics/metrics.h"
+#include "output/pareto.h"
+#include "output/tables.h"
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
-#include "output/pareto.h"
-#include "output/tables.h"
 #include "truth/displaced_truth.h"
 #include "truth/heightfield_truth.h"
 #include "truth/truth_render.h"

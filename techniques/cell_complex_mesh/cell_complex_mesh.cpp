@@ -58,36 +58,35 @@ class CellComplexMesh final : public Described<CellComplexMesh, CellTriangles> {
  public:
   using Described::Described;
   static TechniqueInfo describe() {
-    return {
-        .name = "cell_complex_mesh",
-        .title = "Cubic cell complexes, geometry-based rendering (unprojected texels)",
-        .citation = "Apaza & Andujar, 'Relief mapping on cubic cell complexes', Section 3.5.1",
-        .effects = {Effect::DepthCorrect},
-        .params = {{.name = "lod",
-                    .kind = ParamKind::Int,
-                    .default_value = 0,
-                    .min_value = 0,
-                    .max_value = 10,
-                    .doc = "mip level of the distance maps: one vertex per 2^lod x 2^lod "
-                           "texels (0 = every texel)"},
-                   {.name = "max_edge_texels",
-                    .kind = ParamKind::Float,
-                    .default_value = 6,
-                    .min_value = 1.5,
-                    .max_value = 1e6,
-                    .doc = "a triangle with an edge longer than this many texels of its level "
-                           "is dropped: it would join two sheets across a depth discontinuity "
-                           "(at least 1.5: below the diagonal of a texel, sqrt 2, every "
-                           "triangle went and nothing was drawn)"}},
-        .cell_complex = true,
-        .contract = {.answer = Answer::Approximation,
-                     .max_fetches = [](const RayQuery&) { return 0; },
-                     .max_fetches_formula = "0: rasterised triangles, shaded from vertices",
-                     .knobs = {{"lod", false}},
-                     .accuracy = "the distance maps' surface at 2^lod texels per vertex, "
-                                 "interpolated linearly between texels",
-                     .ray_probe = false,
-                     .hits_from_inside = false}};
+    return {.name = "cell_complex_mesh",
+            .title = "Cubic cell complexes, geometry-based rendering (unprojected texels)",
+            .citation = "Apaza & Andujar, 'Relief mapping on cubic cell complexes', Section 3.5.1",
+            .effects = {Effect::DepthCorrect},
+            .params = {{.name = "lod",
+                        .kind = ParamKind::Int,
+                        .default_value = 0,
+                        .min_value = 0,
+                        .max_value = 10,
+                        .doc = "mip level of the distance maps: one vertex per 2^lod x 2^lod "
+                               "texels (0 = every texel)"},
+                       {.name = "max_edge_texels",
+                        .kind = ParamKind::Float,
+                        .default_value = 6,
+                        .min_value = 1.5,
+                        .max_value = 1e6,
+                        .doc = "a triangle with an edge longer than this many texels of its level "
+                               "is dropped: it would join two sheets across a depth discontinuity "
+                               "(at least 1.5: below the diagonal of a texel, sqrt 2, every "
+                               "triangle went and nothing was drawn)"}},
+            .cell_complex = true,
+            .contract = {.answer = Answer::Approximation,
+                         .max_fetches = [](const RayQuery&) { return 0; },
+                         .max_fetches_formula = "0: rasterised triangles, shaded from vertices",
+                         .knobs = {{"lod", false}},
+                         .accuracy = "the distance maps' surface at 2^lod texels per vertex, "
+                                     "interpolated linearly between texels",
+                         .ray_probe = false,
+                         .hits_from_inside = false}};
   }
 
   void prepare(const ReliefMap& map) override {

@@ -12,9 +12,9 @@
 
 #include "gl/context.h"
 #include "gl/render_target.h"
+#include "run/runner.h"
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
-#include "run/runner.h"
 #include "technique/gpu_scene.h"
 #include "truth/make_truth.h"
 

@@ -4,13 +4,13 @@
 #include <memory>
 #include <string>
 
+#include "config/config.h"
 #include "core/gbuffer.h"
 #include "core/triangle_mesh.h"
 #include "metrics/fragment_cost.h"
 #include "metrics/metrics.h"
 #include "relief/relief_map.h"
 #include "scene/scene.h"
-#include "config/config.h"
 #include "technique/technique.h"
 #include "truth/truth_render.h"
 
