@@ -6,10 +6,12 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>
 
+#include "core/atomic_write.h"
 #include "gl/context.h"
 #include "gl/render_target.h"
 #include "run/runner.h"
@@ -73,10 +75,13 @@ Measured measure(const SceneDesc& scene, const std::string& technique, const Par
 
 std::string write_obj(const TriangleMesh& mesh, const std::string& path) {
   std::filesystem::create_directories(std::filesystem::path(path).parent_path());
-  std::ofstream f(path);
+  std::ostringstream f;
   for (const glm::vec3& p : mesh.positions) f << "v " << p.x << " " << p.y << " " << p.z << "\n";
   for (const glm::uvec3& t : mesh.triangles)
     f << "f " << t.x + 1 << " " << t.y + 1 << " " << t.z + 1 << "\n";
+  // Replaced whole, never rewritten in place: the contract's test processes run at once and
+  // share this file (one read it half-written: "OBJ-file is too small", then a crash).
+  write_text_atomic(path, f.str());
   return path;
 }
 
