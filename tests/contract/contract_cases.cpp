@@ -289,8 +289,10 @@ CaseAssets& assets(size_t index) {
   if (slot) return *slot;
   GlContext::shared();
   const RenderCase& c = render_cases().at(index);
-  slot = std::make_unique<CaseAssets>();
-  CaseAssets& a = *slot;
+  // Built aside and kept only when whole: a build that throws fails its test, and must not
+  // leave a half-built case for the next test to crash on.
+  auto whole = std::make_unique<CaseAssets>();
+  CaseAssets& a = *whole;
   const int res = c.scene.relief.native.longer();
   a.map = build_relief_asset(c.scene, res);
   a.relief = std::make_unique<GpuRelief>(a.map, c.scene.meta.runtime());
@@ -300,7 +302,8 @@ CaseAssets& assets(size_t index) {
   const SceneTruth truth(c.scene, a.map, 2e-3);
   a.truth = truth.render(a.map, c.scene, a.camera, c.scene.effects);
   if (c.planar_rays) planar_pixel_rays(c.scene, a);
-  return a;
+  slot = std::move(whole);
+  return *slot;
 }
 
 }  // namespace
