@@ -239,11 +239,7 @@ TEST(Faults, DamagedRecordsAndReadOnlyRunsAreNamedOrRead) {
   const std::string as = as_nobody ? nobody : "";
   auto read_only = [&](const std::string& args) {
     std::string text;
-    FILE* pipe = popen((as + RELIEFLAB_CLI + " " + args + " 2>&1").c_str(), "r");
-    char buf[4096];
-    while (pipe && fgets(buf, sizeof buf, pipe)) text += buf;
-    const int status = pipe ? pclose(pipe) : -1;
-    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << args << ": " << text;
+    EXPECT_EQ(test::run_cli(args, text, as), 0) << args << ": " << text;
     return text;
   };
   EXPECT_NE(read_only("status " + out).find("4 of 4 cells done"), std::string::npos);

@@ -127,16 +127,8 @@ class Log {
   int fd_;
 };
 
-// Why the stored row of `cell` cannot stand for it ("" when it can). The store is a file in the
-// user's folder: an edit or a crash may have cut a row or changed its types, and a row that
-// names another cell or holds text where a measure belongs must not be published.
-std::string stored_row_problem(const ResultStore& store, const Cell& cell) {
-  std::optional<nlohmann::ordered_json> row;
-  try {
-    row = store.row(cell.key);
-  } catch (const nlohmann::json::exception& e) {
-    return "is not valid JSON (" + std::string(e.what()).substr(0, 120) + ")";
-  }
+// Why a parsed stored row cannot stand for `cell` ("" when it can).
+std::string row_problem(const std::optional<nlohmann::ordered_json>& row, const Cell& cell) {
   if (!row) return "is missing";
   if (!row->is_object()) return "is not a JSON object";
   for (const auto& [field, value] : cell.identity.items()) {
@@ -152,6 +144,30 @@ std::string stored_row_problem(const ResultStore& store, const Cell& cell) {
              "'";
   }
   return "";
+}
+
+// The stored row of `cell` when it can stand for it; else nothing, and `problem` says why. The
+// store is a file in the user's folder: an edit or a crash may have cut a row or changed its
+// types, and a row that names another cell or holds text where a measure belongs must not be
+// published.
+std::optional<nlohmann::ordered_json> usable_stored_row(const ResultStore& store, const Cell& cell,
+                                                        std::string& problem) {
+  std::optional<nlohmann::ordered_json> row;
+  try {
+    row = store.row(cell.key);
+  } catch (const nlohmann::json::exception& e) {
+    problem = "is not valid JSON (" + std::string(e.what()).substr(0, 120) + ")";
+    return std::nullopt;
+  }
+  problem = row_problem(row, cell);
+  if (!problem.empty()) return std::nullopt;
+  return row;
+}
+
+std::string stored_row_problem(const ResultStore& store, const Cell& cell) {
+  std::string problem;
+  usable_stored_row(store, cell, problem);
+  return problem;
 }
 
 // The run log's line for a built asset: its size, build time and what its truth is.
@@ -771,7 +787,9 @@ size_t write_sweep_outputs(const SweepConfig& config, const std::vector<Cell>& c
   const std::set<std::string> stored = store.keys();
   for (const Cell& c : cells) {
     if (!stored.count(c.key)) continue;
-    if (const std::string problem = stored_row_problem(store, c); !problem.empty()) {
+    std::string problem;
+    std::optional<nlohmann::ordered_json> row = usable_stored_row(store, c, problem);
+    if (!row) {
       std::fprintf(stderr,
                    "relieflab: warning: the stored row of %s / %s (key %s) %s; left out of the "
                    "outputs (running the sweep into this folder measures it again)\n",
@@ -780,7 +798,7 @@ size_t write_sweep_outputs(const SweepConfig& config, const std::vector<Cell>& c
       ++left_out;
       continue;
     }
-    rows.push_back(*store.row(c.key));
+    rows.push_back(std::move(*row));
   }
   std::vector<std::string> leading = {"technique",   "scene",       "elevation_deg",
                                       "azimuth_deg", "texture_res", "viewport"};

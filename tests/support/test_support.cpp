@@ -165,8 +165,8 @@ SweepConfig run_sweep_in(const std::string& toml, const std::string& dir) {
   return config;
 }
 
-int run_cli(const std::string& args, std::string& output) {
-  const std::string cmd = std::string(RELIEFLAB_CLI) + " " + args + " 2>&1";
+int run_cli(const std::string& args, std::string& output, const std::string& prefix) {
+  const std::string cmd = prefix + RELIEFLAB_CLI + " " + args + " 2>&1";
   output.clear();
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return -1;

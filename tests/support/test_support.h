@@ -71,6 +71,7 @@ std::string scratch_dir(const std::string& name);
 SweepConfig run_sweep_in(const std::string& toml, const std::string& dir);
 
 // Runs the relieflab CLI with `args`; returns its exit status, stderr+stdout in `output`.
-int run_cli(const std::string& args, std::string& output);
+// `prefix` goes before the program (e.g. setpriv to run it as another user).
+int run_cli(const std::string& args, std::string& output, const std::string& prefix = "");
 
 }  // namespace rl::test
