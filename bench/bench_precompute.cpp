@@ -102,18 +102,24 @@ RL_CONE_BENCH(cone_domes, "domes", true);
 RL_CONE_BENCH(cone_rock_conservative, "rock", false);
 RL_CONE_BENCH(cone_pyramids_conservative, "pyramids", false);
 
-// The AO map by the multithreaded CPU search, or (gpu) by the fragment shader
+// The AO map by the line sweep (the default: relief/horizon_sweep.h), by the per-texel march on
+// all cores (the paper's search), or (gpu) by the march in a fragment shader
 // (harness/glsl/ao_map.frag): on llvmpipe that is the CPU again, JIT-compiled and vectorised;
-// with a GPU, the GPU. Both give the same map (mean_visibility agrees).
-void BM_AoMap(benchmark::State& state, std::string kind, bool gpu) {
+// with a GPU, the GPU. The march and the shader give the same map; the sweep's stays within
+// AoMap.SweepStaysCloseToThePerTexelMarch's bounds of it (compare mean_visibility).
+enum class AoMethod { Sweep, March, Shader };
+
+void BM_AoMap(benchmark::State& state, std::string kind, AoMethod method) {
   const int size = int(state.range(0));
   const ReliefMap map = bench_map(kind, size);
   AoMapOptions o;
   o.height_texels = 0.08 * size;
-  if (gpu) compute_ao_map_gpu(bench_map(kind, 16), o);  // compile outside the timing
+  if (method == AoMethod::Shader) compute_ao_map_gpu(bench_map(kind, 16), o);  // compile first
   AoMap a;
   for (auto _ : state) {
-    a = gpu ? compute_ao_map_gpu(map, o) : compute_ao_map(map, o);
+    a = method == AoMethod::Sweep   ? compute_ao_map(map, o)
+        : method == AoMethod::March ? compute_ao_map_march(map, o)
+                                    : compute_ao_map_gpu(map, o);
     benchmark::DoNotOptimize(a.visibility.data());
   }
   double mean = 0;
@@ -121,14 +127,17 @@ void BM_AoMap(benchmark::State& state, std::string kind, bool gpu) {
   state.counters["mean_visibility"] = mean / a.visibility.size();
 }
 
-#define RL_AO_BENCH(name, kind, gpu) \
-  BENCHMARK_CAPTURE(BM_AoMap, name, kind, gpu)->Apply(at_map_sizes)
-RL_AO_BENCH(ao_rock, "rock", false);
-RL_AO_BENCH(ao_bricks, "bricks", false);
-RL_AO_BENCH(ao_sines, "sines", false);
-RL_AO_BENCH(ao_gpu_rock, "rock", true);
-RL_AO_BENCH(ao_gpu_bricks, "bricks", true);
-RL_AO_BENCH(ao_gpu_sines, "sines", true);
+#define RL_AO_BENCH(name, kind, method) \
+  BENCHMARK_CAPTURE(BM_AoMap, name, kind, AoMethod::method)->Apply(at_map_sizes)
+RL_AO_BENCH(ao_rock, "rock", Sweep);
+RL_AO_BENCH(ao_bricks, "bricks", Sweep);
+RL_AO_BENCH(ao_sines, "sines", Sweep);
+RL_AO_BENCH(ao_march_rock, "rock", March);
+RL_AO_BENCH(ao_march_bricks, "bricks", March);
+RL_AO_BENCH(ao_march_sines, "sines", March);
+RL_AO_BENCH(ao_gpu_rock, "rock", Shader);
+RL_AO_BENCH(ao_gpu_bricks, "bricks", Shader);
+RL_AO_BENCH(ao_gpu_sines, "sines", Shader);
 
 }  // namespace
 }  // namespace rl

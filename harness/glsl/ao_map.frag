@@ -1,6 +1,6 @@
 // Texture-space AO map on the GPU (Limberger et al., Section IV-A: "performed off-line using a
 // GLSL shader"): one fragment per texel, the same horizon search and polygon area as the CPU's
-// relief/ao_map.cpp (compute_ao_map), in float. The low-pass filter runs afterwards on the CPU.
+// relief/ao_map.cpp (compute_ao_map_march), in float. The low-pass filter runs afterwards on the CPU.
 layout(binding = 0) uniform sampler2D rl_heights;  // r: height in texel units, top = highest
 uniform int rl_directions;
 uniform int rl_max_steps;

@@ -10,6 +10,7 @@
 #include "core/elapsed.h"
 #include "core/parallel.h"
 #include "core/precompute_cache.h"
+#include "relief/horizon_sweep.h"
 
 namespace rl {
 namespace {
@@ -144,7 +145,7 @@ double horizon_cos2(const HeightPyramid& g, int x, int y, double dx, double dy, 
 
 }  // namespace
 
-AoMap compute_ao_map(const ReliefMap& map, const AoMapOptions& o) {
+AoMap compute_ao_map_march(const ReliefMap& map, const AoMapOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   const HeightPyramid g(map, o.height_texels);
   const int n = std::max(3, o.directions);
@@ -179,6 +180,45 @@ AoMap compute_ao_map(const ReliefMap& map, const AoMapOptions& o) {
   return out;
 }
 
+AoMap compute_ao_map(const ReliefMap& map, const AoMapOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<float> heights(map.relief.size());
+  for (size_t i = 0; i < heights.size(); ++i)
+    heights[i] = float((1.0 - double(map.relief[i].a)) * o.height_texels);
+  const TiledHeights g(map.width, map.height, std::move(heights));
+  HorizonSweepOptions sweep;
+  // Features past one side length do not move the map (tests/test_ambient_occlusion.cpp); the
+  // march reads twice as far.
+  sweep.reach = std::max(map.width, map.height);
+  const int n = std::max(3, o.directions);
+  // Polygon area sum_j 1/2 r_j r_j+1 sin(2 pi / n), one azimuth at a time.
+  std::vector<float> r_first, r_prev, r_now;
+  std::vector<double> area(map.relief.size(), 0.0);
+  for (int j = 0; j < n; ++j) {
+    sweep_horizon(g, 2.0 * M_PI * j / n, sweep, r_now);
+    parallel_for(
+        area.size(),
+        [&](size_t begin, size_t end) {
+          for (size_t i = begin; i < end; ++i) {
+            r_now[i] = float(1.0 / std::sqrt(1.0 + double(r_now[i]) * r_now[i]));
+            if (j > 0) area[i] += double(r_prev[i]) * r_now[i];
+          }
+        },
+        1 << 14);
+    if (j == 0) r_first = r_now;
+    std::swap(r_prev, r_now);
+  }
+  for (size_t i = 0; i < area.size(); ++i) area[i] += double(r_prev[i]) * r_first[i];
+  AoMap out;
+  out.width = map.width;
+  out.height = map.height;
+  out.visibility.resize(area.size());
+  for (size_t i = 0; i < area.size(); ++i) out.visibility[i] = float(std::min(1.0, area[i] / n));
+  if (o.filter) filter_occluded_texels(map, out.visibility);
+  out.compute_ms = ms_since(start);
+  return out;
+}
+
 void filter_occluded_texels(const ReliefMap& map, std::vector<float>& visibility) {
   const std::vector<float> raw = visibility;
   for (int y = 0; y < map.height; ++y)
@@ -194,8 +234,8 @@ void filter_occluded_texels(const ReliefMap& map, std::vector<float>& visibility
 
 AoMap cached_ao_map(const ReliefMap& map, const AoMapOptions& o, AoMapMethod method) {
   // Bump when a method changes its answers (2: the fragment shader's open directions are made
-  // exactly 1, as the CPU's always were).
-  constexpr int kAlgorithmVersion = 2;
+  // exactly 1, as the CPU's always were; 3: the CPU's map is the line sweep's, not the march's).
+  constexpr int kAlgorithmVersion = 3;
   char options[128];
   std::snprintf(options, sizeof options, "v%d|%d|%d|%.9g|%s|", kAlgorithmVersion, o.directions,
                 int(o.filter), o.height_texels, method.name);

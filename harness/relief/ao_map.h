@@ -35,19 +35,25 @@ struct AoMap {
   bool from_cache = false;
 };
 
-// The horizon search, multithreaded on the CPU. Along each direction the profile is sampled
-// one texel apart, bilinearly, and the search stops when no point farther away could rise
-// above the horizon found so far (the map's highest point is below it), or after twice the
-// map's longer side.
+// The horizon search per texel, multithreaded on the CPU: the paper's way. Along each direction
+// the profile is sampled one texel apart, bilinearly, and the search stops when no point farther
+// away could rise above the horizon found so far (the map's highest point is below it), or
+// after twice the map's longer side.
+AoMap compute_ao_map_march(const ReliefMap& map, const AoMapOptions& options);
+
+// The same horizons for every texel at once, one line sweep per direction
+// (relief/horizon_sweep.h): exact over each texel's first two samples, interpolated between
+// neighbouring sweep lines beyond. The default; its difference from the march is bounded in
+// tests/test_ambient_occlusion.cpp.
 AoMap compute_ao_map(const ReliefMap& map, const AoMapOptions& options);
 
 // The paper's low-pass filter: a 3 x 3 box (wrapping) on the texels with some occlusion only,
 // so that none is introduced where there was none.
 void filter_occluded_texels(const ReliefMap& map, std::vector<float>& visibility);
 
-// Who computes a map: the multithreaded CPU search (compute_ao_map), or another with the same
-// answers up to float rounding (technique/gpu_ao_map.h, the fragment shader). `name` keys the
-// cache, so the two never read each other's files.
+// Who computes a map: the line sweep on the CPU (compute_ao_map), or another (the march of
+// technique/gpu_ao_map.h in a fragment shader). `name` keys the cache, so the two never read
+// each other's files.
 struct AoMapMethod {
   const char* name = "cpu";
   AoMap (*compute)(const ReliefMap&, const AoMapOptions&) = compute_ao_map;
