@@ -17,9 +17,13 @@ class QuadtreeTechnique : public ShaderTechnique {
 
  protected:
   void bind_resources(GLuint program) const override;
+  // Whether the search may read packed blocks, built on 8-bit maps only: a level-1 node's 3 x 3
+  // corner depths in one RGBA32UI texel (rl_cell_blocks, unit 5), and 4 x 4 nodes' bounds at
+  // 8 bits each (rl_bound_blocks, unit 6).
+  virtual bool uses_blocks() const { return false; }
 
  private:
-  GLuint texture_ = 0;
+  GLuint texture_ = 0, blocks_ = 0, bound_blocks_ = 0;
   int top_ = 0;
   size_t bytes_ = 0;
 };

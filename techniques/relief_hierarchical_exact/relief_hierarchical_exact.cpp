@@ -14,7 +14,30 @@ class ReliefHierarchicalExact final : public Described<ReliefHierarchicalExact, 
             "Beyond the published work: Tevs, Ihrke & Seidel 2008's maximum-mipmap traversal "
             "over the bilinear cells, with relief_exact_bilinear's exact solve at level 0",
         .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
-        .params = {},
+        .params = {{.name = "start_level",
+                    .kind = ParamKind::Int,
+                    .default_value = 5,
+                    .min_value = 0,
+                    .max_value = 16,
+                    .doc = "coarsest quadtree level the search starts at (at most the level whose "
+                           "nodes span the ray's lateral travel; lower starts near the entry and "
+                           "climbs; 16: always that level, as before)"},
+                   {.name = "block_cells",
+                    .kind = ParamKind::Int,
+                    .default_value = 1,
+                    .min_value = 0,
+                    .max_value = 1,
+                    .doc = "1: on 8-bit maps a level-1 node's four cells are read in one fetch "
+                           "(their 3 x 3 corner depths packed in one RGBA32UI texel) instead of "
+                           "one gather per cell"},
+                   {.name = "byte_bounds",
+                    .kind = ParamKind::Int,
+                    .default_value = 1,
+                    .min_value = 0,
+                    .max_value = 1,
+                    .doc = "1: on 8-bit maps node bounds are read 4 x 4 nodes at a time, 8 bits "
+                           "each, with their parents' bounds derived from them: one fetch serves "
+                           "two levels of the descent"}},
         .box_proxy = true,
         .contract = {.answer = Answer::Exact,
                      .max_fetches = [](const RayQuery& q) { return quadtree_nodes(q) + 2; },
@@ -26,6 +49,15 @@ class ReliefHierarchicalExact final : public Described<ReliefHierarchicalExact, 
  protected:
   std::string intersect_file() const override {
     return "techniques/relief_hierarchical_exact/relief_hierarchical_exact.glsl";
+  }
+  bool uses_blocks() const override {
+    return param("block_cells") != 0 || param("byte_bounds") != 0;
+  }
+  Defines parameter_defines() const override {
+    Defines d = {{"RL_START_LEVEL", std::to_string(static_cast<int>(param("start_level")))}};
+    if (param("block_cells") != 0) d["RL_BLOCK_CELLS"] = "1";
+    if (param("byte_bounds") != 0) d["RL_BYTE_BOUNDS"] = "1";
+    return d;
   }
 };
 
