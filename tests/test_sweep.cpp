@@ -240,13 +240,14 @@ TEST(Sweep, DefaultConfigParsesAndExpands) {
   SweepConfig c = default_sweep_config();
   EXPECT_EQ(c.name, "default");
   const std::vector<Cell> cells = expand_cells(c);
-  // 4 scenes x (normal + parallax + 4 relief) x 4 elevations, + the shadowed, the AO and the
+  // 4 scenes x (normal + parallax + 4 relief + relief_hierarchical_exact) x 4 elevations, + the
+  // shadowed, the AO and the
   // meta-relief scene x 4 relief x 4, + the sphere x 4 relief x 4 and the silhouette sphere x 4
   // relief_silhouette x 4, + the weave x (4 relief + 4 multilayer + 4 double_depth) x 4, + the
   // cell-complex bunny x 4 cell_complex x 4, + the six-face bunny x 3 multi_heightfield x 4, +
   // (rockwall, bricks) x 3 depth_slicing x 4 and (bricks, pyramids) x odd x 4.
   EXPECT_EQ(cells.size(),
-            4u * 6u * 4u + 5u * 4u * 4u + 12u * 4u + 4u * 4u + 3u * 4u + 6u * 4u + 2u * 4u);
+            4u * 7u * 4u + 5u * 4u * 4u + 12u * 4u + 4u * 4u + 3u * 4u + 6u * 4u + 2u * 4u);
   std::set<std::string> truths, keys;
   for (const Cell& cell : cells) {
     truths.insert(cell.truth_key);
