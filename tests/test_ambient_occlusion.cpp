@@ -229,6 +229,28 @@ TEST(AoMap, SweepStaysCloseToThePerTexelMarch) {
     }
 }
 
+TEST(AoMap, SweepHandlesTinyAndThinMaps) {
+  // Thin rectangles of texel centres (one or two texels across): every
+  // texel still finds its lines, and the map stays finite, in [0, 1] and near the march's.
+  for (const auto& [w, h] :
+       std::vector<std::pair<int, int>>{{2, 2}, {1, 7}, {7, 1}, {2, 64}, {64, 2}, {3, 5}}) {
+    ReliefMap m = floor_with(w, h, {});
+    for (int i = 0; i < w * h; ++i) m.relief[size_t(i)].a = float((i * 37) % 11) / 10.0f;
+    AoMapOptions o;
+    o.height_texels = 3;
+    o.filter = false;
+    const AoMap sweep = compute_ao_map(m, o), march = compute_ao_map_march(m, o);
+    ASSERT_EQ(sweep.visibility.size(), size_t(w) * h);
+    double mean_diff = 0;
+    for (size_t i = 0; i < sweep.visibility.size(); ++i) {
+      const float v = sweep.visibility[i];
+      ASSERT_TRUE(std::isfinite(v) && v >= 0 && v <= 1) << w << "x" << h << " @" << i;
+      mean_diff += std::abs(double(v) - march.visibility[i]);
+    }
+    EXPECT_LT(mean_diff / sweep.visibility.size(), 0.05) << w << "x" << h;
+  }
+}
+
 TEST(AoMap, FragmentShaderVersionMatchesTheCpuOne) {
   // Same search in float on the GPU: equal up to rounding, on non-square, non-power-of-two
   // maps (where GLSL's % on negative texels once wrapped wrongly) with the border wrap.
