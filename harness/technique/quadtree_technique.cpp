@@ -22,6 +22,9 @@ GLuint uint_texture(const std::vector<uint32_t>& texels, int width, int height) 
   return t;
 }
 
+// Level 1's nodes as blocks of their 3 x 3 corner depths, 8 bits each (an 8-bit map's depths are
+// whole multiples of 1/255), row by row, low bytes first (x, y, z: bytes 0-3, 4-7, 8): one fetch
+// reads a node's four cells.
 std::vector<uint32_t> cell_blocks(const ReliefMap& map) {
   const int w = map.width / 2, h = map.height / 2;
   std::vector<uint32_t> out(size_t(w) * h * 4, 0u);
