@@ -5,7 +5,7 @@
 // Cone maps (cone_relaxed), relaxed and conservative, at 256^2, 512^2 and 1024^2.
 // Texture-space AO maps (ambient_occlusion; Limberger et al. Section IV-A, 50 directions) at
 // 256^2, 512^2 and 1024^2 for a relief 0.08 deep on a unit quad (height in texels = 0.08 x
-// size), the CPU horizon search on all cores.
+// size): the line sweep (the default), the per-texel march and its fragment-shader version.
 #include <benchmark/benchmark.h>
 
 #include "../techniques/cone_relaxed/cone_map.h"
