@@ -164,6 +164,29 @@ TEST(SafetyRadius, AllowingErrorOnlyGrowsRadii) {
   EXPECT_EQ(previous.zero_count(), 0);  // at 0.2 even the apexes allow a step
 }
 
+TEST(SafetyRadius, TheMaximumOverDirectionsIsAtLeastTheMinimum) {
+  // Section 3.5's words ("keep the maximum over all directions") against the default minimum,
+  // with blocked rays ignored and conservatively: never smaller, larger on most texels of a
+  // field of pyramids (each face is open to the rays running along it), and the cache keeps the
+  // two apart.
+  ReliefMap m = make_procedural("pyramids", 64, {}, 10.0, "test");
+  quantize_8bit(m);
+  for (bool ignore_blocked : {true, false}) {
+    SafetyRadiusOptions o;
+    o.ignore_blocked = ignore_blocked;
+    const SafetyRadii least = compute_safety_radii(m, o);
+    o.max_over_directions = true;
+    const SafetyRadii most = compute_safety_radii(m, o);
+    size_t larger = 0;
+    for (size_t i = 0; i < most.radius.size(); ++i) {
+      ASSERT_GE(most.radius[i], least.radius[i]) << "texel " << i;
+      larger += most.radius[i] > least.radius[i];
+    }
+    EXPECT_GT(larger, most.radius.size() / 2) << "ignore_blocked " << ignore_blocked;
+    EXPECT_LT(most.zero_count(), least.zero_count());
+  }
+}
+
 TEST(SafetyRadius, CachedOnDiskByContentAndOptions) {
   const std::string dir = test::scratch_dir("cache");
   setenv("RELIEFLAB_CACHE_DIR", dir.c_str(), 1);

@@ -60,7 +60,14 @@ class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
               .max_value = 1,
               .doc = "Section 3.5 as written: rays blocked before the texel are ignored; 0 = "
                      "conservative "
-                     "radii that also hold for blocked rays"}},
+                     "radii that also hold for blocked rays"},
+             {.name = "max_over_directions",
+              .kind = ParamKind::Bool,
+              .default_value = 0,
+              .min_value = 0,
+              .max_value = 1,
+              .doc = "Section 3.5's words: keep the largest radius over the sampled directions "
+                     "(safe for one direction only); 0 = the smallest, safe for all"}},
         .box_proxy = true,
         .contract = {
             .answer = Answer::Converging,
@@ -83,12 +90,14 @@ class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
                       {"directions"},
                       {"exact_zero_radius"},
                       {"error_allowed", /*larger_is_finer=*/false},
-                      {"ignore_blocked", /*larger_is_finer=*/false}},
+                      {"ignore_blocked", /*larger_is_finer=*/false},
+                      {"max_over_directions", /*larger_is_finer=*/false}},
             .finest = {{"binary_steps", 32},
                        {"directions", 64},
                        {"exact_zero_radius", 1},
                        {"error_allowed", 0},
-                       {"ignore_blocked", 0}},
+                       {"ignore_blocked", 0},
+                       {"max_over_directions", 0}},
             .accuracy = "the crossing in a step of at most one safety radius (255 texels), to "
                         "within that step / 2^(binary_steps + 1): safe radii hold one crossing "
                         "per step",
@@ -101,6 +110,7 @@ class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
     o.directions = int(param("directions"));
     o.max_radius = int(param("max_radius"));
     o.ignore_blocked = param("ignore_blocked") != 0;
+    o.max_over_directions = param("max_over_directions") != 0;
     radii_ = cached_safety_radii(map, o);
     if (texture_) glDeleteTextures(1, &texture_);
     glCreateTextures(GL_TEXTURE_2D, 1, &texture_);

@@ -257,9 +257,11 @@ SafetyRadii compute_unblocked(const ReliefMap& map, const SafetyRadiusOptions& o
   SafetyRadii out;
   out.width = W;
   out.height = H;
-  out.radius.assign(size_t(W) * H, uint8_t(cap));
+  out.radius.assign(size_t(W) * H, o.max_over_directions ? uint8_t(0) : uint8_t(cap));
   for (const auto& r : per_direction)
-    for (size_t i = 0; i < r.size(); ++i) out.radius[i] = std::min(out.radius[i], r[i]);
+    for (size_t i = 0; i < r.size(); ++i)
+      out.radius[i] = o.max_over_directions ? std::max(out.radius[i], r[i])
+                                            : std::min(out.radius[i], r[i]);
   return out;
 }
 
@@ -276,8 +278,9 @@ SafetyRadii compute_conservative(const ReliefMap& map, const SafetyRadiusOptions
       [&](size_t begin, size_t end) {
         for (size_t idx = begin; idx < end; ++idx) {
           const int i = int(idx % map.width), j = int(idx / map.width);
-          int radius = cap;
-          for (int d = 0; d < o.directions && radius > 0; ++d) {
+          int combined = o.max_over_directions ? 0 : cap;  // over the directions
+          for (int d = 0; d < o.directions && (o.max_over_directions || combined > 0); ++d) {
+            int radius = o.max_over_directions ? cap : combined;  // this direction's
             const double theta = two_pi * (d + 0.5) / o.directions;
             const double cx = std::cos(theta), cy = std::sin(theta);
             const bool major_x = std::abs(cx) >= std::abs(cy);
@@ -298,8 +301,9 @@ SafetyRadii compute_conservative(const ReliefMap& map, const SafetyRadiusOptions
               const double s = scan_profile(height, limit, o.step, o.error_allowed);
               if (std::isfinite(s)) radius = std::min(radius, int(std::ceil(s)) - 1);
             }
+            combined = o.max_over_directions ? std::max(combined, radius) : radius;
           }
-          out.radius[idx] = uint8_t(std::clamp(radius, 0, 255));
+          out.radius[idx] = uint8_t(std::clamp(combined, 0, 255));
         }
       },
       64);
@@ -326,9 +330,9 @@ SafetyRadii compute_safety_radii(const ReliefMap& map, const SafetyRadiusOptions
 SafetyRadii cached_safety_radii(const ReliefMap& map, const SafetyRadiusOptions& o) {
   constexpr int kAlgorithmVersion = 3;  // bump when compute_safety_radii changes its answers
   char options[256];
-  std::snprintf(options, sizeof options, "v%d|%d|%d|%.9g|%d|%.9g|%d|", kAlgorithmVersion,
+  std::snprintf(options, sizeof options, "v%d|%d|%d|%.9g|%d|%.9g|%d|%d|", kAlgorithmVersion,
                 o.directions, o.starts, o.step, effective_max_radius(map, o), o.error_allowed,
-                int(o.ignore_blocked));
+                int(o.ignore_blocked), int(o.max_over_directions));
   return cached_precompute("safety_radius", options, map.width, map.height, map.content_hash(),
                            &SafetyRadii::radius, [&] { return compute_safety_radii(map, o); });
 }

@@ -21,6 +21,10 @@ struct SafetyRadiusOptions {
   // are ignored (the search never stands on such a ray). false = conservative radii that
   // hold for every ray above the texel, blocked or not (smaller, never unsafe).
   bool ignore_blocked = true;
+  // Section 3.5 in its own words: "for each direction, we compute the safety radius and keep the
+  // maximum over all directions" — a radius then safe for one direction only. false (the
+  // default) keeps the minimum, safe for every sampled direction.
+  bool max_over_directions = false;
 };
 
 // The cap options.max_radius means for a map (0 = min(255, larger side)).
