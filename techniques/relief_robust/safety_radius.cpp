@@ -260,8 +260,8 @@ SafetyRadii compute_unblocked(const ReliefMap& map, const SafetyRadiusOptions& o
   out.radius.assign(size_t(W) * H, o.max_over_directions ? uint8_t(0) : uint8_t(cap));
   for (const auto& r : per_direction)
     for (size_t i = 0; i < r.size(); ++i)
-      out.radius[i] = o.max_over_directions ? std::max(out.radius[i], r[i])
-                                            : std::min(out.radius[i], r[i]);
+      out.radius[i] =
+          o.max_over_directions ? std::max(out.radius[i], r[i]) : std::min(out.radius[i], r[i]);
   return out;
 }
 
