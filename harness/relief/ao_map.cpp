@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "core/elapsed.h"
+#include "core/fast_floor.h"
 #include "core/parallel.h"
 #include "core/precompute_cache.h"
 #include "relief/horizon_sweep.h"
@@ -20,13 +21,6 @@ int floor_mod(long a, int n) {
   if (a >= 0 && a < n) return int(a);
   const long r = a % n;
   return int(r < 0 ? r + n : r);
-}
-
-// std::floor without the library call (not inlined without SSE4.1): the same value for every
-// coordinate the march reaches (|x| far below 2^52).
-double floor_of(double x) {
-  const double t = double(long(x));
-  return t > x ? t - 1.0 : t;
 }
 
 // Heights in texel units (top = height_texels) with a pyramid of block maxima, for a horizon
@@ -74,7 +68,7 @@ class HeightPyramid {
   // Bilinear sample at texel coordinates (texel centre i at i), wrapping like GL_REPEAT; the
   // same arithmetic as sampling the map itself.
   double sample(double x, double y) const {
-    const double fx = floor_of(x), fy = floor_of(y);
+    const double fx = floor_fast(x), fy = floor_fast(y);
     const int x0 = floor_mod(long(fx), w_), y0 = floor_mod(long(fy), h_);
     const double a = x - fx, b = y - fy;
     const double top = at(x0, y0) * (1 - a) + at(x0 + 1, y0) * a;
@@ -86,10 +80,10 @@ class HeightPyramid {
   // x0 <= x1, y0 <= y1, each side spanning fewer than 2^level - 1 texels) can take: the
   // maximum over the level's blocks the box's texels fall in (at most 2 x 2 of them).
   float box_max(double x0, double x1, double y0, double y1, int level) const {
-    const long fx = long(floor_of(x0)), fy = long(floor_of(y0));
+    const long fx = long(floor_fast(x0)), fy = long(floor_fast(y0));
     const int lx = floor_mod(fx, w_), ly = floor_mod(fy, h_);
-    const int hx = lx + int(long(floor_of(x1)) - fx) + 1;  // + 1: the bilinear neighbour
-    const int hy = ly + int(long(floor_of(y1)) - fy) + 1;
+    const int hx = lx + int(long(floor_fast(x1)) - fx) + 1;  // + 1: the bilinear neighbour
+    const int hy = ly + int(long(floor_fast(y1)) - fy) + 1;
     const std::vector<float>& m = levels_[level];
     const int stride = sizes_[level].x;
     float best = m[size_t(ly >> level) * stride + (lx >> level)];

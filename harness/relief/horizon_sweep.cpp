@@ -4,6 +4,7 @@
 #include <cmath>
 #include <glm/vec2.hpp>
 
+#include "core/fast_floor.h"
 #include "core/parallel.h"
 
 namespace rl {
@@ -16,15 +17,11 @@ double wrapped(double x, int n) {
   return x;
 }
 
-// std::floor and std::ceil without the library call (not inlined without SSE4.1), for |x| far
-// below 2^31.
 int floor_of(float x) {
-  const int t = int(x);
-  return float(t) > x ? t - 1 : t;
+  return int(floor_fast(x));
 }
 int ceil_of(float x) {
-  const int t = int(x);
-  return float(t) < x ? t + 1 : t;
+  return int(ceil_fast(x));
 }
 
 // The lines of one azimuth in the frame (s along it, t across it): line j lies at t = t0 + j,
@@ -60,6 +57,14 @@ void strip_extent(const LineFrame& f, float w1, float h1, float ta, float tb, fl
       hi = std::max(hi, s);
     }
   }
+}
+
+// The texel centres 0 .. n - 1 within the span of four coordinates (with a margin for rounding:
+// the partition itself is decided by slot_of).
+glm::ivec2 centres_within(const float v[4], int n) {
+  const float lo = std::min(std::min(v[0], v[1]), std::min(v[2], v[3]));
+  const float hi = std::max(std::max(v[0], v[1]), std::max(v[2], v[3]));
+  return {std::max(0, ceil_of(lo - 1e-3f)), std::min(n - 1, floor_of(hi + 1e-3f))};
 }
 
 // One line of a bundle: its samples (from the bundle's first k on) and the upper hull of those
@@ -155,8 +160,8 @@ void sweep_bundle(const TiledHeights& g, const LineFrame& f, const HorizonSweepO
   float lo, hi;
   strip_extent(f, w1, h1, float(f.t0 + first_line), float(f.t0 + first_line + strips), lo, hi);
   if (lo > hi) return;  // the strips miss the map
-  const int k_first = int(std::floor(lo + float(o.near_steps))) - f.s0 - 1;
-  const int k_texels = int(std::ceil(hi + float(o.near_steps))) - f.s0 + 1;
+  const int k_first = floor_of(lo + float(o.near_steps)) - f.s0 - 1;
+  const int k_texels = ceil_of(hi + float(o.near_steps)) - f.s0 + 1;
   const int k_last = k_texels + o.reach;
   // Each strip's own stretch of k holding texels.
   std::vector<glm::ivec2> strip_k(static_cast<size_t>(strips));
@@ -195,18 +200,9 @@ void sweep_bundle(const TiledHeights& g, const LineFrame& f, const HorizonSweepO
       const float t = float(f.t0 + first_line + i);
       const float xs[4] = {f.x_at(S - 1, t), f.x_at(S, t), f.x_at(S - 1, t + 1), f.x_at(S, t + 1)};
       const float ys[4] = {f.y_at(S - 1, t), f.y_at(S, t), f.y_at(S - 1, t + 1), f.y_at(S, t + 1)};
-      const int x0 =
-          std::max(0, ceil_of(std::min(std::min(xs[0], xs[1]), std::min(xs[2], xs[3])) - 1e-3f));
-      const int x1 =
-          std::min(g.width() - 1,
-                   floor_of(std::max(std::max(xs[0], xs[1]), std::max(xs[2], xs[3])) + 1e-3f));
-      const int y0 =
-          std::max(0, ceil_of(std::min(std::min(ys[0], ys[1]), std::min(ys[2], ys[3])) - 1e-3f));
-      const int y1 =
-          std::min(g.height() - 1,
-                   floor_of(std::max(std::max(ys[0], ys[1]), std::max(ys[2], ys[3])) + 1e-3f));
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) {
+      const glm::ivec2 xr = centres_within(xs, g.width()), yr = centres_within(ys, g.height());
+      for (int y = yr.x; y <= yr.y; ++y)
+        for (int x = xr.x; x <= xr.y; ++x) {
           const TexelSlot p = slot_of(f, o.near_steps, x, y);
           if (p.j != first_line + i || p.k != k) continue;
           tan_out[size_t(y) * g.width() + size_t(x)] =

@@ -9,6 +9,7 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include "core/fast_floor.h"
 #include "core/parallel.h"
 #include "core/precompute_cache.h"
 #include "relief/min_depth_pyramid.h"
@@ -33,14 +34,8 @@ struct DepthSampler {
   int wrap_x(int x) const { return pow2 ? x & (w - 1) : ((x % w) + w) % w; }
   int wrap_y(int y) const { return pow2 ? y & (h - 1) : ((y % h) + h) % h; }
   float at(int x, int y) const { return d[size_t(wrap_y(y)) * w + wrap_x(x)]; }
-  // std::floor's value without its library call (not inlined without SSE4.1), for the
-  // coordinates a scan reaches (|X| far below 2^23).
-  static float floor_of(float X) {
-    const float t = float(int(X));
-    return t > X ? t - 1.0f : t;
-  }
   float operator()(float X, float Y) const {
-    const float fx = floor_of(X), fy = floor_of(Y);
+    const float fx = floor_fast(X), fy = floor_fast(Y);
     const int x0 = wrap_x(int(fx)), x1 = wrap_x(int(fx) + 1);
     const size_t r0 = size_t(wrap_y(int(fy))) * w, r1 = size_t(wrap_y(int(fy) + 1)) * w;
     const float ax = X - fx, ay = Y - fy;
@@ -235,7 +230,7 @@ ConeMap compute_cone_map(const ReliefMap& map, const ConeMapOptions& o) {
                 skipped[k] = 0;
                 resume[k] = n + 1;
                 // Step over the coarsest node from here on that cannot narrow the cone.
-                const int cx = int(DepthSampler::floor_of(X)), cy = int(DepthSampler::floor_of(Y));
+                const int cx = int(floor_fast(X)), cy = int(floor_fast(Y));
                 int skip_level = -1;
                 for (int l = finest; l <= coarsest; ++l) {
                   if (float(n) < best_steps * (apex - node_min(k, l, cx, cy))) break;
