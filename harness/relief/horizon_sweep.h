@@ -7,8 +7,10 @@
 // A texel centre lies between two lines. Its horizon is exact over its first `near_steps`
 // samples (bilinear, one texel apart along its own ray, as the per-texel march takes them);
 // beyond them it comes from the tangents from the texel's own point to the two lines' hulls,
-// interpolated across the lines. Lines are swept in bundles of 8 in lockstep, so that they read
-// the same cache lines, and each texel is resolved while the hulls it needs are live. What the
+// interpolated across the lines. Lines are swept in bundles of 8 in lockstep and each texel is
+// resolved while the hulls it needs are live, so no azimuth's line samples are stored whole
+// (about 30 MB at 1024^2); it was not faster than storing them and looking texels up after
+// (4.7 against 4.5 s for a 1024^2 map on 2 cores). What the
 // interpolation costs in accuracy against the per-texel march is measured in
 // tests/test_ambient_occlusion.cpp.
 #include <cstddef>
