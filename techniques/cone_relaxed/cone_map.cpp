@@ -6,13 +6,14 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <numeric>
+#include <thread>
 
 #include <glm/gtc/constants.hpp>
 
 #include "core/fast_floor.h"
 #include "core/parallel.h"
 #include "core/precompute_cache.h"
-#include "relief/min_depth_pyramid.h"
 
 namespace rl {
 namespace {
@@ -45,59 +46,191 @@ struct DepthSampler {
   }
 };
 
-// For each scan direction (in texel units), a min-depth quadtree over levels finest..coarsest
-// of only the cells where the bilinear surface may descend along that direction, widened by one
-// cell: a segment [n - 1, n] of the scan (one texel long) on which the depth rises has a point
-// of positive slope along the direction within one cell of either end. Elsewhere: +infinity.
-std::vector<std::vector<std::vector<float>>> descending_quadtrees(
-    const ReliefMap& map, const MinDepthPyramid& pyramid, const std::vector<glm::vec2>& steps,
-    int finest, int coarsest) {
-  const int w = map.width, h = map.height;
-  std::vector<std::vector<std::vector<float>>> out(steps.size());
-  parallel_for(
-      steps.size(),
-      [&](size_t begin, size_t end) {
-        std::vector<uint8_t> flag(size_t(w) * h), wide(size_t(w) * h);
-        for (size_t k = begin; k < end; ++k) {
-          const glm::vec2 st = steps[k];
-          for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) {
-              const float d00 = map.depth_texel(x, y), d10 = map.depth_texel(x + 1, y),
-                          d01 = map.depth_texel(x, y + 1), d11 = map.depth_texel(x + 1, y + 1);
-              // The patch's slopes d/dX in {d10 - d00, d11 - d01}, d/dY in {d01 - d00,
-              // d11 - d10}: the slope along st is largest at one pair of them.
-              const float gx =
-                  st.x > 0 ? std::max(d10 - d00, d11 - d01) : std::min(d10 - d00, d11 - d01);
-              const float gy =
-                  st.y > 0 ? std::max(d01 - d00, d11 - d10) : std::min(d01 - d00, d11 - d10);
-              flag[size_t(y) * w + x] = st.x * gx + st.y * gy > -1e-7f;
-            }
-          for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) {
-              uint8_t any = 0;
-              for (int dy = -1; dy <= 1 && !any; ++dy)
-                for (int dx = -1; dx <= 1 && !any; ++dx)
-                  any = flag[size_t((y + dy + h) % h) * w + size_t((x + dx + w) % w)];
-              wide[size_t(y) * w + x] = any;
-            }
-          std::vector<std::vector<float>>& levels = out[k];
-          levels.resize(size_t(coarsest - finest + 1));
-          for (int l = finest; l <= coarsest; ++l) {
-            const int lw = w >> l, lh = h >> l, span = 1 << l;
-            std::vector<float>& nodes = levels[size_t(l - finest)];
-            nodes.assign(size_t(lw) * lh, std::numeric_limits<float>::infinity());
-            for (int y = 0; y < lh * span; ++y)
-              for (int x = 0; x < lw * span; ++x)
-                if (wide[size_t(y) * w + x]) {
-                  float& m = nodes[size_t(y >> l) * lw + size_t(x >> l)];
-                  m = std::min(m, pyramid.level[0][size_t(y) * w + x]);
-                }
-          }
-        }
-      },
-      1);
+}  // namespace
+
+std::vector<ConeScanDirection> cone_scan_directions(int at_least) {
+  for (int m = 1;; ++m) {
+    std::vector<ConeScanDirection> dirs;
+    for (int q = -m; q <= m; ++q)
+      for (int p = -m; p <= m; ++p)
+        if ((p || q) && std::gcd(std::abs(p), std::abs(q)) == 1)
+          dirs.push_back({p, q, std::max(std::abs(p), std::abs(q))});
+    if (int(dirs.size()) < at_least && m < 16) continue;
+    // Axes and diagonals first: their lines are cheapest, and the cones they find bound the
+    // scans of the directions after them.
+    std::stable_sort(
+        dirs.begin(), dirs.end(),
+        [](const ConeScanDirection& a, const ConeScanDirection& b) { return a.sub < b.sub; });
+    return dirs;
+  }
+}
+
+namespace {
+
+// The texels of every line along (p, q), each a cycle of the map's wrap (every texel lies on
+// exactly one): line l is order[start[l] .. start[l + 1]).
+struct Lines {
+  std::vector<uint32_t> order;
+  std::vector<size_t> start;
+};
+
+Lines lines_along(int w, int h, int p, int q) {
+  Lines out;
+  out.order.reserve(size_t(w) * h);
+  std::vector<uint8_t> seen(size_t(w) * h);
+  const int dx = ((p % w) + w) % w, dy = ((q % h) + h) % h;
+  for (int y0 = 0; y0 < h; ++y0)
+    for (int x0 = 0; x0 < w; ++x0) {
+      if (seen[size_t(y0) * w + x0]) continue;
+      out.start.push_back(out.order.size());
+      int x = x0, y = y0;
+      do {
+        seen[size_t(y) * w + x] = 1;
+        out.order.push_back(uint32_t(size_t(y) * w + x));
+        x += dx;
+        if (x >= w) x -= w;
+        y += dy;
+        if (y >= h) y -= h;
+      } while (x != x0 || y != y0);
+    }
+  out.start.push_back(out.order.size());
   return out;
 }
+
+// One line's samples, unrolled past its end by the reach of the widest cone so every apex sees
+// as far ahead as its cone can: sample k is texel texels[k / sub mod count] moved k mod sub
+// sub-steps along the line. A sub-step lands on the texel column (or row) `whole` texels over
+// and `part` of the way to the next row (or column): one linear blend of two texels, which is
+// what the GPU's bilinear filter gives there.
+void sample_line(const DepthSampler& depth, const ConeScanDirection& dir, const uint32_t* texels,
+                 size_t count, size_t reach, std::vector<float>& h) {
+  const size_t samples = count * size_t(dir.sub) + reach;
+  h.resize(samples);
+  // Per sub-step: the texel it starts from, relative to the line's texel, and how far along.
+  struct SubStep {
+    int dx, dy;
+    float part;
+  };
+  const bool x_major = std::abs(dir.p) == dir.sub;
+  std::vector<SubStep> steps(size_t(dir.sub));
+  for (int s = 0; s < dir.sub; ++s) {
+    const int along = s * (x_major ? dir.q : dir.p);  // across the major axis, in 1 / sub texels
+    const int whole = along >= 0 ? along / dir.sub : -((-along + dir.sub - 1) / dir.sub);
+    const int major = s * (x_major ? (dir.p > 0 ? 1 : -1) : (dir.q > 0 ? 1 : -1));
+    steps[size_t(s)] = {x_major ? major : whole, x_major ? whole : major,
+                        float(along - whole * dir.sub) / float(dir.sub)};
+  }
+  const int next_x = x_major ? 0 : 1, next_y = x_major ? 1 : 0;  // the other texel of a blend
+  size_t k = 0;
+  for (size_t c = 0; k < samples; c = c + 1 == count ? 0 : c + 1) {
+    const int tx = int(texels[c] % uint32_t(depth.w)), ty = int(texels[c] / uint32_t(depth.w));
+    h[k++] = depth.d[texels[c]];
+    for (int s = 1; s < dir.sub && k < samples; ++s, ++k) {
+      const SubStep& st = steps[size_t(s)];
+      const float a = depth.at(tx + st.dx, ty + st.dy);
+      const float b = depth.at(tx + st.dx + next_x, ty + st.dy + next_y);
+      h[k] = a + (b - a) * st.part;
+    }
+  }
+}
+
+// Conservative cones along one line: every sample above the apex narrows it. The steepest rise
+// from the apex to any sample ahead touches the upper hull (in position, -depth) of the samples
+// ahead; swept from the far end with the hull as a stack, each apex finds it in amortised
+// constant time (Graham's scan). Returns, per texel of the line, the least samples across per
+// unit of depth rise (+infinity when nothing ahead is higher).
+void conservative_along_line(const std::vector<float>& h, int sub, size_t apexes,
+                             std::vector<glm::dvec2>& hull, std::vector<float>& across) {
+  hull.clear();
+  across.assign(apexes, std::numeric_limits<float>::infinity());
+  for (size_t k = h.size(); k-- > 0;) {
+    const glm::dvec2 here(double(k), -double(h[k]));
+    while (hull.size() >= 2) {
+      const glm::dvec2 u = hull[hull.size() - 1] - here, v = hull[hull.size() - 2] - here;
+      if (u.x * v.y - u.y * v.x < 0) break;  // the nearer point is above the line to the farther
+      hull.pop_back();
+    }
+    if (k < apexes * size_t(sub) && k % size_t(sub) == 0 && !hull.empty()) {
+      const glm::dvec2 to = hull.back() - here;
+      if (to.y > 0) across[k / size_t(sub)] = float(to.x / to.y);
+    }
+    hull.push_back(here);
+  }
+}
+
+// Relaxed cones along one line. Segment k (samples k - 1 to k, depth linear on it) keeps the cone
+// out of both its ends when the ray from the top point above the apex leaves the surface there:
+// when h / n rises across it, n the distance from the apex in samples. Scanned forward per apex
+// until nothing farther can narrow the cone, stepping over aligned blocks of segments whose
+// highest candidate end cannot (`block_min[l]`: per block of 2^l segments, the least depth of the
+// near end of those that descend along the line; only a descending segment can pass the test).
+// Depth by which h / n must rise across a segment for the relaxed test to count it.
+constexpr float kRelaxedTie = 1e-6f;
+
+struct RelaxedLineScan {
+  std::vector<std::vector<float>> block_min;
+
+  void build(const std::vector<float>& h) {
+    const float none = std::numeric_limits<float>::infinity();
+    size_t levels = 1;
+    while ((size_t(1) << levels) < h.size() && levels < 16) ++levels;
+    block_min.resize(levels);  // each level's storage is reused from line to line
+    block_min[0].assign(h.size(), none);
+    for (size_t k = 1; k < h.size(); ++k)
+      if (h[k] > h[k - 1]) block_min[0][k] = h[k - 1];
+    for (size_t l = 1; l < levels; ++l) {
+      const std::vector<float>& finer = block_min[l - 1];
+      std::vector<float>& coarser = block_min[l];
+      coarser.assign((finer.size() + 1) / 2, none);
+      for (size_t b = 0; b + 1 < finer.size(); b += 2)
+        coarser[b / 2] = std::min(finer[b], finer[b + 1]);
+      if (finer.size() % 2) coarser.back() = finer.back();
+    }
+  }
+
+  // The least samples across per unit of depth rise for the apex at sample i, from `widest`.
+  // `hint` is a segment that narrowed a neighbour's cone (0 for none); tried first, it narrows
+  // the bound before the scan starts, so far more blocks are stepped over. On return: the
+  // segment that narrowed this cone most (unchanged if none did).
+  float across(const std::vector<float>& h, size_t i, float widest, size_t& hint) const {
+    const float apex = h[i];
+    float best = widest;
+    if (hint >= i + 2 && hint < h.size()) narrow(h, i, hint, apex, best, hint);
+    const int top = int(block_min.size()) - 1;
+    for (size_t k = i + 2; k < h.size() && float(k - 1 - i) < best * apex;) {
+      // Step over the largest block starting at k that cannot narrow the cone.
+      const float near = float(k - 1 - i);  // no candidate end in a block at k is nearer
+      int l = std::min(top, __builtin_ctzll(k));
+      for (; l >= 1; --l) {
+        const float m = block_min[size_t(l)][k >> l];
+        if (m >= apex || near >= best * (apex - m)) break;
+      }
+      if (l >= 1) {
+        k += size_t(1) << l;
+        continue;
+      }
+      narrow(h, i, k, apex, best, hint);
+      ++k;
+    }
+    return best;
+  }
+
+  // Segment k's constraint on the apex at sample i (depth `apex`): both its ends, if the ray from
+  // the top point leaves the surface across it (h / n rises by more than kTie: a surface along
+  // the ray through the top point, h / n constant, is not left, however floats round the blend).
+  static void narrow(const std::vector<float>& h, size_t i, size_t k, float apex, float& best,
+                     size_t& narrowest) {
+    const float hk = h[k], hp = h[k - 1];
+    const float n = float(k - i);
+    if (!(hk * (n - 1) > (hp + kRelaxedTie) * n)) return;
+    const float at_end = hk < apex ? n / (apex - hk) : best;
+    const float at_start = hp < apex ? (n - 1) / (apex - hp) : best;
+    if (std::min(at_end, at_start) < best) {
+      best = std::min(at_end, at_start);
+      narrowest = k;
+    }
+  }
+};
 
 // The scan samples each direction at whole steps from the texel's centre, so off its axes it
 // never lands on a texel centre: the diagonal neighbour lies at sqrt 2, between steps 1 and 2,
@@ -105,7 +238,11 @@ std::vector<std::vector<std::vector<float>>> descending_quadtrees(
 // surface point, so every texel centre within kNearTexels is held out exactly as well (the
 // brute-force test found the misses only at the diagonal neighbours).
 void hold_out_near_texel_centres(const ReliefMap& map, int side, std::vector<float>& ratio) {
-  constexpr int kNearTexels = 3;
+  constexpr int kNearTexels = 3, kSpan = 2 * kNearTexels + 1;
+  double distance[kSpan * kSpan];
+  for (int dy = -kNearTexels; dy <= kNearTexels; ++dy)
+    for (int dx = -kNearTexels; dx <= kNearTexels; ++dx)
+      distance[(dy + kNearTexels) * kSpan + dx + kNearTexels] = std::hypot(dx, dy);
   parallel_for(
       ratio.size(),
       [&](size_t begin, size_t end) {
@@ -116,11 +253,53 @@ void hold_out_near_texel_centres(const ReliefMap& map, int side, std::vector<flo
             for (int dx = -kNearTexels; dx <= kNearTexels; ++dx) {
               const double rise = apex - map.depth_texel(x + dx, y + dy);
               if (rise <= 0) continue;  // not above the apex (the apex itself included)
-              ratio[i] = std::min(ratio[i], float(std::hypot(dx, dy) / (rise * side)));
+              ratio[i] = std::min(
+                  ratio[i], float(distance[size_t((dy + kNearTexels) * kSpan + dx + kNearTexels)] /
+                                  (rise * side)));
             }
         }
       },
       256);
+}
+
+// Narrows `ratio` (per texel, per longer side) by the cones found along one direction's lines.
+void narrow_along_direction(const DepthSampler& depth, const ConeScanDirection& dir,
+                            const ConeMapOptions& o, std::vector<float>& ratio) {
+  const Lines lines = lines_along(depth.w, depth.h, dir.p, dir.q);
+  const float side = float(std::max(depth.w, depth.h));
+  const float widest = float(o.max_ratio) * side / dir.step_texels();  // samples per depth
+  std::vector<float> h, across;
+  std::vector<glm::dvec2> hull;
+  RelaxedLineScan scan;
+  for (size_t l = 0; l + 1 < lines.start.size(); ++l) {
+    const uint32_t* texels = lines.order.data() + lines.start[l];
+    const size_t count = lines.start[l + 1] - lines.start[l];
+    // The cone is the narrowest over directions, so only a cone narrower than the directions
+    // before found matters: that bound, times the apex's depth, is as far as anything can
+    // narrow it. Unroll the line that far past its end.
+    float reach = 0;
+    for (size_t t = 0; t < count; ++t)
+      reach = std::max(
+          reach, std::min(widest, ratio[texels[t]] * side / dir.step_texels()) * depth.d[texels[t]]);
+    sample_line(depth, dir, texels, count, size_t(std::ceil(reach)) + 2, h);
+    if (o.relaxed) {
+      scan.build(h);
+      across.resize(count);
+      size_t hint = 0;  // the segment that narrowed the next texel's cone along the line
+      for (size_t t = count; t-- > 0;) {
+        const size_t i = t * size_t(dir.sub);
+        const float bound = std::min(widest, ratio[texels[t]] * side / dir.step_texels());
+        const float found = h[i] > 0.0f ? scan.across(h, i, bound, hint) : bound;
+        across[t] = found < bound ? found : std::numeric_limits<float>::infinity();
+      }
+    } else {
+      conservative_along_line(h, dir.sub, count, hull, across);
+    }
+    for (size_t t = 0; t < count; ++t)  // +infinity: not narrowed here
+      if (across[t] < widest)
+        ratio[texels[t]] =
+            std::min(ratio[texels[t]], float(double(across[t]) * dir.step_texels() / side));
+  }
 }
 
 }  // namespace
@@ -146,123 +325,35 @@ ConeMap compute_cone_map(const ReliefMap& map, const ConeMapOptions& o) {
   ConeMap out;
   out.width = map.width;
   out.height = map.height;
-  out.ratio.assign(size_t(map.width) * map.height, float(o.max_ratio));
-  // One step is one texel (texels are square in the world); ratios are stored per longer side.
-  const int side = std::max(map.width, map.height);
-  std::vector<glm::vec2> step_texels(size_t(o.directions));
-  for (int k = 0; k < o.directions; ++k) {
-    const double a = 2.0 * glm::pi<double>() * k / o.directions;
-    step_texels[size_t(k)] = glm::vec2(float(std::cos(a)), float(std::sin(a)));
-  }
-  // Regions that cannot narrow the cone are stepped over: a node of a min-depth quadtree
-  // whose highest point h_min gives n / (apex - h_min) >= the ratio found (in steps) for the
-  // nearest sample n in it holds no constraint (relief/min_depth_pyramid.h). Relaxed cones only
-  // count where the surface descends along the scan, so each direction has its own quadtree
-  // over just those cells.
-  const MinDepthPyramid pyramid = build_min_depth_pyramid(map, 0.0f);
-  const int finest = std::min(2, pyramid.levels() - 1);
-  const int coarsest = std::min(5, pyramid.levels() - 1);
-  const std::vector<std::vector<std::vector<float>>> descending =
-      o.relaxed ? descending_quadtrees(map, pyramid, step_texels, finest, coarsest)
-                : std::vector<std::vector<std::vector<float>>>();
-  auto node_min = [&](size_t k, int level, int cx, int cy) {
-    const int w = map.width >> level, h = map.height >> level;
-    int nx = cx >> level, ny = cy >> level;
-    if (depth.pow2) {
-      nx &= w - 1;
-      ny &= h - 1;
-    } else {
-      nx = ((nx % w) + w) % w;
-      ny = ((ny % h) + h) % h;
-    }
-    const std::vector<float>& nodes =
-        o.relaxed ? descending[k][size_t(level - finest)] : pyramid.level[size_t(level)];
-    return nodes[size_t(ny) * w + nx];
-  };
+  // Directions in as many interleaved groups as cores, each narrowing its own copy of the map
+  // (a direction's lines cover every texel once, so they are not split between threads), then
+  // the narrowest over groups.
+  const std::vector<ConeScanDirection> dirs = cone_scan_directions(o.directions);
+  const size_t groups =
+      std::min<size_t>(dirs.size(), std::max(1u, std::thread::hardware_concurrency()));
+  std::vector<std::vector<float>> narrowed(groups);
   parallel_for(
-      out.ratio.size(),
+      groups,
       [&](size_t begin, size_t end) {
-        const size_t directions = step_texels.size();
-        std::vector<float> last_h(directions);  // depth at a direction's last sample
-        std::vector<int> resume(directions);    // next step a direction samples
-        std::vector<char> skipped(directions);  // its last step was a skip
-        for (size_t i = begin; i < end; ++i) {
-          const int x = int(i % size_t(map.width)), y = int(i / size_t(map.width));
-          const float apex = depth.at(x, y);
-          if (apex <= 0.0f) continue;  // at the top: no ray above to step for
-          // In steps: ratio = n / (side * (apex - h)); stop at n >= best * apex * side.
-          const float scale = float(side);
-          float best_steps = float(o.max_ratio) * scale;  // best ratio * side
-          // All directions advance together, one step at a time, so the scan ends at the
-          // distance of the nearest constraint over every direction (a ring search), not at
-          // each direction's own.
-          std::fill(resume.begin(), resume.end(), 1);
-          std::fill(skipped.begin(), skipped.end(), 0);
-          // Loop while the nearer end of the segment [n - 1, n] could still narrow the cone.
-          // In blocks of kChunk steps: every direction scans the block, then the bound is
-          // checked again (a ring search at a coarser grain, without a per-step pass over all
-          // directions).
-          constexpr int kChunk = 8;
-          for (int n0 = 1; float(n0 - 1) < best_steps * apex; n0 += kChunk) {
-            for (size_t k = 0; k < directions; ++k)
-              for (int n = std::max(n0, resume[k]);
-                   n < n0 + kChunk && float(n - 1) < best_steps * apex;
-                   n = std::max(n + 1, resume[k])) {
-                const glm::vec2 st = step_texels[k];
-                const float X = float(x) + st.x * float(n), Y = float(y) + st.y * float(n);
-                const float h = depth(X, Y);
-                if (!o.relaxed) {
-                  if (h < apex) best_steps = std::min(best_steps, float(n) / (apex - h));
-                } else if (n >= 2) {
-                  // The segment [n - 1, n], with h linear on it: the ray from the top point
-                  // through (s, h(s)) leaves the surface there iff h / s rises, i.e. iff
-                  // h_n / n > h_{n-1} / (n - 1), and then on the whole segment, so the cone must
-                  // exclude all of it; x / (apex - h) is monotone on it, least at an end.
-                  const float h_prev =
-                      skipped[k] ? depth(X - st.x, Y - st.y) : last_h[k];  // resumed: re-read
-                  if (h * float(n - 1) > h_prev * float(n)) {
-                    if (h < apex) best_steps = std::min(best_steps, float(n) / (apex - h));
-                    if (h_prev < apex)
-                      best_steps = std::min(best_steps, float(n - 1) / (apex - h_prev));
-                  }
-                }
-                last_h[k] = h;
-                skipped[k] = 0;
-                resume[k] = n + 1;
-                // Step over the coarsest node from here on that cannot narrow the cone.
-                const int cx = int(floor_fast(X)), cy = int(floor_fast(Y));
-                int skip_level = -1;
-                for (int l = finest; l <= coarsest; ++l) {
-                  if (float(n) < best_steps * (apex - node_min(k, l, cx, cy))) break;
-                  skip_level = l;
-                }
-                if (skip_level < 0) continue;
-                const float lo_x = float((cx >> skip_level) << skip_level),
-                            lo_y = float((cy >> skip_level) << skip_level);
-                const float span = float(1 << skip_level);
-                float t_exit = 1e30f;
-                if (st.x > 0) t_exit = std::min(t_exit, (lo_x + span - X) / st.x);
-                if (st.x < 0) t_exit = std::min(t_exit, (lo_x - X) / st.x);
-                if (st.y > 0) t_exit = std::min(t_exit, (lo_y + span - Y) / st.y);
-                if (st.y < 0) t_exit = std::min(t_exit, (lo_y - Y) / st.y);
-                if (int(t_exit) >= 1) {
-                  resume[k] = n + 1 + int(t_exit);
-                  skipped[k] = 1;
-                }
-              }
-          }
-          out.ratio[i] = best_steps / scale;
+        for (size_t g = begin; g < end; ++g) {
+          narrowed[g].assign(size_t(map.width) * map.height, float(o.max_ratio));
+          for (size_t d = g; d < dirs.size(); d += groups)
+            narrow_along_direction(depth, dirs[d], o, narrowed[g]);
         }
       },
-      256);
-  if (!o.relaxed) hold_out_near_texel_centres(map, side, out.ratio);
+      1);
+  out.ratio = std::move(narrowed[0]);
+  for (size_t g = 1; g < groups; ++g)
+    for (size_t i = 0; i < out.ratio.size(); ++i)
+      out.ratio[i] = std::min(out.ratio[i], narrowed[g][i]);
+  if (!o.relaxed) hold_out_near_texel_centres(map, std::max(map.width, map.height), out.ratio);
   out.compute_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 
 ConeMap cached_cone_map(const ReliefMap& map, const ConeMapOptions& o) {
-  constexpr int kAlgorithmVersion = 3;  // bump when compute_cone_map changes its answers
+  constexpr int kAlgorithmVersion = 4;  // bump when compute_cone_map changes its answers
   char options[128];
   std::snprintf(options, sizeof options, "v%d|%d|%d|%.9g|", kAlgorithmVersion, int(o.relaxed),
                 o.directions, o.max_ratio);

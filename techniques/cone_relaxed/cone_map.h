@@ -18,6 +18,7 @@
 // texel one texel at a time (the surface sampled bilinearly, as the GPU sees it) and stopping
 // once no farther point could narrow the cone (distance / apex depth >= the ratio found):
 // O(texels x directions x ratio x depth x side) rather than the naive O(texels^2).
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -25,9 +26,23 @@
 
 namespace rl {
 
+// A direction the precompute scans: the primitive step (p, q) from one texel centre to the next
+// on its line, sampled `sub` = max(|p|, |q|) times per step, so every sample lies on a texel
+// column (|p| = sub) or row (|q| = sub) and is one linear blend of two texels. Every texel on a
+// line shares the line's samples: a direction costs one pass per line, not a scan per texel.
+struct ConeScanDirection {
+  int p, q, sub;
+  float step_texels() const { return float(std::hypot(p, q) / sub); }  // between samples
+};
+
+// Every primitive step with max(|p|, |q|) <= m, for the least m giving at least `at_least`
+// directions (8 at m = 1; 16, 32, 48, 80, 96, 144, 176, 224, 256 at m = 2 .. 10), cheapest first.
+// 32 (m = 3) leaves gaps of up to 18.4 degrees between directions, 80 (m = 5) up to 11.3.
+std::vector<ConeScanDirection> cone_scan_directions(int at_least);
+
 struct ConeMapOptions {
   bool relaxed = true;
-  int directions = 32;     // azimuths sampled over 360 degrees
+  int directions = 32;     // at least this many directions (cone_scan_directions)
   double max_ratio = 1.0;  // cap, texture units per unit of depth (GPU Gems 3 stores <= 1)
 };
 
