@@ -279,8 +279,8 @@ void narrow_along_direction(const DepthSampler& depth, const ConeScanDirection& 
     // narrow it. Unroll the line that far past its end.
     float reach = 0;
     for (size_t t = 0; t < count; ++t)
-      reach = std::max(
-          reach, std::min(widest, ratio[texels[t]] * side / dir.step_texels()) * depth.d[texels[t]]);
+      reach = std::max(reach, std::min(widest, ratio[texels[t]] * side / dir.step_texels()) *
+                                  depth.d[texels[t]]);
     sample_line(depth, dir, texels, count, size_t(std::ceil(reach)) + 2, h);
     if (o.relaxed) {
       scan.build(h);
