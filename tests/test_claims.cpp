@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "claims/claims.h"
+#include "claims/ledger.h"
 #include "core/atomic_write.h"
 #include "core/error.h"
 #include "support/test_support.h"
@@ -249,6 +250,102 @@ TEST(Claims, ClaimsAboutPicturesNameThemAndTheirFilesOrCommand) {
                       "[heat map](images/e.png)."),
             std::string::npos)
       << read_text(dir + "/README.md");
+}
+
+// The coverage ledger (claims/ledger.h): statuses come from the claims that list an item, and
+// every inconsistency is named with its file and line.
+const char* kPapers = R"(
+[[paper]]
+id = "p"
+cite = "A paper"
+[[paper.item]]
+id = "table1"
+what = "Table 1"
+[[paper.item]]
+id = "fig2"
+what = "Figure 2"
+gap = "only one view"
+[[paper.item]]
+id = "fig3"
+what = "Figure 3"
+gap = "no scene for it"
+[[paper.item]]
+id = "fps"
+what = "Absolute frame rates"
+not_reproducible = "a 2006 GPU"
+instead = "fetches per pixel"
+)";
+
+std::string results_with(const std::string& name, const std::string& papers,
+                         const std::string& items) {
+  const std::string results = test::scratch_dir(name);
+  std::filesystem::create_directories(results + "/one");
+  write(results + "/papers.toml", papers);
+  std::string claims = kClaims;
+  claims.insert(claims.find("verdict = "), items + "\n");
+  write(results + "/one/claims.toml", claims);
+  write(results + "/README.md", std::string("# R\n\n") + kLedgerBegin + "\n" + kLedgerEnd + "\n");
+  return results;
+}
+
+TEST(Ledger, StatusesComeFromTheClaimsThatListAnItem) {
+  const std::string results = results_with("ledger_ok", kPapers, R"(items = ["p/table1"]
+partly = ["p/fig2", "p/fps"])");
+  const Ledger ledger = build_ledger(results);
+  ASSERT_TRUE(ledger.problems.empty()) << ledger.problems.front();
+  ASSERT_EQ(ledger.rows.size(), 4u);
+  const std::vector<std::string> want = {"reproduced", "partial", "missing", "not_reproducible"};
+  for (size_t i = 0; i < want.size(); ++i) EXPECT_EQ(ledger.rows[i].status, want[i]) << i;
+  EXPECT_EQ(ledger.rows[0].claims, std::vector<std::string>{"one/exact-cheaper"});
+  EXPECT_EQ(ledger_csv(ledger).rfind("paper,item,status,folder,claims,partly_claims,what,note\n"
+                                     "p,table1,reproduced,one,one/exact-cheaper,,Table 1,\n",
+                                     0),
+            0u)
+      << ledger_csv(ledger);
+  EXPECT_NE(ledger_totals_markdown(ledger).find("| p | 4 | 1 | 1 | 1 | 1 |"), std::string::npos)
+      << ledger_totals_markdown(ledger);
+  // Written once, then checked clean; a claim that stops listing an item makes it stale.
+  std::string report;
+  EXPECT_EQ(ledger_command(results, results + "/README.md", false, report), 3) << report;
+  report.clear();
+  EXPECT_EQ(ledger_command(results, results + "/README.md", true, report), 0) << report;
+  report.clear();
+  EXPECT_EQ(ledger_command(results, results + "/README.md", false, report), 0) << report;
+  EXPECT_NE(read_text(results + "/README.md").find("| **all** | 4 | 1 | 1 | 1 | 1 |"),
+            std::string::npos);
+  const std::string claims = read_text(results + "/one/claims.toml");
+  write(results + "/one/claims.toml",
+        std::string(claims).replace(claims.find("items = [\"p/table1\"]"), 20, ""));
+  report.clear();
+  EXPECT_EQ(ledger_command(results, results + "/README.md", false, report), 1) << report;
+  EXPECT_NE(report.find("papers.toml:5: item p/table1: missing, and says nothing of why"),
+            std::string::npos)
+      << report;
+}
+
+TEST(Ledger, InconsistenciesAreNamed) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {R"(items = ["p/table1", "p/table9"])", "claim exact-cheaper: no item 'p/table9'"},
+      {R"(items = ["p/table1", "p/fig2"])",
+       "item p/fig2: reproduced by one/exact-cheaper, but "
+       "still says what is missing"},
+      {R"(items = ["p/table1", "p/fps"])", "item p/fps: cannot be reproduced here, yet"}};
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const Ledger ledger =
+        build_ledger(results_with("ledger_bad" + std::to_string(i), kPapers, cases[i].first));
+    ASSERT_EQ(ledger.problems.size(), 1u) << cases[i].first;
+    EXPECT_NE(ledger.problems[0].find(cases[i].second), std::string::npos) << ledger.problems[0];
+  }
+  std::string papers = kPapers;
+  papers.replace(papers.find("instead = \"fetches per pixel\""), 29, "");
+  try {
+    build_ledger(results_with("ledger_bad_papers", papers, ""));
+    ADD_FAILURE() << "accepted not_reproducible without instead";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("papers.toml:16: item 'fps': 'not_reproducible' needs"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

@@ -96,7 +96,8 @@ Claim parse_claim(const toml::node& n, const Src& src) {
   const toml::table* t = n.as_table();
   if (!t) fail(src.at(n), "each [[claim]] is a table");
   check_keys(*t,
-             {"id", "judges", "verdict", "text", "values", "check", "pictures", "pictures_command"},
+             {"id", "judges", "verdict", "text", "values", "check", "pictures", "pictures_command",
+              "items", "partly"},
              src, "[[claim]]");
   Claim c;
   c.where = src.at(n);
@@ -112,6 +113,15 @@ Claim parse_claim(const toml::node& n, const Src& src) {
     if (c.pictures.empty())
       fail(src.at(*p), "claim '" + c.id + "': 'pictures_command' makes the rows 'pictures' names");
   }
+  for (const char* key : {"items", "partly"})
+    if (const toml::node* list = t->get(key)) {
+      std::vector<std::string>& ids = std::string(key) == "items" ? c.items : c.partly;
+      ids = string_list(*list, src, key);
+      for (const std::string& id : ids)
+        if (id.find('/') == std::string::npos || id.front() == '/' || id.back() == '/')
+          fail(src.at(*list), "claim '" + c.id + "': " + key + " '" + id +
+                                  "' is not 'paper/item' (results/papers.toml names them)");
+    }
   if (!kVerdicts.count(c.verdict))
     fail(src.at(*t->get("verdict")), "claim '" + c.id + "': verdict '" + c.verdict +
                                          "' is not one of confirmed, partly confirmed, not "

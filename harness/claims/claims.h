@@ -20,6 +20,8 @@
 //   that = "ratio > 4"
 //   pictures = "scene=panel elevation_deg=45"        (if the text speaks of pictures)
 //   pictures_command = "scripts/reproduce.sh --images configs/papers/x.toml"
+//   items = ["baboud2006/fig12-error-allowed"]       (paper items it reproduces; `partly` = [...]
+//                                                      for those it covers in part)
 //
 // A filter's field=value pairs match a row's cells as numbers when both are numbers, else as
 // text (value "a|b" matches either); a value reads exactly one row unless it names an aggregate
@@ -57,6 +59,9 @@ struct Claim {
   // filter, as `where`), and the command that makes them where the folder does not commit them.
   // A text that speaks of pictures (describes_pictures) must name them.
   std::string pictures, pictures_command;
+  // The paper items it reproduces ("paper/item", as results/papers.toml names them) and those it
+  // covers only in part: the coverage ledger's input (claims/ledger.h).
+  std::vector<std::string> items, partly;
   std::string where;  // "claims.toml:LINE", for messages
 };
 

@@ -246,12 +246,32 @@ std::string pictures_markdown(const Claim& c, const ClaimResult& r) {
 
 }  // namespace
 
+namespace {
+
+// " Paper items: a, b (in part: c)." with each linked to its paper's section of the ledger.
+std::string items_markdown(const Claim& c) {
+  auto links = [](const std::vector<std::string>& ids) {
+    std::string out;
+    for (const std::string& id : ids)
+      out += std::string(out.empty() ? "" : ", ") + "[" + id + "](../LEDGER.md#" +
+             id.substr(0, id.find('/')) + ")";
+    return out;
+  };
+  if (c.items.empty() && c.partly.empty()) return "";
+  std::string md =
+      " Paper items: " + (c.items.empty() ? std::string("none in full") : links(c.items));
+  if (!c.partly.empty()) md += " (in part: " + links(c.partly) + ")";
+  return md + ".";
+}
+
+}  // namespace
+
 std::string claims_markdown(const ClaimsFile& file, const std::vector<ClaimResult>& results) {
   std::string md = std::string(kClaimsBegin) + "\n";
   for (size_t i = 0; i < file.claims.size(); ++i) {
     const Claim& c = file.claims[i];
     md += std::to_string(i + 1) + ". **" + c.judges + "** — *" + c.verdict + "*. " +
-          results[i].sentence + pictures_markdown(c, results[i]) + "\n";
+          results[i].sentence + pictures_markdown(c, results[i]) + items_markdown(c) + "\n";
   }
   return md + kClaimsEnd;
 }
@@ -342,6 +362,8 @@ int verify_result_folder(const std::string& dir, bool write, std::string& report
                      {"verdict", file.claims[i].verdict},
                      {"sentence", results[i].sentence},
                      {"holds", results[i].holds()}});
+    if (!file.claims[i].items.empty()) panel.back()["items"] = file.claims[i].items;
+    if (!file.claims[i].partly.empty()) panel.back()["partly"] = file.claims[i].partly;
     if (!results[i].pictures.empty())
       panel.back()["pictures"] = panel_pictures(file.claims[i], results[i]);
   }

@@ -22,6 +22,7 @@
 #include <CLI/CLI.hpp>
 
 #include "claims/claims.h"
+#include "claims/ledger.h"
 #include "config/config.h"
 #include "core/atomic_write.h"
 #include "core/error.h"
@@ -162,6 +163,8 @@ struct CliArgs {
   bool allow_missing = false;
   std::vector<std::string> verify_dirs;
   bool verify_write = false;
+  std::string ledger_results = "results", ledger_readme = "README.md";
+  bool ledger_write = false;
 };
 
 // The commands and their options, bound to `a`.
@@ -228,6 +231,26 @@ void add_commands(CLI::App& app, CliArgs& a) {
   verify->add_option("dirs", a.verify_dirs, "Result folders, e.g. results/*")->required();
   verify->add_flag("--write", a.verify_write,
                    "Rewrite the README verdict sections from the claims (failures still fail)");
+
+  CLI::App* ledger = app.add_subcommand(
+      "ledger",
+      "The coverage ledger: every item of the papers (results/papers.toml) with the claims that "
+      "reproduce it; checks results/ledger.csv, results/LEDGER.md and the README's totals");
+  ledger->add_option("--results", a.ledger_results, "The results folder (default: results)");
+  ledger->add_option("--readme", a.ledger_readme,
+                     "The README whose totals section to check or write (default: README.md)");
+  ledger->add_flag("--write", a.ledger_write, "Write the ledger instead of checking it");
+}
+
+// `relieflab ledger`: exit status 1 naming each stale file and each inconsistency.
+int ledger_files(const CliArgs& a) {
+  std::string report;
+  const int failures =
+      rl::ledger_command(a.ledger_results, a.ledger_readme, a.ledger_write, report);
+  std::fputs(report.c_str(), stdout);
+  std::printf("relieflab: ledger %s, %d failure(s)\n", a.ledger_write ? "written" : "checked",
+              failures);
+  return failures ? 1 : 0;
 }
 
 // Runs the command the arguments name; its exit status.
@@ -268,6 +291,7 @@ int run_command(const CLI::App& app, const CliArgs& a) {
       return c.failed() ? 1 : 0;
     }
     if (app.got_subcommand("verify")) return verify_folders(a.verify_dirs, a.verify_write);
+    if (app.got_subcommand("ledger")) return ledger_files(a);
     if (app.got_subcommand("docs")) {
       std::printf("%d file(s) updated\n", update_docs(a.docs_root));
       return 0;

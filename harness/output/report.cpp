@@ -177,6 +177,12 @@ pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px
       li.appendChild(document.createTextNode(' — '));
       li.appendChild(el('em', {}, v.verdict + (v.holds ? '' : ' (no longer holds)')));
       li.appendChild(document.createTextNode('. ' + v.sentence.replace(/[*`]/g, '')));  // Markdown marks
+      var items = (v.items || []).concat((v.partly || []).map(function (i) { return i + ' (in part)'; }));
+      if (items.length) {  // the paper items it judges, in the coverage ledger beside the folder
+        var p = el('p', {}, 'Paper items: ' + items.join(', ') + ' — ');
+        p.appendChild(el('a', {href: '../LEDGER.md'}, 'coverage ledger'));
+        li.appendChild(p);
+      }
       var pics = v.pictures || {rows: [], command: ''};
       if (pics.command) li.appendChild(el('p', {}, 'Pictures: ' + pics.command));
       pics.rows.forEach(function (p) {  // the cells the claim rests on: render, truth, heat map
