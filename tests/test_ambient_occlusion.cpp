@@ -1,6 +1,7 @@
 // Texture-space ambient occlusion (Limberger, Schetinger & Oliveira, Section IV): the AO map,
 // Eq. 6, the effect's gating in shader and truth, and its accuracy against the Embree
 // reference. Tolerances are stated where they are used.
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -9,6 +10,7 @@
 #include "gl/context.h"
 #include "gl/shader_library.h"
 #include "relief/ao_map.h"
+#include "relief/horizon_sweep.h"
 #include "relief/image_io.h"
 #include "relief/procedural.h"
 #include "scene/base_mesh.h"
@@ -248,6 +250,27 @@ TEST(AoMap, SweepHandlesTinyAndThinMaps) {
       mean_diff += std::abs(double(v) - march.visibility[i]);
     }
     EXPECT_LT(mean_diff / sweep.visibility.size(), 0.05) << w << "x" << h;
+  }
+}
+
+// A sweep steps its sample points back one unit at a time and wraps them; a point a hair below
+// 0 plus the side rounded to the side itself, and bilinear_wrapped read one row past its
+// padding (a 2048^2 meta-relief bake's AO map crashed on it). The step keeps every point in
+// [0, side) whatever the rounding.
+TEST(AoMap, SweepStepsStayInsideTheMap) {
+  const TiledHeights g(2048, 2048, std::vector<float>(size_t(2048) * 2048, 0.5f));
+  const double tiny = 1e-14;  // 2048 - 1e-14 rounds to 2048 in double
+  ASSERT_EQ(2048.0 - tiny, 2048.0);
+  for (const auto& [x, y, dx, dy] :
+       std::vector<std::array<double, 4>>{{0.0, 0.0, tiny, tiny},
+                                          {0.0, 5.0, tiny, 0.0},
+                                          {5.0, 0.0, 0.0, tiny},
+                                          {2047.9999999999995, 0.0, -0.5, tiny},
+                                          {0.3, 0.2, 0.7, -0.8}}) {
+    double qx = x, qy = y;
+    g.step_back_wrapped(qx, qy, dx, dy);
+    EXPECT_TRUE(qx >= 0 && qx < 2048 && qy >= 0 && qy < 2048) << qx << " " << qy;
+    EXPECT_EQ(g.bilinear_wrapped(qx, qy), 0.5f);
   }
 }
 

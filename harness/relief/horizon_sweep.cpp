@@ -174,7 +174,6 @@ void sweep_bundle(const TiledHeights& g, const LineFrame& f, const HorizonSweepO
   }
   lines.resize(size_t(strips) + 1);
   std::vector<glm::dvec2> at(lines.size());  // each line's sample point, wrapped
-  const double w = g.width(), hh = g.height();
   for (size_t i = 0; i < lines.size(); ++i) {
     lines[i].height.resize(size_t(k_last - k_first + 1));
     lines[i].hull.clear();
@@ -185,11 +184,7 @@ void sweep_bundle(const TiledHeights& g, const LineFrame& f, const HorizonSweepO
     for (size_t i = 0; i < lines.size(); ++i) {
       glm::dvec2& q = at[i];
       take_sample(g, q.x, q.y, k, k_first, lines[i]);
-      q.x -= f.c;  // one sample back
-      q.y -= f.sn;
-      q.x = q.x < 0 ? q.x + w : q.x;
-      q.y = q.y < 0 ? q.y + hh : q.y >= hh ? q.y - hh : q.y;
-      q.x = q.x >= w ? q.x - w : q.x;
+      g.step_back_wrapped(q.x, q.y, f.c, f.sn);  // one sample back
     }
     if (k > k_texels) continue;
     // The texels whose first far sample is k: in the rotated unit square s in (S - 1, S],
@@ -219,6 +214,16 @@ TiledHeights::TiledHeights(int width, int height, std::vector<float> heights)
   for (int y = 0; y <= h_; ++y)
     for (int x = 0; x <= w_; ++x)
       padded_[size_t(y) * (w_ + 1) + size_t(x)] = heights[size_t(y % h_) * w_ + size_t(x % w_)];
+}
+
+void TiledHeights::step_back_wrapped(double& x, double& y, double dx, double dy) const {
+  x -= dx;
+  y -= dy;
+  // x + w can round to w itself when x is a hair below 0: each test after the one before.
+  if (x < 0) x += w_;
+  if (x >= w_) x -= w_;
+  if (y < 0) y += h_;
+  if (y >= h_) y -= h_;
 }
 
 float TiledHeights::bilinear(double x, double y) const {

@@ -39,6 +39,10 @@ class TiledHeights {
   }
   // The same at any coordinates.
   float bilinear(double x, double y) const;
+  // (x, y) moved back by (dx, dy), |dx|, |dy| <= 1, and taken into [0, width) x [0, height):
+  // where rounding lands a point on the far edge it wraps to 0, never onto the edge, which
+  // bilinear_wrapped would read one row or column past its padding (a 2048^2 sweep crashed so).
+  void step_back_wrapped(double& x, double& y, double dx, double dy) const;
 
  private:
   int w_, h_;
