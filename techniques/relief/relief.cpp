@@ -19,10 +19,11 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
             {{.name = "linear_steps",
               .kind = ParamKind::Int,
               .default_value = 10,
-              .min_value = 2,
+              .min_value = 1,
               .max_value = 1024,
               .doc = "linear search steps through the depth range (Listing 5.3: 10, or 20 in its "
-                     "double-precision variant)"},
+                     "double-precision variant); 1 = no linear search, the binary chop alone "
+                     "(Figure 5.12)"},
              {.name = "binary_steps",
               .kind = ParamKind::Int,
               .default_value = 5,
