@@ -44,6 +44,14 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
                     .max_value = 1,
                     .doc = "Section 3.2: of the last inside and outside samples, keep the one "
                            "on the texel with more layers"},
+                   {.name = "grazing_bias",
+                    .kind = ParamKind::Bool,
+                    .default_value = 0,
+                    .min_value = 0,
+                    .max_value = 1,
+                    .doc = "Appendix A's depth bias: search a relief 2 cos - cos^2 as deep (cos: "
+                           "the view to the base normal), flatter at grazing views; not on "
+                           "impostors or curved bases"},
                    {.name = "two_pass",
                     .kind = ParamKind::Bool,
                     .default_value = 0,
@@ -135,6 +143,7 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
     Defines d = {{"RL_LINEAR_STEPS", std::to_string(int(param("linear_steps")))},
                  {"RL_BINARY_STEPS", std::to_string(int(param("binary_steps")))},
                  {"RL_INTERFACE_FIX", param("interface_fix") != 0 ? "1" : "0"},
+                 {"RL_GRAZING_BIAS", param("grazing_bias") != 0 ? "1" : "0"},
                  {"RL_LAYER_GROUPS", std::to_string(groups_)}};
     d.insert(floor_.begin(), floor_.end());
     return d;

@@ -114,6 +114,14 @@ RlHit rl_layer_search(vec3 p, vec3 s, float t_max, bool bent, vec2 quadric, vec3
 
 // s.z = +1 (down) or -1 (up): to the far side of the depth range.
 RlHit rl_intersect(vec3 p, vec3 s) {
+#if RL_GRAZING_BIAS && !defined(RL_IMPOSTOR)
+  // Appendix A's "depth bias (1-(1-d)*(1-d))": the search vector spans a relief
+  // depth * (2 v.z - v.z^2) deep instead of depth, v.z the cosine of the view to the base
+  // normal: the full depth seen from above, ever shallower towards grazing views, so the
+  // search crosses less texture there (and finds a flattened surface).
+  float vz = abs(s.z) / length(vec3(s.xy / rl_depth_aspect, s.z));
+  s.xy *= 2.0 * vz - vz * vz;
+#endif
   return rl_layer_search(p, s, s.z > 0.0 ? 1.0 - p.z : p.z, false, vec2(0.0), vec3(1.0));
 }
 
