@@ -228,7 +228,8 @@ void filter_occluded_texels(const ReliefMap& map, std::vector<float>& visibility
 
 AoMap cached_ao_map(const ReliefMap& map, const AoMapOptions& o, AoMapMethod method) {
   // Bump when a method changes its answers (2: the fragment shader's open directions are made
-  // exactly 1, as the CPU's always were; 3: the CPU's map is the line sweep's, not the march's).
+  // exactly 1, as the CPU's always were; 3: the CPU's map is the line sweep's, not the march's;
+  // 4: the sweep no longer reads past its padding at the far edge).
   constexpr int kAlgorithmVersion = 4;
   char options[128];
   std::snprintf(options, sizeof options, "v%d|%d|%d|%.9g|%s|", kAlgorithmVersion, o.directions,
