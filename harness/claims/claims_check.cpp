@@ -1,9 +1,11 @@
 // Claims evaluated against rows.csv, written into the README, verified (claims/claims.h).
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <sstream>
 
 #include "claims/claims.h"
 #include "core/atomic_write.h"
@@ -278,9 +280,44 @@ std::string claims_markdown(const ClaimsFile& file, const std::vector<ClaimResul
 
 namespace {
 
+// Each claim whose line in the README's section (one numbered line per claim, in order) is not
+// what the rows give now, named with what the README says and what the rows say from the first
+// difference on: a moved number is reported against its claim, not only against the file.
+std::string differing_claims(const std::string& now, const std::string& generated,
+                             const ClaimsFile& file) {
+  auto lines = [](const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);)
+      if (!line.empty() && std::isdigit(static_cast<unsigned char>(line[0]))) out.push_back(line);
+    return out;
+  };
+  const std::vector<std::string> said = lines(now), given = lines(generated);
+  // A stretch of a line around byte `at`, cut at UTF-8 character boundaries.
+  auto from = [](const std::string& line, size_t at) {
+    auto boundary = [&](size_t b) {
+      while (b > 0 && b < line.size() && (static_cast<unsigned char>(line[b]) & 0xC0) == 0x80) --b;
+      return std::min(b, line.size());
+    };
+    const size_t start = boundary(at > 40 ? at - 40 : 0), stop = boundary(start + 100);
+    return "'..." + line.substr(start, stop - start) + "...'";
+  };
+  std::string out;
+  for (size_t i = 0; i < file.claims.size() && i < given.size(); ++i) {
+    const std::string old = i < said.size() ? said[i] : "";
+    if (old == given[i]) continue;
+    size_t at = 0;
+    while (at < old.size() && at < given[i].size() && old[at] == given[i][at]) ++at;
+    out += file.claims[i].where + ": claim " + file.claims[i].id + ": the README " +
+           (old.empty() ? std::string("has no line for it") : "says " + from(old, at)) +
+           ", the rows give " + from(given[i], at) + "\n";
+  }
+  return out;
+}
+
 // The README's generated section: checked, or rewritten with `write`. Returns the failures.
-int verify_readme(const std::string& dir, const std::string& generated, bool write,
-                  std::string& report) {
+int verify_readme(const std::string& dir, const std::string& generated, const ClaimsFile& file,
+                  bool write, std::string& report) {
   const std::string path = dir + "/README.md";
   std::string readme = read_text(path);
   const size_t begin = readme.find(kClaimsBegin), end = readme.find(kClaimsEnd);
@@ -293,7 +330,7 @@ int verify_readme(const std::string& dir, const std::string& generated, bool wri
   if (now == generated) return 0;
   if (!write) {
     report += path + ": the verdict section differs from what claims.toml and rows.csv give now " +
-              "(relieflab verify --write " + dir + ")\n";
+              "(relieflab verify --write " + dir + ")\n" + differing_claims(now, generated, file);
     return 1;
   }
   readme.replace(begin, now.size(), generated);
@@ -367,7 +404,7 @@ int verify_result_folder(const std::string& dir, bool write, std::string& report
     if (!results[i].pictures.empty())
       panel.back()["pictures"] = panel_pictures(file.claims[i], results[i]);
   }
-  failures += verify_readme(dir, claims_markdown(file, results), write, report);
+  failures += verify_readme(dir, claims_markdown(file, results), file, write, report);
   return failures + verify_report_panel(dir, panel, write, report);
 }
 
