@@ -71,7 +71,7 @@ TEST(ConfigErrors, EachNamesTheProblemAndWritesNothing) {
        {"no parameter 'linear_stepz'"}},
       {"out_of_range",
        replace(kGood, "linear_steps = [4]", "linear_steps = [4, 0]"),
-       {"linear_steps", "outside [2, 1024]"}},
+       {"linear_steps", "outside [1, 1024]"}},
       {"not_an_integer",
        replace(kGood, "linear_steps = [4]", "linear_steps = [2.5]"),
        {"linear_steps", "integer"}},
