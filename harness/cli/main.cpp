@@ -52,7 +52,10 @@ void print_list() {
           "  draws:    objects from several heightfields only (relief = { mesh = "
           "\"mesh.obj\", faces = N })\n");
     } else {
-      std::printf("  proxies:  %s%s%s%s\n", info.planar_only ? "planar base" : "base",
+      std::printf("  proxies:  %s%s%s%s\n",
+                  info.planar_only         ? "planar base"
+                  : info.single_layer_only ? "base (single layer)"
+                                           : "base",
                   info.box_proxy ? ", box" : "", info.impostor ? ", impostor" : "",
                   info.heightfield_object ? ", heightfield object" : "");
       std::printf("  meta-relief: %s\n", info.meta_relief ? "runtime or baked" : "baked");

@@ -169,6 +169,8 @@ std::string cannot_render(const TechniqueInfo& info, const SceneDesc& s) {
   if (info.planar_only && (s.base.curved() || s.relief.layers > 0 || s.projection.active()))
     return "it slices a single heightfield in its box on the planar base (no curved base, "
            "multilayer map or reverse perspective)";
+  if (info.single_layer_only && (s.relief.layers > 0 || s.projection.active()))
+    return "it reads a single heightfield (no multilayer map or reverse perspective)";
   if (s.impostor() && !info.impostor)
     return "it is a relief impostor (a mesh baked into layers, seen from both sides)";
   if (s.meta.runtime() && !info.meta_relief)

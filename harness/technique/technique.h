@@ -54,6 +54,9 @@ struct TechniqueInfo {
   // Draws a single-layer heightfield on the planar base only (no curved base, multilayer map or
   // reverse-perspective box): depth slicing, whose slices are planes across the relief's box.
   bool planar_only = false;
+  // Draws a single-layer heightfield only, on any base (no multilayer map or reverse-perspective
+  // box): omni-directional displacement maps, whose 4D map holds one surface's hits.
+  bool single_layer_only = false;
   // What it promises (technique/contract.h), held to by the contract suite.
   TechniqueContract contract;
   // The columns its frame_columns() writes (core/columns.h), declared when it registers.

@@ -124,7 +124,9 @@ std::string interface_markdown(const TechniqueInfo& info) {
           ? "Effects it can simulate: " + effects_cell(info.effects) + ". Draws: " + objects +
                 " only.\n\n"
           : "Effects it can simulate: " + effects_cell(info.effects) + ". Draws: the " +
-                (info.planar_only ? "planar base (single-layer heightfields)" : "base") +
+                (info.planar_only         ? "planar base (single-layer heightfields)"
+                 : info.single_layer_only ? "base, planar or curved (single-layer heightfields)"
+                                          : "base") +
                 (info.box_proxy ? " or the relief's box proxy" : "") +
                 (info.impostor ? "; relief impostors, from both sides" : "") +
                 (objects.empty() ? "" : "; " + objects) + ". Meta-reliefs: " +
