@@ -176,6 +176,8 @@ std::string cannot_render(const TechniqueInfo& info, const SceneDesc& s) {
   if (s.meta.runtime() && !info.meta_relief)
     return "it cannot combine the meta-relief layers at run time (its search needs one map); "
            "set combine = \"baked\" in the scene's meta_relief";
+  if (info.box_proxy_only && s.proxy != Proxy::Box)
+    return "it draws the relief as the closed solid in its box; set proxy = \"box\"";
   if (s.proxy == Proxy::Box && !info.box_proxy)
     return "proxy = \"box\" (it only shades the base surface)";
   return "";

@@ -57,6 +57,9 @@ struct TechniqueInfo {
   // Draws a single-layer heightfield only, on any base (no multilayer map or reverse-perspective
   // box): omni-directional displacement maps, whose 4D map holds one surface's hits.
   bool single_layer_only = false;
+  // Draws the relief as the closed solid in its box only (proxy = "box"): a rasterised mesh,
+  // whose sides are the box's (on a base with no box, rays could not enter through them).
+  bool box_proxy_only = false;
   // What it promises (technique/contract.h), held to by the contract suite.
   TechniqueContract contract;
   // The columns its frame_columns() writes (core/columns.h), declared when it registers.

@@ -120,9 +120,12 @@ std::string interface_markdown(const TechniqueInfo& info) {
           ? "Effects it can simulate: " + effects_cell(info.effects) +
                 ". Draws: cell-complex reliefs only (relief = { cells = \"mesh.obj\" }), in "
                 "their bounding cube.\n\n"
-      : info.heightfield_object_only
-          ? "Effects it can simulate: " + effects_cell(info.effects) + ". Draws: " + objects +
-                " only.\n\n"
+      : info.heightfield_object_only ? "Effects it can simulate: " + effects_cell(info.effects) +
+                                           ". Draws: " + objects + " only.\n\n"
+      : info.box_proxy_only
+          ? "Effects it can simulate: " + effects_cell(info.effects) +
+                ". Draws: the relief's box proxy only, on a planar base (the relief as the "
+                "closed solid in its box; single-layer heightfields).\n\n"
           : "Effects it can simulate: " + effects_cell(info.effects) + ". Draws: the " +
                 (info.planar_only         ? "planar base (single-layer heightfields)"
                  : info.single_layer_only ? "base, planar or curved (single-layer heightfields)"

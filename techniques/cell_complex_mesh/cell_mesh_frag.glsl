@@ -15,7 +15,9 @@ uniform vec3 rl_light;
 void main() {
   vec3 V = normalize(v_world - rl_eye);
   vec3 n = dot(v_normal, v_normal) > 0.0 ? normalize(v_normal) : -V;
+#ifndef RL_NORMALS_AS_GIVEN
   if (dot(n, V) > 0.0) n = -n;  // facing the viewer, as the truth's mesh normals
+#endif  // (heightfield_mesh: the map's normals, which a relief's truth does not turn)
   vec3 to_light = normalize(rl_light - v_world);
   o_color = vec4(rl_shade(v_color, n, to_light, -V, false), 1.0);
 #ifdef RL_GBUFFER
