@@ -162,14 +162,7 @@ std::vector<std::string> claim_words(const std::string& text) {
 
 ClaimsFile load_claims(const std::string& path) {
   const Src src{path};
-  if (!std::filesystem::is_regular_file(path)) throw ConfigError(path + ": cannot read");
-  toml::table root;
-  try {
-    root = toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    throw ConfigError(path + ":" + std::to_string(e.source().begin.line) +
-                      ": TOML syntax error: " + std::string(e.description()));
-  }
+  const toml::table root = parse_toml_file(path);
   check_keys(root, {"claim"}, src, "the claims file");
   ClaimsFile file;
   file.path = path;

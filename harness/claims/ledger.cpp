@@ -41,14 +41,7 @@ PaperItem parse_item(const toml::node& n, const std::string& paper, const Src& s
 // results/papers.toml: the papers and their items, in the order written.
 void load_papers(const std::string& path, Ledger& ledger) {
   const Src src{path};
-  if (!fs::is_regular_file(path)) throw ConfigError(path + ": cannot read");
-  toml::table root;
-  try {
-    root = toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    throw ConfigError(path + ":" + std::to_string(e.source().begin.line) +
-                      ": TOML syntax error: " + std::string(e.description()));
-  }
+  const toml::table root = parse_toml_file(path);
   check_keys(root, {"paper"}, src, "the papers file");
   const toml::array* papers = root.get_as<toml::array>("paper");
   if (!papers) throw ConfigError(path + ": no [[paper]]");

@@ -18,6 +18,16 @@ namespace fs = std::filesystem;
   throw ConfigError(where + ": " + what);
 }
 
+toml::table parse_toml_file(const std::string& path) {
+  if (!std::filesystem::is_regular_file(path)) throw ConfigError(path + ": cannot read");
+  try {
+    return toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw ConfigError(path + ":" + std::to_string(e.source().begin.line) +
+                      ": TOML syntax error: " + std::string(e.description()));
+  }
+}
+
 void check_keys(const toml::table& t, const std::set<std::string>& allowed, const Src& src,
                 const std::string& section) {
   for (auto&& [k, v] : t) {

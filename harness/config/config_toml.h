@@ -19,6 +19,9 @@ struct Src {
 };
 
 [[noreturn]] void fail(const std::string& where, const std::string& what);
+// The TOML of a regular file (claims, the papers' inventory), or ConfigError naming the file and
+// the line of a syntax error.
+toml::table parse_toml_file(const std::string& path);
 // Fails on a key of `t` not in `allowed`, listing the known ones.
 void check_keys(const toml::table& t, const std::set<std::string>& allowed, const Src& src,
                 const std::string& section);
