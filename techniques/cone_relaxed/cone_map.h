@@ -14,10 +14,12 @@
 // the crossing. Along a ray z = m x from the top point (x across, z depth), the points where
 // it leaves the surface h are those where h(x) / x rises; the cone must keep them out.
 //
-// Computed on the CPU, multithreaded, by scanning `directions` azimuths outward from every
-// texel one texel at a time (the surface sampled bilinearly, as the GPU sees it) and stopping
-// once no farther point could narrow the cone (distance / apex depth >= the ratio found):
-// O(texels x directions x ratio x depth x side) rather than the naive O(texels^2).
+// Computed on the CPU, multithreaded, along lines through texel centres in rational
+// directions (cone_scan_directions below; the surface sampled bilinearly, as the GPU sees it):
+// every texel on a line shares the line's samples. Conservative cones take the steepest rise
+// from each apex to the upper hull of the samples ahead (one hull sweep per line); relaxed
+// cones scan ahead of each apex only until nothing farther could narrow the cone (distance /
+// apex depth >= the ratio found), stepping over blocks of segments that cannot.
 #include <cmath>
 #include <string>
 #include <vector>
