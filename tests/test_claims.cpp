@@ -223,6 +223,9 @@ TEST(Claims, ClaimsAboutPicturesNameThemAndTheirFilesOrCommand) {
   EXPECT_NE(report.find("claim bands: the text speaks of pictures but names none"),
             std::string::npos)
       << report;
+  // A paper's figure named by its number is a reference, not a picture; "the figure" is.
+  EXPECT_FALSE(describes_pictures("as in Figure 5.4 and Figures 12 and 13, 3% wrong"));
+  EXPECT_TRUE(describes_pictures("the figure shows bands"));
   // Names them, not committed, no command.
   report.clear();
   const std::string nocommand = folder_with("claims_pictures_nocommand", rows,

@@ -148,7 +148,7 @@ Claim parse_claim(const toml::node& n, const Src& src) {
 
 bool describes_pictures(const std::string& text) {
   static const std::regex words(
-      R"(heat ?maps?|pictures?|\brender(s|ed)?\b|\bimages?\b|\bfigures?\b|\blooks?\b|\bglow)",
+      R"(heat ?maps?|pictures?|\brender(s|ed)?\b|\bimages?\b|\bfigures?\b(?!\s*\d)|\blooks?\b|\bglow)",
       std::regex::icase);
   return std::regex_search(text, words);
 }

@@ -65,7 +65,8 @@ struct Claim {
   std::string where;  // "claims.toml:LINE", for messages
 };
 
-// Does a claim's sentence speak of pictures (heat maps, renders, images, figures, looks)?
+// Does a claim's sentence speak of pictures (heat maps, renders, images, figures, looks)? A
+// paper's "Figure 5.4" or "Figures 12 and 13" is a reference, not talk of pictures.
 bool describes_pictures(const std::string& text);
 
 struct ClaimsFile {
