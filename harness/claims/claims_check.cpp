@@ -246,10 +246,6 @@ std::string pictures_markdown(const Claim& c, const ClaimResult& r) {
   return md + ".";
 }
 
-}  // namespace
-
-namespace {
-
 // " Paper items: a, b (in part: c)." with each linked to its paper's section of the ledger.
 std::string items_markdown(const Claim& c) {
   auto links = [](const std::vector<std::string>& ids) {
