@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "gl/shader_library.h"
 #include "relief/relief_map.h"
@@ -16,7 +17,7 @@
 namespace rl {
 namespace {
 
-constexpr double kMaxTriangles = 32e6;  // 1.5 GB of vertex and index data beyond this
+constexpr double kMaxTriangles = 32e6;  // about 1 GB of vertex and index data beyond this
 
 // The grid lines across [0, tile] of one axis: texel-centre lines of a map `texels` wide and the
 // two borders, each interval between them cut into `sub` equal parts.
