@@ -9,6 +9,7 @@
 #include "config/config_toml.h"
 #include "core/atomic_write.h"
 #include "core/error.h"
+#include "output/tables.h"
 
 namespace rl {
 namespace {
@@ -110,14 +111,6 @@ void judge(LedgerRow& r, std::vector<std::string>& problems) {
       problems.push_back(name + ": " + r.status +
                          ", and says nothing of why ('gap'), or list it in a claim's `items`");
   }
-}
-
-// A CSV field: quoted when it holds a comma, a quote or a line break.
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
 }
 
 std::string joined(const std::vector<std::string>& v, const std::string& sep) {

@@ -35,15 +35,16 @@ std::string format_value(const nlohmann::ordered_json& v) {
   return buf;
 }
 
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
 std::string format_csv(const std::vector<Row>& rows, const std::vector<std::string>& columns) {
-  auto quote = [](const std::string& s) {
-    if (s.find_first_of(",\"\n") == std::string::npos) return s;
-    std::string q = "\"";
-    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return q + "\"";
-  };
   std::string out;
-  for (size_t i = 0; i < columns.size(); ++i) out += (i ? "," : "") + quote(columns[i]);
+  for (size_t i = 0; i < columns.size(); ++i) out += (i ? "," : "") + csv_field(columns[i]);
   out += "\n";
   for (const Row& r : rows) {
     for (size_t i = 0; i < columns.size(); ++i) {
@@ -58,7 +59,7 @@ std::string format_csv(const std::vector<Row>& rows, const std::vector<std::stri
           cell = format_value(*it);
         }
       }
-      out += (i ? "," : "") + quote(cell);
+      out += (i ? "," : "") + csv_field(cell);
     }
     out += "\n";
   }

@@ -16,6 +16,8 @@ namespace rl {
 std::vector<std::string> csv_columns(const std::vector<Row>& rows,
                                      const std::vector<std::string>& leading);
 std::string format_csv(const std::vector<Row>& rows, const std::vector<std::string>& columns);
+// One CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break.
+std::string csv_field(const std::string& text);
 // A [[table]] laid out as its Markdown, LaTeX and HTML forms show it: one line per row key (in
 // order of first appearance), per column key each value, combined by the table's aggregate
 // where several rows share a table cell (then the footnote says so).

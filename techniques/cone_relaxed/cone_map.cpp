@@ -9,17 +9,14 @@
 #include <numeric>
 #include <thread>
 
-#include <glm/gtc/constants.hpp>
-
-#include "core/fast_floor.h"
 #include "core/parallel.h"
 #include "core/precompute_cache.h"
 
 namespace rl {
 namespace {
 
-// Bilinear depth at texel-centre coordinates (X = u * width - 0.5), wrapping like GL_REPEAT:
-// the scan's inner loop, in float with a mask for power-of-two sides.
+// The map's depths by texel, wrapping like GL_REPEAT (with a mask for power-of-two sides): what
+// the line samples blend.
 struct DepthSampler {
   int w, h;
   bool pow2;
@@ -35,15 +32,6 @@ struct DepthSampler {
   int wrap_x(int x) const { return pow2 ? x & (w - 1) : ((x % w) + w) % w; }
   int wrap_y(int y) const { return pow2 ? y & (h - 1) : ((y % h) + h) % h; }
   float at(int x, int y) const { return d[size_t(wrap_y(y)) * w + wrap_x(x)]; }
-  float operator()(float X, float Y) const {
-    const float fx = floor_fast(X), fy = floor_fast(Y);
-    const int x0 = wrap_x(int(fx)), x1 = wrap_x(int(fx) + 1);
-    const size_t r0 = size_t(wrap_y(int(fy))) * w, r1 = size_t(wrap_y(int(fy) + 1)) * w;
-    const float ax = X - fx, ay = Y - fy;
-    const float top = d[r0 + x0] + (d[r0 + x1] - d[r0 + x0]) * ax;
-    const float bottom = d[r1 + x0] + (d[r1 + x1] - d[r1 + x0]) * ax;
-    return top + (bottom - top) * ay;
-  }
 };
 
 }  // namespace
@@ -158,15 +146,15 @@ void conservative_along_line(const std::vector<float>& h, int sub, size_t apexes
   }
 }
 
+// Depth by which h / n must rise across a segment for the relaxed test to count it.
+constexpr float kRelaxedTie = 1e-6f;
+
 // Relaxed cones along one line. Segment k (samples k - 1 to k, depth linear on it) keeps the cone
 // out of both its ends when the ray from the top point above the apex leaves the surface there:
 // when h / n rises across it, n the distance from the apex in samples. Scanned forward per apex
 // until nothing farther can narrow the cone, stepping over aligned blocks of segments whose
 // highest candidate end cannot (`block_min[l]`: per block of 2^l segments, the least depth of the
 // near end of those that descend along the line; only a descending segment can pass the test).
-// Depth by which h / n must rise across a segment for the relaxed test to count it.
-constexpr float kRelaxedTie = 1e-6f;
-
 struct RelaxedLineScan {
   std::vector<std::vector<float>> block_min;
 
@@ -216,8 +204,9 @@ struct RelaxedLineScan {
   }
 
   // Segment k's constraint on the apex at sample i (depth `apex`): both its ends, if the ray from
-  // the top point leaves the surface across it (h / n rises by more than kTie: a surface along
-  // the ray through the top point, h / n constant, is not left, however floats round the blend).
+  // the top point leaves the surface across it (h / n rises by more than kRelaxedTie: a surface
+  // along the ray through the top point, h / n constant, is not left, however floats round the
+  // blend).
   static void narrow(const std::vector<float>& h, size_t i, size_t k, float apex, float& best,
                      size_t& narrowest) {
     const float hk = h[k], hp = h[k - 1];
@@ -232,11 +221,11 @@ struct RelaxedLineScan {
   }
 };
 
-// The scan samples each direction at whole steps from the texel's centre, so off its axes it
-// never lands on a texel centre: the diagonal neighbour lies at sqrt 2, between steps 1 and 2,
-// and the bilinear samples there are lower than that texel. A conservative cone may hold no
-// surface point, so every texel centre within kNearTexels is held out exactly as well (the
-// brute-force test found the misses only at the diagonal neighbours).
+// A conservative cone may hold no surface point, so every texel centre within kNearTexels is held
+// out exactly as well. The lines reach every near texel centre only when the directions include
+// its step (32 or more: every primitive step up to 3); with fewer, and before the line sweeps
+// (whose per-texel scan missed the diagonal neighbours, caught by the brute-force test), the
+// samples between texel centres ran lower than the texels they passed.
 void hold_out_near_texel_centres(const ReliefMap& map, int side, std::vector<float>& ratio) {
   constexpr int kNearTexels = 3, kSpan = 2 * kNearTexels + 1;
   double distance[kSpan * kSpan];
