@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "profile_criteria.h"
 #include "relief/relief_map.h"
 
 namespace rl {
@@ -63,16 +64,5 @@ SafetyRadii compute_safety_radii(const ReliefMap& map, const SafetyRadiusOptions
 // compute_safety_radii through an on-disk cache keyed by the map's content and the options
 // (folder: $RELIEFLAB_CACHE_DIR, else $XDG_CACHE_HOME/relieflab, else ~/.cache/relieflab).
 SafetyRadii cached_safety_radii(const ReliefMap& map, const SafetyRadiusOptions& options);
-
-// The line criterion of ignore_blocked on one profile h[0..n) (heights, up = larger) sampled
-// every `step` from where the line enters the map: first[j] = the first sample s2 > j at
-// which a descending ray above h[j], unblocked over h[0..j], could have entered and left
-// the surface (the horizon of s2 lies strictly after j), or n. `hull` is scratch space.
-void first_unblocked_violations(const std::vector<float>& h, double step, double error_allowed,
-                                std::vector<int>& hull, std::vector<int>& first);
-
-// The first violation distance of one profile h[0..n) sampled every `step` (heights, up =
-// larger), or +infinity: where a descending ray above h[0] could have entered and left.
-double first_two_hit_distance(const std::vector<double>& h, double step, double error_allowed);
 
 }  // namespace rl

@@ -1,0 +1,30 @@
+#pragma once
+// The one-line criteria of the safety radii (Baboud & Decoret 2006, Section 3.5): on a height
+// profile sampled along one ray direction, where does a start first stop being safe?
+#include <vector>
+
+namespace rl {
+
+// The line criterion of ignore_blocked on one profile h[0..n) (heights, up = larger) sampled
+// every `step` from where the line enters the map: first[j] = the first sample s2 > j at
+// which a descending ray above h[j], unblocked over h[0..j], could have entered and left
+// the surface (the horizon of s2 lies strictly after j), or n. `hull` is scratch space.
+void first_unblocked_violations(const std::vector<float>& h, double step, double error_allowed,
+                                std::vector<int>& hull, std::vector<int>& first);
+
+// The first violation distance of one profile h[0..n) sampled every `step` (heights, up =
+// larger), or +infinity: where a descending ray above h[0] could have entered and left.
+double first_two_hit_distance(const std::vector<double>& h, double step, double error_allowed);
+
+// The same criterion for a start at sample j, looking at most `limit` samples ahead: the index
+// of the first violation, or h.size(). O(distance) per start.
+int first_two_hit_after(const std::vector<double>& h, int j, int limit, double step,
+                        double error_allowed);
+
+// first_two_hit_after(h, j, unlimited, step, 0) for the starts j = first_start, first_start +
+// stride, ... at once, in O(n): first[j] is the first violation's index or n (unspecified at
+// other samples). `scratch` is scratch space.
+void first_conservative_violations(const std::vector<double>& h, double step, int first_start,
+                                   int stride, std::vector<int>& scratch, std::vector<int>& first);
+
+}  // namespace rl
