@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "core/parallel.h"
+#include "core/sharded_counter.h"
 #include "relief/heightfield_reference.h"
 #include "relief/procedural.h"
 #include "scene/relief_asset.h"
@@ -157,6 +159,33 @@ TEST(Truth, OcclusionFromTheSurfaceAgreesWithTheReferenceWalk) {
     EXPECT_GT(blocked, rays / 20) << kind;
     EXPECT_EQ(differ, 0) << kind << ": " << differ << " of " << rays;
   }
+}
+
+// The ray counters count every ray traced on every core: a sharded count summed on read, as
+// one atomic was (it cost the AO truth nearly half its time), and the truth's own counts.
+TEST(Truth, RayCountsHoldUnderEveryCore) {
+  ShardedCounter count;
+  parallel_for(
+      100000,
+      [&](size_t b, size_t e) {
+        for (size_t i = b; i < e; ++i) ++count;
+      },
+      7);
+  EXPECT_EQ(count.load(), 100000u);
+  count += 5;
+  EXPECT_EQ(count.load(), 100005u);
+  SceneDesc scene = test::procedural_scene("pyramids", 64, 0.08, true);
+  const HeightfieldTruth truth(build_relief_asset(scene, 64));
+  parallel_for(
+      5000,
+      [&](size_t b, size_t e) {
+        for (size_t i = b; i < e; ++i)
+          truth.occluded(glm::dvec3(double(i % 64) / 64, 0.3, 0.5), glm::dvec3(0.2, 0.1, -1), 1e-4,
+                         0.5);
+      },
+      16);
+  EXPECT_EQ(truth.shadow_rays(), 5000u);
+  EXPECT_EQ(truth.primary_rays(), 0u);
 }
 
 }  // namespace

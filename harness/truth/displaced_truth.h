@@ -20,6 +20,7 @@
 #include <embree3/rtcore.h>
 #include <glm/glm.hpp>
 
+#include "core/sharded_counter.h"
 #include "relief/relief_map.h"
 #include "scene/base_mesh.h"
 #include "truth/truth_surface.h"
@@ -82,7 +83,7 @@ class DisplacedTruth {
   int subdivision_ = 1;
   double bound_ = 0;
   double build_ms_ = 0;
-  mutable std::atomic<uint64_t> primary_rays_{0}, shadow_rays_{0};
+  mutable ShardedCounter primary_rays_, shadow_rays_;
 };
 
 }  // namespace rl

@@ -25,6 +25,7 @@
 
 #include <embree3/rtcore.h>
 
+#include "core/sharded_counter.h"
 #include "relief/relief_map.h"
 #include "truth/truth_surface.h"
 
@@ -90,7 +91,7 @@ class HeightfieldTruth final : public TruthSurface {
   double build_ms_ = 0;
   float max_depth_ = 1;
   glm::dvec2 offset_{0};  // tile origin: half a texel, so tile edges run through texel centres
-  mutable std::atomic<uint64_t> embree_queries_{0}, exact_cells_{0};
+  mutable ShardedCounter embree_queries_, exact_cells_;
 };
 
 }  // namespace rl

@@ -13,6 +13,7 @@
 
 #include <embree3/rtcore.h>
 
+#include "core/sharded_counter.h"
 #include "core/triangle_mesh.h"
 #include "scene/base_mesh.h"
 #include "truth/displaced_truth.h"
@@ -49,7 +50,7 @@ class PatternBaseTruth {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   double build_ms_ = 0;
-  mutable std::atomic<uint64_t> primary_rays_{0}, shadow_rays_{0};
+  mutable ShardedCounter primary_rays_, shadow_rays_;
 };
 
 }  // namespace rl

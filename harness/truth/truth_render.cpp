@@ -10,6 +10,7 @@
 #include "core/hash.h"
 #include "core/parallel.h"
 #include "core/ray_box.h"
+#include "core/sharded_counter.h"
 #include "truth/ao_truth_cache.h"
 #include "truth/displaced_truth.h"
 #include "truth/objects_truth.h"
@@ -232,8 +233,8 @@ bool planar_in_shadow(const TruthSurface& truth, const PlanarBase& base, const S
 // `in_front(distance)`, which writes the object pixel when an object lies nearer than the
 // relief's hit (any distance where it missed) and says so.
 struct TruthCounters {
-  std::atomic<uint64_t> ao_rays{0};    // hemisphere directions sampled
-  std::atomic<uint64_t> ao_traced{0};  // those traced (the truth counts them as shadow rays)
+  ShardedCounter ao_rays;    // hemisphere directions sampled
+  ShardedCounter ao_traced;  // those traced (the truth counts them as shadow rays)
   std::atomic<long> unresolved{0};
 };
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include <glm/glm.hpp>
+#include "core/sharded_counter.h"
 
 namespace rl {
 
@@ -51,8 +52,8 @@ class TruthSurface {
   uint64_t shadow_rays() const { return shadow_rays_.load(); }
 
  protected:
-  mutable std::atomic<uint64_t> primary_rays_{0};
-  mutable std::atomic<uint64_t> shadow_rays_{0};
+  mutable ShardedCounter primary_rays_;
+  mutable ShardedCounter shadow_rays_;
 };
 
 }  // namespace rl
