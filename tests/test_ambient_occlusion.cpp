@@ -7,12 +7,15 @@
 
 #include <gtest/gtest.h>
 
+#include "config/config.h"
 #include "gl/context.h"
 #include "gl/shader_library.h"
+#include "output/result_store.h"
 #include "relief/ao_map.h"
 #include "relief/horizon_sweep.h"
 #include "relief/image_io.h"
 #include "relief/procedural.h"
+#include "run/cells.h"
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
@@ -499,6 +502,59 @@ TEST(AmbientOcclusionEffect, NoAoRaysOrShadingWithoutTheEffect) {
   EXPECT_EQ(ao.truth_stats.ao_rays, uint64_t(covered) * 64);
   EXPECT_EQ(ao.truth_stats.shadow_rays, 0u);
   EXPECT_TRUE(ao.metrics.has_ao);
+}
+
+TEST(AmbientOcclusionEffect, RenderFalseDrawsTheSceneWithoutAoAgainstTheAoTruth) {
+  // Limberger et al.'s Figure 7 as a measurement: the same relief with its AO drawn and not
+  // drawn (ambient_occlusion.render = false), both scored against the one AO truth. Without:
+  // no map built, every covered pixel shaded with visibility 1, so its AO error is the
+  // reference's own occlusion, 1 - reference, on average: the AO drawn must come closer.
+  const std::string dir = test::scratch_dir("ao-render-false");
+  const SweepConfig config = test::run_sweep_in(R"(
+[sweep]
+name = "ao_off"
+views = [[55, 30]]
+viewports = [[48, 48]]
+frames = 1
+warmup = 0
+
+[[scene]]
+name = "drawn"
+relief = { procedural = "sines", resolution = 64 }
+depth = 0.1
+effects = ["ambient_occlusion"]
+ambient_occlusion = { samples = 16 }
+
+[[scene]]
+name = "not_drawn"
+relief = { procedural = "sines", resolution = 64 }
+depth = 0.1
+effects = ["ambient_occlusion"]
+ambient_occlusion = { samples = 16, render = false }
+
+[[technique]]
+name = "relief"
+linear_steps = 32
+)",
+                                                dir);
+  ResultStore store(dir + "/out/results.sqlite");
+  std::map<std::string, nlohmann::json> rows;
+  for (const Cell& c : expand_cells(config))
+    rows[config.scenes[c.scene_index].name] = *store.row(c.key);
+  ASSERT_EQ(rows.size(), 2u);
+  const nlohmann::json &on = rows["drawn"], &off = rows["not_drawn"];
+  EXPECT_TRUE(on["ao_drawn"].get<bool>());
+  EXPECT_FALSE(off["ao_drawn"].get<bool>());
+  EXPECT_GT(on["ao_precompute_ms"].get<double>(), 0.0);
+  EXPECT_EQ(off["ao_precompute_ms"].get<double>(), 0.0);  // no map built
+  // One truth: the same hemisphere rays, so the same reference and noise floor.
+  EXPECT_EQ(on["truth_ao_rays"].get<double>(), off["truth_ao_rays"].get<double>());
+  EXPECT_EQ(on["ao_ref_stderr"].get<double>(), off["ao_ref_stderr"].get<double>());
+  // Shaded with visibility 1: brighter than the reference by exactly its error.
+  EXPECT_NEAR(off["ao_bias"].get<double>(), off["ao_err_mean"].get<double>(), 1e-9);
+  EXPECT_GT(off["ao_err_mean"].get<double>(), 0.05);
+  EXPECT_LT(on["ao_err_mean"].get<double>(), off["ao_err_mean"].get<double>() / 2);
+  EXPECT_GT(on["psnr_db"].get<double>(), off["psnr_db"].get<double>());
 }
 
 TEST(AmbientOcclusionEffect, TechniqueShadesWithTheMapAndEq6) {

@@ -22,8 +22,9 @@ void parse_effect_options(const toml::table& t, const Src& src, const toml::node
     if (!o)
       fail(src.at(*options),
            "'ambient_occlusion' must be a table, e.g. { map_depth = 0.04, update = \"eq6\" }");
-    check_keys(*o, {"directions", "filter", "map_depth", "update", "samples", "stderr_target"}, src,
-               "ambient_occlusion");
+    check_keys(
+        *o, {"directions", "filter", "map_depth", "update", "samples", "stderr_target", "render"},
+        src, "ambient_occlusion");
     if (auto* n = o->get("directions"))
       s.ao.directions = positive_int(*n, src, "directions", 8, 720);
     if (auto* n = o->get("filter")) s.ao.filter = boolean_of(*n, src, "filter");
@@ -41,6 +42,7 @@ void parse_effect_options(const toml::table& t, const Src& src, const toml::node
     if (auto* n = o->get("samples")) s.ao.samples = positive_int(*n, src, "samples", 1, 65536);
     if (auto* n = o->get("stderr_target"))
       s.ao.stderr_target = number_in(*n, src, "stderr_target", 0, 0.5);
+    if (auto* n = o->get("render")) s.ao.render = boolean_of(*n, src, "render");
   }
   canon["ambient_occlusion"] = {
       {"directions", s.ao.directions},
@@ -49,6 +51,8 @@ void parse_effect_options(const toml::table& t, const Src& src, const toml::node
       {"update", s.ao.update == AmbientOcclusionDesc::Update::Eq6 ? "eq6" : "none"},
       {"samples", s.ao.samples},
       {"stderr_target", s.ao.stderr_target}};
+  // Only where set, so that every earlier AO scene keeps its key.
+  if (!s.ao.render) canon["ambient_occlusion"]["render"] = false;
 }
 
 }  // namespace rl

@@ -29,6 +29,7 @@ class EffectSet {
   bool has(Effect e) const { return (bits_ & static_cast<uint32_t>(e)) != 0; }
   bool empty() const { return bits_ == 0; }
   bool contains_all(EffectSet other) const { return (other.bits_ & ~bits_) == 0; }
+  void remove(Effect e) { bits_ &= ~static_cast<uint32_t>(e); }
   // Effects in `other` that this set lacks.
   EffectSet missing_from(EffectSet other) const {
     EffectSet r;

@@ -47,6 +47,10 @@ const ColumnDeclaration runner_columns(
      {"ao_precompute_ms", "ms", "time to compute the texture-space AO map"},
      {"ao_precompute_cached", "", "the AO map came from the cache", ColumnKind::Flag},
      {"ao_rescale", "", "the AO map's rescale factor for the scene's depth"},
+     {"ao_drawn", "",
+      "the technique drew the scene's AO (false: ambient_occlusion.render = false, the scene "
+      "without AO scored against the AO truth)",
+      ColumnKind::Flag},
      {"effects", "", "the effects the scene asks for", ColumnKind::Text},
      {"texture_size", "texels", "the map's size as built, WxH", ColumnKind::Text},
      {"renderer", "", "the GL renderer the row was measured on", ColumnKind::Text},

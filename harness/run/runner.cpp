@@ -360,7 +360,8 @@ std::unique_ptr<Asset> build_asset(const SweepConfig& config, const SceneDesc& s
     asset->metric_texel = texel_world(
         scene, scene.truth_texture_res > 0 ? scene.truth_texture_res : cell.texture_res);
   }
-  if (scene.effects.has(Effect::AmbientOcclusion)) stage("computing the ambient occlusion map");
+  if (scene.drawn_effects().has(Effect::AmbientOcclusion))
+    stage("computing the ambient occlusion map");
   const AoMap ao = attach_ao_map(asset->map, scene, asset->texel_world);
   asset->ao_ms = ao.compute_ms;
   asset->ao_from_cache = ao.from_cache;
@@ -471,8 +472,13 @@ CellMeasure measure_cell(const SweepConfig& config, const SceneDesc& scene, Asse
                          const Cell& cell, const Camera& camera, const GBuffer& truth,
                          bool software_gl) {
   auto& [technique, prepare_ms] = prepared_technique(config, scene, asset, cell);
-  FrameInput frame{scene,  asset.map,     *asset.relief,      *asset.base,
-                   camera, scene.effects, asset.objects.get()};
+  FrameInput frame{scene,
+                   asset.map,
+                   *asset.relief,
+                   *asset.base,
+                   camera,
+                   scene.drawn_effects(),
+                   asset.objects.get()};
   CellMeasure out;
   FragmentCounts counts;
   {
@@ -597,6 +603,7 @@ Row cell_row(const Cell& cell, const SceneDesc& scene, const Camera& camera, con
     row["ao_precompute_ms"] = asset.ao_ms;
     row["ao_precompute_cached"] = asset.ao_from_cache;
     row["ao_rescale"] = scene.ao.rescale(scene.depth);
+    row["ao_drawn"] = scene.ao.render;
     row["truth_ao_rays"] = double(truth.stats.ao_rays);
   }
   row["effects"] = join_effects(scene.effects);

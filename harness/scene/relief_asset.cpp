@@ -177,7 +177,7 @@ ReliefMap build_relief_asset(const SceneDesc& scene, int resolution) {
 
 AoMap attach_ao_map(ReliefMap& map, const SceneDesc& scene, double texel_world,
                     AoMapMethod method) {
-  if (!scene.effects.has(Effect::AmbientOcclusion)) return {};
+  if (!scene.drawn_effects().has(Effect::AmbientOcclusion)) return {};
   AoMapOptions o;
   o.directions = scene.ao.directions;
   o.filter = scene.ao.filter;

@@ -128,6 +128,10 @@ struct AmbientOcclusionDesc {
   // AO rescale study's shallow maps at 0.02, for 13% fewer rays on the rock wall), so it is off.
   int samples = 144;
   double stderr_target = 0;
+  // false: the technique draws no AO (none compiled, no map built) while the truth keeps its
+  // reference AO -- the scene without AO beside the same scene with it (Limberger et al.,
+  // Figure 7), both scored against the one AO truth.
+  bool render = true;
   // The depth the AO map is computed for, and the scene's depth over it.
   double depth_of_map(double depth) const { return map_depth > 0 ? map_depth : depth; }
   double rescale(double depth) const { return depth / depth_of_map(depth); }
@@ -188,7 +192,14 @@ struct SceneDesc {
   bool quantize = true;  // 8-bit textures like the papers; false keeps float
   EffectSet effects;
   AmbientOcclusionDesc ao;  // used when effects has AmbientOcclusion
-  MetaReliefDesc meta;      // finer relief layers on top of `relief`, if any
+  // The effects a technique is asked to simulate: `effects`, less AO where ao.render is false
+  // (the truth simulates `effects` whole).
+  EffectSet drawn_effects() const {
+    EffectSet drawn = effects;
+    if (!ao.render) drawn.remove(Effect::AmbientOcclusion);
+    return drawn;
+  }
+  MetaReliefDesc meta;  // finer relief layers on top of `relief`, if any
   glm::dvec3 light_position{0.9, -0.6, 1.4};
   Material material;
   double fov_deg = 40;

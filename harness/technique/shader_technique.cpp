@@ -41,7 +41,7 @@ SurfaceVariant ShaderTechnique::variant_of(const SceneDesc& scene) {
           scene.projection.active(),
           scene.impostor(),
           scene.base.curved() && scene.relief.layers > 0,
-          scene.effects.has(Effect::AmbientOcclusion) &&
+          scene.drawn_effects().has(Effect::AmbientOcclusion) &&
               scene.ao.update == AmbientOcclusionDesc::Update::Eq6 &&
               scene.ao.rescale(scene.depth) != 1.0,
           scene.meta.runtime() ? 1 + int(scene.meta.layers.size()) : 0,

@@ -151,8 +151,9 @@ std::unique_ptr<Technique> TechniqueRegistry::create(const std::string& name,
 }
 
 std::string cannot_render(const TechniqueInfo& info, const SceneDesc& s) {
-  if (!info.effects.contains_all(s.effects))
-    return "it does not support effect(s) " + join_effects(info.effects.missing_from(s.effects)) +
+  if (!info.effects.contains_all(s.drawn_effects()))
+    return "it does not support effect(s) " +
+           join_effects(info.effects.missing_from(s.drawn_effects())) +
            " (it supports: " + join_effects(info.effects) + "); drop the effect";
   if (s.cell_complex() != info.cell_complex)
     return info.cell_complex ? "it renders cell-complex reliefs (relief = { cells = ... }) only"
