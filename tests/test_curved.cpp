@@ -115,6 +115,28 @@ TEST(Silhouette, BentRaysCutTheSilhouetteThePlanarSearchCannot) {
   }
 }
 
+TEST(Silhouette, Eq52AsPrintedStopsShort) {
+  // The chapter's b lacks the substitution's -Uz (U points out of the surface): its root, the
+  // depth along U, comes out larger, so the search stops earlier and lands short of the
+  // surface. The flag selects Eq. 5.2 itself, whatever exact_distance says.
+  SceneDesc scene = curved_scene("sphere", "sines", 64, 0.12);
+  scene.effects.add(Effect::Silhouette);
+  ParamValues printed = silhouette_params(1);
+  printed["eq52_as_printed"] = 1;
+  const test::Measured full =
+      test::measure(scene, "relief_silhouette", silhouette_params(1), View{30, 30}, 96);
+  const test::Measured as_printed =
+      test::measure(scene, "relief_silhouette", printed, View{30, 30}, 96);
+  EXPECT_EQ(as_printed.metrics.nonfinite_px, 0);
+  EXPECT_LT(as_printed.metrics.fetches.mean, full.metrics.fetches.mean - 1.0);
+  EXPECT_GT(as_printed.metrics.artifact_pct, full.metrics.artifact_pct);
+  printed["exact_distance"] = 0;
+  const test::Measured implied =
+      test::measure(scene, "relief_silhouette", printed, View{30, 30}, 96);
+  EXPECT_EQ(implied.metrics.fetches.mean, as_printed.metrics.fetches.mean);
+  EXPECT_EQ(implied.metrics.artifact_pct, as_printed.metrics.artifact_pct);
+}
+
 TEST(Silhouette, OnAFlatBaseItIsTheReliefSearch) {
   // Zero curvature: f = 0 in t_max (the stable form divides by no f), nothing is discarded.
   SceneDesc scene = test::procedural_scene("pyramids", 64, 0.08);

@@ -35,7 +35,15 @@ class ReliefSilhouette final : public Described<ReliefSilhouette, ShaderTechniqu
               .min_value = 0,
               .max_value = 1,
               .doc = "1: ray-quadric distance of Equation 5.2 with the discriminant test; 0: the "
-                     "vertical distance of Equation 5.3 (the chapter's 'twofold speedup')"}},
+                     "vertical distance of Equation 5.3 (the chapter's 'twofold speedup')"},
+             {.name = "eq52_as_printed",
+              .kind = ParamKind::Bool,
+              .default_value = 0,
+              .min_value = 0,
+              .max_value = 1,
+              .doc = "1: Equation 5.2 (whatever exact_distance says) with its linear "
+                     "coefficient as the chapter prints it, b = 2 A Px Ux + 2 B Py Uy, without the "
+                     "-Uz that substituting R = P + U s into Equation 5.1 gives"}},
         .box_proxy = false,
         .meta_relief = true,
         .contract = {.answer = Answer::Converging,
@@ -58,7 +66,9 @@ class ReliefSilhouette final : public Described<ReliefSilhouette, ShaderTechniqu
   Defines parameter_defines() const override {
     return {{"RL_LINEAR_STEPS", std::to_string(static_cast<int>(param("linear_steps")))},
             {"RL_BINARY_STEPS", std::to_string(static_cast<int>(param("binary_steps")))},
-            {"RL_QUADRIC_EXACT", std::to_string(static_cast<int>(param("exact_distance")))}};
+            {"RL_QUADRIC_EXACT", std::to_string(static_cast<int>(param("exact_distance") != 0 ||
+                                                                 param("eq52_as_printed") != 0))},
+            {"RL_EQ52_AS_PRINTED", std::to_string(static_cast<int>(param("eq52_as_printed")))}};
   }
 };
 

@@ -18,8 +18,13 @@ float rl_bent_depth(vec3 P, vec2 quadric, vec3 u_dir, float a_u, float depth_sca
   float d_approx = P.z - (quadric.x * P.x * P.x + quadric.y * P.y * P.y);  // Eq. 5.3
 #if RL_QUADRIC_EXACT
   // Eq. 5.2: R = P + U s on the quadric; a s^2 + b s + c = 0 with c = -d_approx. Inside (c < 0)
-  // its positive root, written without cancellation; outside, any negative depth will do.
+  // its positive root, written without cancellation; outside, any negative depth will do. The
+  // substitution gives b its -U.z; the chapter prints b without it (RL_EQ52_AS_PRINTED).
+#if RL_EQ52_AS_PRINTED
+  float b = 2.0 * (quadric.x * P.x * u_dir.x + quadric.y * P.y * u_dir.y);
+#else
   float b = 2.0 * (quadric.x * P.x * u_dir.x + quadric.y * P.y * u_dir.y) - u_dir.z;
+#endif
   float c = -d_approx;
   float disc = b * b - 4.0 * a_u * c;
   float q = b + sqrt(max(disc, 0.0));
