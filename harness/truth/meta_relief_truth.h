@@ -14,6 +14,7 @@
 // against the Embree heightfield truth where a bake is exact and against dense sampling
 // elsewhere.
 #include <memory>
+#include <vector>
 
 #include "relief/meta_relief.h"
 #include "truth/truth_surface.h"
@@ -40,6 +41,7 @@ class MetaReliefTruth final : public TruthSurface {
 
  private:
   std::shared_ptr<const MetaRelief> meta_;
+  std::vector<std::vector<float>> depths_;  // per layer, row-major
 };
 
 }  // namespace rl
