@@ -13,10 +13,11 @@
 namespace rl {
 
 struct SafetyRadiusOptions {
-  int directions = 16;         // sampled ray azimuths over 360 degrees
-  int starts = 3;              // sampled crossing points along the texel's centerline
-  double step = 0.5;           // profile sampling step, in texels along the major axis
-  int max_radius = 0;          // cap in texels; 0 = follow the texture: min(255, larger side)
+  int directions = 16;  // sampled ray azimuths over 360 degrees
+  int starts = 3;       // sweep lines per texel across the ray, 1/starts apart
+  double step = 0.5;    // profile sampling step along the major axis, texels; 1/step whole (the
+                        // samples must fall on every centerline, where the starts are)
+  int max_radius = 0;   // cap in texels; 0 = follow the texture: min(255, larger side)
   double error_allowed = 0.0;  // depth a ray may dip into a feature unseen (Figure 12)
   // Section 3.5 as written: rays blocked by the heightfield before they pass above the texel
   // are ignored (the search never stands on such a ray). false = conservative radii that
@@ -57,8 +58,10 @@ struct SafetyRadii {
 // cap. With error_allowed = e, points before s2 count e lower (dips of at most e are not
 // seen; rays up to e below the start count, conservatively).
 //
-// Otherwise (conservative): every ray above the start counts, blocked or not; each texel,
-// direction and start scans the profile ahead (first_two_hit_distance).
+// Otherwise (conservative): every ray above the start counts, blocked or not. The same lines
+// are swept and every start of a line answered at once (first_conservative_violations; with
+// error_allowed > 0 each start scans ahead, first_two_hit_after); a texel takes the radii of
+// every line within one line spacing of it, so both lines bracketing a crossing bound it.
 SafetyRadii compute_safety_radii(const ReliefMap& map, const SafetyRadiusOptions& options);
 
 // compute_safety_radii through an on-disk cache keyed by the map's content and the options
