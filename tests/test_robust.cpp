@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "../techniques/relief_robust/safety_radius.h"
+#include "gl/context.h"
 #include "relief/heightfield_reference.h"
 #include "relief/procedural.h"
 #include "support/test_support.h"
@@ -182,6 +183,22 @@ TEST(SafetyRadius, FlatIsMaximalAndAFieldOfPeaksIsZero) {
   SafetyRadii peaks =
       compute_safety_radii(from_depths(16, [](int x, int y) { return float((x + y) % 2); }), o);
   EXPECT_EQ(peaks.zero_count(), 16 * 16);
+}
+
+TEST(SafetyRadius, TheTechniqueReportsItsZeroRadiusTexels) {
+  // Figure 7's texels (radius 0, stepped by 1 or walked exactly) as a row column: none on a
+  // flat map, every one on a field of one-texel peaks.
+  GlContext::shared();
+  for (const auto& [map, expected] :
+       {std::pair{from_depths(16, [](int, int) { return 0.5f; }), 0.0},
+        std::pair{from_depths(16, [](int x, int y) { return float((x + y) % 2); }), 100.0}}) {
+    auto t = TechniqueRegistry::instance().create("relief_robust", {}, "test");
+    t->prepare(map);
+    const auto columns = t->frame_columns();
+    ASSERT_EQ(columns.size(), 1u);
+    EXPECT_EQ(columns[0].first, "zero_radius_pct");
+    EXPECT_EQ(columns[0].second, expected);
+  }
 }
 
 TEST(SafetyRadius, AllowingErrorOnlyGrowsRadii) {

@@ -69,39 +69,43 @@ class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
               .doc = "Section 3.5's words: keep the largest radius over the sampled directions "
                      "(safe for one direction only); 0 = the smallest, safe for all"}},
         .box_proxy = true,
-        .contract = {
-            .answer = Answer::Converging,
-            .max_fetches =
-                [](const RayQuery& q) {
-                  const double major = std::max(q.span_texels.x, q.span_texels.y);
-                  const double minor = std::min(q.span_texels.x, q.span_texels.y);
-                  const double lines = std::min(kWalkCellCap, std::floor(major) + 2);
-                  // A zero radius walks its line's cells exactly: one gather per cell.
-                  const double per_line =
-                      1 + (q.param("exact_zero_radius") != 0
-                               ? std::max(1.0, std::ceil(minor / std::max(major, 1.0)) + 3)
-                               : 1.0);
-                  return lines * per_line + q.param("binary_steps") + 3;
-                },
-            .max_fetches_formula = "(texel lines crossed + 2) x (a radius and a depth, or with "
-                                   "exact_zero_radius the cells of a line), + binary_steps, + 1 "
-                                   "where the ray enters below depth 0 (a box side), + 2 to shade",
-            .knobs = {{"binary_steps"},
-                      {"directions"},
-                      {"exact_zero_radius"},
-                      {"error_allowed", /*larger_is_finer=*/false},
-                      {"ignore_blocked", /*larger_is_finer=*/false},
-                      {"max_over_directions", /*larger_is_finer=*/false}},
-            .finest = {{"binary_steps", 32},
-                       {"directions", 64},
-                       {"exact_zero_radius", 1},
-                       {"error_allowed", 0},
-                       {"ignore_blocked", 0},
-                       {"max_over_directions", 0}},
-            .accuracy = "the crossing in a step of at most one safety radius (255 texels), to "
-                        "within that step / 2^(binary_steps + 1): safe radii hold one crossing "
-                        "per step",
-            .hits_from_inside = false}};
+        .contract = {.answer = Answer::Converging,
+                     .max_fetches =
+                         [](const RayQuery& q) {
+                           const double major = std::max(q.span_texels.x, q.span_texels.y);
+                           const double minor = std::min(q.span_texels.x, q.span_texels.y);
+                           const double lines = std::min(kWalkCellCap, std::floor(major) + 2);
+                           // A zero radius walks its line's cells exactly: one gather per cell.
+                           const double per_line =
+                               1 + (q.param("exact_zero_radius") != 0
+                                        ? std::max(1.0, std::ceil(minor / std::max(major, 1.0)) + 3)
+                                        : 1.0);
+                           return lines * per_line + q.param("binary_steps") + 3;
+                         },
+                     .max_fetches_formula =
+                         "(texel lines crossed + 2) x (a radius and a depth, or with "
+                         "exact_zero_radius the cells of a line), + binary_steps, + 1 "
+                         "where the ray enters below depth 0 (a box side), + 2 to shade",
+                     .knobs = {{"binary_steps"},
+                               {"directions"},
+                               {"exact_zero_radius"},
+                               {"error_allowed", /*larger_is_finer=*/false},
+                               {"ignore_blocked", /*larger_is_finer=*/false},
+                               {"max_over_directions", /*larger_is_finer=*/false}},
+                     .finest = {{"binary_steps", 32},
+                                {"directions", 64},
+                                {"exact_zero_radius", 1},
+                                {"error_allowed", 0},
+                                {"ignore_blocked", 0},
+                                {"max_over_directions", 0}},
+                     .accuracy =
+                         "the crossing in a step of at most one safety radius (255 texels), to "
+                         "within that step / 2^(binary_steps + 1): safe radii hold one crossing "
+                         "per step",
+                     .hits_from_inside = false},
+        .columns = {{"zero_radius_pct", "%",
+                     "texels whose safety radius is 0 (Figure 7: not concave there; the search "
+                     "steps 1 there, or walks the line's cells with exact_zero_radius)"}}};
   }
 
   void prepare(const ReliefMap& map) override {
@@ -124,6 +128,10 @@ class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   }
   size_t memory_bytes() const override { return radii_.radius.size(); }
+  std::vector<std::pair<std::string, double>> frame_columns() const override {
+    return {{"zero_radius_pct",
+             100.0 * radii_.zero_count() / double(std::max<size_t>(radii_.radius.size(), 1))}};
+  }
   bool prepared_from_cache() const override { return radii_.from_cache; }
   const SafetyRadii& radii() const { return radii_; }
 
