@@ -9,25 +9,39 @@
 
 namespace rl {
 
-inline void parallel_for(size_t n, const std::function<void(size_t begin, size_t end)>& body,
-                         size_t grain = 64) {
-  const size_t threads = std::max(1u, std::thread::hardware_concurrency());
+// The threads parallel_for runs on (at least 1).
+inline size_t parallel_workers() {
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+// `body(worker, begin, end)`: `worker` in [0, parallel_workers()) names the thread running the
+// chunk, so a loop can keep one scratch or accumulator per thread and combine them after.
+inline void parallel_for_workers(
+    size_t n, const std::function<void(size_t worker, size_t begin, size_t end)>& body,
+    size_t grain = 64) {
+  const size_t threads = parallel_workers();
   if (n <= grain || threads == 1) {
-    body(0, n);
+    body(0, 0, n);
     return;
   }
   std::atomic<size_t> next{0};
-  auto worker = [&] {
+  auto worker = [&](size_t id) {
     for (;;) {
       size_t begin = next.fetch_add(grain);
       if (begin >= n) return;
-      body(begin, std::min(n, begin + grain));
+      body(id, begin, std::min(n, begin + grain));
     }
   };
   std::vector<std::thread> pool;
-  for (size_t i = 1; i < threads; ++i) pool.emplace_back(worker);
-  worker();
+  for (size_t i = 1; i < threads; ++i) pool.emplace_back(worker, i);
+  worker(0);
   for (auto& t : pool) t.join();
+}
+
+inline void parallel_for(size_t n, const std::function<void(size_t begin, size_t end)>& body,
+                         size_t grain = 64) {
+  parallel_for_workers(
+      n, [&](size_t, size_t begin, size_t end) { body(begin, end); }, grain);
 }
 
 }  // namespace rl

@@ -73,6 +73,12 @@ float ReliefMap::min_depth() const {
   return m;
 }
 
+std::vector<float> ReliefMap::depths() const {
+  std::vector<float> d(relief.size());
+  for (size_t i = 0; i < d.size(); ++i) d[i] = relief[i].a;
+  return d;
+}
+
 float ReliefMap::max_depth() const {
   float m = 0;
   for (const auto& t : relief) m = std::max(m, t.a);

@@ -89,6 +89,9 @@ struct ReliefMap {
   glm::dvec4 surface_relief(double u, double v) const;
   float min_depth() const;
   float max_depth() const;
+  // The depths alone (relief's alpha), row-major, 4 bytes a texel: for loops that read many of
+  // them, where the 16-byte texels would waste three quarters of every cache line.
+  std::vector<float> depths() const;
   // Hash of the size and contents: keys precompute caches and result rows.
   uint64_t content_hash() const;
   // Relief + colour (+ AO) textures as uploaded; with `meta_layers`, a meta-relief's layer

@@ -58,12 +58,9 @@ double HeightfieldTruth::depth_at(long i, long j) const {
 
 HeightfieldTruth::HeightfieldTruth(const ReliefMap& map, double band_tolerance, size_t max_vertices,
                                    int forced_subdivision)
-    : width_(map.width), height_(map.height) {
+    : width_(map.width), height_(map.height), depth_(map.depths()) {
   const auto start = std::chrono::steady_clock::now();
   const int W = width_, H = height_;
-  depth_.resize(size_t(W) * H);
-  for (int y = 0; y < H; ++y)
-    for (int x = 0; x < W; ++x) depth_[size_t(y) * W + x] = map.depth_texel(x, y);
   max_depth_ = map.max_depth();
   offset_ = glm::dvec2(0.5 / W, 0.5 / H);
 

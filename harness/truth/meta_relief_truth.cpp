@@ -80,10 +80,7 @@ struct LayerWalk {
 MetaReliefTruth::MetaReliefTruth(std::shared_ptr<const MetaRelief> meta) : meta_(std::move(meta)) {
   // Each layer's depths alone, 4 bytes a texel: the walk reads four per cell it enters, and
   // from the maps' 16-byte texels those reads missed the cache on the finer layers.
-  for (const MetaLayer& layer : meta_->layers()) {
-    std::vector<float>& d = depths_.emplace_back(layer.map.relief.size());
-    for (size_t i = 0; i < d.size(); ++i) d[i] = layer.map.relief[i].a;
-  }
+  for (const MetaLayer& layer : meta_->layers()) depths_.push_back(layer.map.depths());
 }
 
 double MetaReliefTruth::first_hit(const glm::dvec3& o, const glm::dvec3& d, double t_min,

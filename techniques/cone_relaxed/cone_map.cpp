@@ -6,9 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
-#include <mutex>
 #include <numeric>
-#include <thread>
 
 #include "core/parallel.h"
 #include "core/precompute_cache.h"
@@ -26,10 +24,7 @@ struct DepthSampler {
       : w(map.width),
         h(map.height),
         pow2((w & (w - 1)) == 0 && (h & (h - 1)) == 0),
-        d(size_t(w) * h) {
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) d[size_t(y) * w + x] = map.depth_texel(x, y);
-  }
+        d(map.depths()) {}
   int wrap_x(int x) const { return pow2 ? x & (w - 1) : ((x % w) + w) % w; }
   int wrap_y(int y) const { return pow2 ? y & (h - 1) : ((y % h) + h) % h; }
   float at(int x, int y) const { return d[size_t(wrap_y(y)) * w + wrap_x(x)]; }
@@ -321,26 +316,13 @@ ConeMap compute_cone_map(const ReliefMap& map, const ConeMapOptions& o) {
   // the narrowest over directions whatever their order: a direction's scan only stops early at
   // the narrowest cone found so far.
   const std::vector<ConeScanDirection> dirs = cone_scan_directions(o.directions);
-  const size_t copies =
-      std::min<size_t>(dirs.size(), std::max(1u, std::thread::hardware_concurrency()));
-  std::vector<std::vector<float>> narrowed(copies);
-  std::vector<size_t> idle(copies);
-  std::iota(idle.begin(), idle.end(), size_t(0));
-  std::mutex idle_lock;
-  parallel_for(
+  std::vector<std::vector<float>> narrowed(parallel_workers());
+  parallel_for_workers(
       dirs.size(),
-      [&](size_t begin, size_t end) {
-        size_t copy;
-        {
-          const std::lock_guard<std::mutex> hold(idle_lock);
-          copy = idle.back();
-          idle.pop_back();
-        }
-        std::vector<float>& ratio = narrowed[copy];
+      [&](size_t worker, size_t begin, size_t end) {
+        std::vector<float>& ratio = narrowed[worker];
         if (ratio.empty()) ratio.assign(size_t(map.width) * map.height, float(o.max_ratio));
         for (size_t d = begin; d < end; ++d) narrow_along_direction(depth, dirs[d], o, ratio);
-        const std::lock_guard<std::mutex> hold(idle_lock);
-        idle.push_back(copy);
       },
       1);
   out.ratio.assign(size_t(map.width) * map.height, float(o.max_ratio));
