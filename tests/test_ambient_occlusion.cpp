@@ -256,6 +256,38 @@ TEST(AoMap, SweepHandlesTinyAndThinMaps) {
   }
 }
 
+// Along an axis the sweep's lines run exactly through rows (or columns) of texels, where rounding
+// decides which strip a texel is in: at phi = pi the map's first row once fell outside its
+// strip's extent and kept only its nearest two samples' horizon. A wall one texel thick across
+// the map is seen from every texel at distance d (the nearer way round the tiling) at
+// tan = height / d, exactly on the line through the texel. (Sides that are multiples of the
+// sweep's 8 strips per bundle put a bundle's edge on row 0, where the miss was.)
+TEST(AoMap, SweepSeesAWallFromEveryTexelAlongEachAxis) {
+  const int w = 32, h = 24;
+  const float height = 5;
+  for (int axis = 0; axis < 4; ++axis) {
+    const double phi = axis * M_PI / 2;
+    const bool across_x = axis % 2 == 0;  // rays along x meet a wall on column 0
+    std::vector<float> heights(size_t(w) * h, 0.0f);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        if ((across_x ? x : y) == 0) heights[size_t(y) * w + x] = height;
+    const TiledHeights g(w, h, heights);
+    HorizonSweepOptions o;
+    o.reach = std::max(w, h);
+    std::vector<float> tan;
+    sweep_horizon(g, phi, o, tan);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const int along = across_x ? x : y, side = across_x ? w : h;
+        if (along == 0) continue;                       // on the wall
+        const int d = axis < 2 ? side - along : along;  // phi 0 and pi/2 look up the axis
+        EXPECT_NEAR(tan[size_t(y) * w + x], height / d, 1e-5f)
+            << "phi " << axis << " x pi/2, texel " << x << "," << y;
+      }
+  }
+}
+
 // A sweep steps its sample points back one unit at a time and wraps them; a point a hair below
 // 0 plus the side rounded to the side itself, and bilinear_wrapped read one row past its
 // padding (a 2048^2 meta-relief bake's AO map crashed on it). The step keeps every point in

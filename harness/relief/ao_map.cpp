@@ -229,8 +229,9 @@ void filter_occluded_texels(const ReliefMap& map, std::vector<float>& visibility
 AoMap cached_ao_map(const ReliefMap& map, const AoMapOptions& o, AoMapMethod method) {
   // Bump when a method changes its answers (2: the fragment shader's open directions are made
   // exactly 1, as the CPU's always were; 3: the CPU's map is the line sweep's, not the march's;
-  // 4: the sweep no longer reads past its padding at the far edge).
-  constexpr int kAlgorithmVersion = 4;
+  // 4: the sweep no longer reads past its padding at the far edge; 5: it no longer leaves out
+  // a row lying exactly on a bundle's first line).
+  constexpr int kAlgorithmVersion = 5;
   char options[128];
   std::snprintf(options, sizeof options, "v%d|%d|%d|%.9g|%s|", kAlgorithmVersion, o.directions,
                 int(o.filter), o.height_texels, method.name);

@@ -59,50 +59,50 @@ void strip_extent(const LineFrame& f, float w1, float h1, float ta, float tb, fl
   }
 }
 
-// The texel centres 0 .. n - 1 within the span of four coordinates (with a margin for rounding:
-// the partition itself is decided by slot_of).
-glm::ivec2 centres_within(const float v[4], int n) {
-  const float lo = std::min(std::min(v[0], v[1]), std::min(v[2], v[3]));
-  const float hi = std::max(std::max(v[0], v[1]), std::max(v[2], v[3]));
-  return {std::max(0, ceil_of(lo - 1e-3f)), std::min(n - 1, floor_of(hi + 1e-3f))};
-}
+// A point of a line's upper hull: its sample index and height.
+struct HullPoint {
+  int32_t k;
+  float h;
+};
 
 // One line of a bundle: its samples (from the bundle's first k on) and the upper hull of those
-// read so far, nearest last.
+// read so far, nearest last (hull[0 .. hull_size), the vector sized once per bundle).
 struct SweptLine {
   std::vector<float> height;
-  std::vector<int32_t> hull;
+  std::vector<HullPoint> hull;
+  size_t hull_size = 0;
 };
 
 // The sample of `line` at or after the hull's nearest where the slope from the point (s, h) is
 // steepest: seen from a point before the hull, the slope along it rises, then falls.
-int tangent_from(const SweptLine& line, const LineFrame& f, int k_first, float s, float h) {
-  const std::vector<int32_t>& hull = line.hull;
-  size_t i = hull.size() - 1;
-  float best = (line.height[size_t(hull[i] - k_first)] - h) / (float(f.s0 + hull[i]) - s);
+int tangent_from(const SweptLine& line, const LineFrame& f, float s, float h) {
+  const HullPoint* hull = line.hull.data();
+  size_t i = line.hull_size - 1;
+  float best = (hull[i].h - h) / (float(f.s0 + hull[i].k) - s);
   while (i > 0) {
-    const int next = hull[i - 1];
-    const float slope = (line.height[size_t(next - k_first)] - h) / (float(f.s0 + next) - s);
+    const HullPoint next = hull[i - 1];
+    const float slope = (next.h - h) / (float(f.s0 + next.k) - s);
     if (slope <= best) break;
     best = slope;
     --i;
   }
-  return hull[i];
+  return hull[i].k;
 }
 
 // Reads sample k of `line` (at t) and takes it into the hull: the nearest hull point leaves
 // when it lies on or under the chord from the new point to the one after it.
 void take_sample(const TiledHeights& g, double x, double y, int k, int k_first, SweptLine& line) {
   const float hk = g.bilinear_wrapped(x, y);
-  std::vector<int32_t>& hull = line.hull;
-  const float* height = line.height.data() - k_first;
-  while (hull.size() >= 2) {
-    const int a = hull[hull.size() - 1], b = hull[hull.size() - 2];
-    if ((height[a] - hk) * float(b - k) > (height[b] - hk) * float(a - k)) break;
-    hull.pop_back();
+  HullPoint* hull = line.hull.data();
+  size_t n = line.hull_size;
+  while (n >= 2) {
+    const HullPoint a = hull[n - 1], b = hull[n - 2];
+    if ((a.h - hk) * float(b.k - k) > (b.h - hk) * float(a.k - k)) break;
+    --n;
   }
   line.height[size_t(k - k_first)] = hk;
-  hull.push_back(k);
+  hull[n] = {k, hk};
+  line.hull_size = n + 1;
 }
 
 // Which strip (between lines j and j + 1) and which first far sample k a texel centre has; the
@@ -120,15 +120,68 @@ TexelSlot slot_of(const LineFrame& f, int near_steps, int x, int y) {
   return t;
 }
 
-// The horizon of texel (x, y), between lines `below` and `above` whose hulls hold the samples
-// from the texel's first far one on.
-float texel_horizon(const TiledHeights& g, const LineFrame& f, const HorizonSweepOptions& o,
-                    const TexelSlot& p, int x, int y, const SweptLine& below,
-                    const SweptLine& above, int k_first) {
-  const float hp = g.at(x, y);
-  float best = 0;  // below the horizontal counts as open
-  for (int m = 1; m <= o.near_steps; ++m)
-    best = std::max(best, (g.bilinear(x + double(f.c) * m, y + double(f.sn) * m) - hp) / float(m));
+// The samples each texel takes exactly along its own ray, m = 1 .. near_steps texels away: the
+// same offset (m cos phi, m sin phi) from every texel, so the same whole-texel step and the
+// same bilinear weights (the exact fractional parts, as TiledHeights::bilinear finds them).
+struct NearStencil {
+  struct Step {
+    int dx, dy;  // whole texels
+    float a, b;  // bilinear weights across x and y
+  };
+  std::vector<Step> steps;
+
+  NearStencil(const LineFrame& f, int near_steps) {
+    for (int m = 1; m <= near_steps; ++m) {
+      const double ox = double(f.c) * m, oy = double(f.sn) * m;
+      const double fx = std::floor(ox), fy = std::floor(oy);
+      steps.push_back({int(fx), int(fy), float(ox - fx), float(oy - fy)});
+    }
+  }
+};
+
+// v taken into [0, n) (v within a few n of it).
+int wrapped_index(int v, int n) {
+  while (v < 0) v += n;
+  while (v >= n) v -= n;
+  return v;
+}
+
+// A texel whose horizon waits for the sweep to reach its first far sample.
+struct PendingTexel {
+  int32_t x, y;
+  int32_t j, k;  // the line below it and its first far sample (slot_of)
+  float s, u;    // along and across the lines (u from line t0)
+};
+
+// The horizon over each texel's first near_steps samples, for every texel: where the stencil
+// reaches past the map's edge, rows and columns wrap; within a row the loop runs straight (and
+// vectorises).
+void near_horizons(const TiledHeights& g, const NearStencil& near, std::vector<float>& tan_out) {
+  const int w = g.width(), h = g.height();
+  for (int y = 0; y < h; ++y) {
+    float* out = &tan_out[size_t(y) * w];
+    for (int x = 0; x < w; ++x) out[x] = 0;  // below the horizontal counts as open
+    for (size_t m = 0; m < near.steps.size(); ++m) {
+      const NearStencil::Step& st = near.steps[m];
+      const int y0 = wrapped_index(y + st.dy, h);
+      const float distance = float(m + 1);
+      auto at = [&](int x) {
+        return (g.bilinear_at(wrapped_index(x + st.dx, w), y0, st.a, st.b) - g.at(x, y)) / distance;
+      };
+      // Texels whose x + dx lies in [0, w): no wrap.
+      const int lo = std::clamp(-st.dx, 0, w), hi = std::clamp(w - st.dx, lo, w);
+      for (int x = 0; x < lo; ++x) out[x] = std::max(out[x], at(x));
+      for (int x = lo; x < hi; ++x) out[x] = std::max(out[x], at(x));
+      for (int x = hi; x < w; ++x) out[x] = std::max(out[x], at(x));
+    }
+  }
+}
+
+// The horizon of texel p, between lines `below` and `above` whose hulls hold the samples from
+// the texel's first far one on; `near` is its horizon over its near samples.
+float texel_horizon(const LineFrame& f, const PendingTexel& p, float hp, float near,
+                    const SweptLine& below, const SweptLine& above, int k_first) {
+  float best = near;
   // Beyond, the texel's ray runs between the lines, `across` of the way from one to the other.
   // Two estimates of its steepest point, each biased on its own where the other is not (tests:
   // AoMap.SweepStaysCloseToThePerTexelMarch): the point between the two lines' own tangent
@@ -136,47 +189,96 @@ float texel_horizon(const TiledHeights& g, const LineFrame& f, const HorizonSwee
   // the lines' blend by distance between those two, which does not overstate a peak that only
   // one line crosses (a blend of the two slopes would).
   const float across = p.u - float(p.j);
-  const int ka = tangent_from(below, f, k_first, p.s, hp);
-  const int kb = tangent_from(above, f, k_first, p.s, hp);
+  const int ka = tangent_from(below, f, p.s, hp);
+  const int kb = tangent_from(above, f, p.s, hp);
+  const float* hb = below.height.data() - k_first;
+  const float* ha = above.height.data() - k_first;
   const float k_between = (1 - across) * float(ka) + across * float(kb);
-  const float h_between = (1 - across) * below.height[size_t(ka - k_first)] +
-                          across * above.height[size_t(kb - k_first)];
+  const float h_between = (1 - across) * hb[ka] + across * ha[kb];
   best = std::max(best, (h_between - hp) / (float(f.s0) + k_between - p.s));
   const int lo = std::min(ka, kb), hi = std::min(std::max(ka, kb), lo + 16);
   for (int kt = lo; kt <= hi; ++kt) {
-    const float blend = (1 - across) * below.height[size_t(kt - k_first)] +
-                        across * above.height[size_t(kt - k_first)];
+    const float blend = (1 - across) * hb[kt] + across * ha[kt];
     best = std::max(best, (blend - hp) / (float(f.s0 + kt) - p.s));
   }
   return best;
 }
 
+// The texels of the strips between lines first_line .. first_line + strips: each texel belongs
+// to the strip slot_of gives it. The candidates are read along rows (or columns, whichever the
+// lines cross more steeply) with a texel's margin either side.
+void gather_texels(const TiledHeights& g, const LineFrame& f, const HorizonSweepOptions& o,
+                   int first_line, int strips, std::vector<PendingTexel>& found) {
+  found.clear();
+  auto consider = [&](int x, int y) {
+    const TexelSlot p = slot_of(f, o.near_steps, x, y);
+    if (p.j >= first_line && p.j < first_line + strips) found.push_back({x, y, p.j, p.k, p.s, p.u});
+  };
+  // Strip edges at t = y c - x sn = t_lo and t_hi.
+  const float t_lo = float(f.t0 + first_line), t_hi = float(f.t0 + first_line + strips);
+  if (std::abs(f.sn) >= std::abs(f.c)) {
+    for (int y = 0; y < g.height(); ++y) {
+      const float a = (float(y) * f.c - t_hi) / f.sn, b = (float(y) * f.c - t_lo) / f.sn;
+      const int x0 = std::max(0, floor_of(std::min(a, b)) - 1);
+      const int x1 = std::min(g.width() - 1, ceil_of(std::max(a, b)) + 1);
+      for (int x = x0; x <= x1; ++x) consider(x, y);
+    }
+  } else {
+    for (int x = 0; x < g.width(); ++x) {
+      const float a = (t_lo + float(x) * f.sn) / f.c, b = (t_hi + float(x) * f.sn) / f.c;
+      const int y0 = std::max(0, floor_of(std::min(a, b)) - 1);
+      const int y1 = std::min(g.height() - 1, ceil_of(std::max(a, b)) + 1);
+      for (int y = y0; y <= y1; ++y) consider(x, y);
+    }
+  }
+}
+
+// `found` in `texels` grouped by first far sample k (k_first .. k_texels):
+// texels[by_k[k - k_first]] .. texels[by_k[k - k_first + 1] - 1], by a counting sort.
+void group_by_k(const std::vector<PendingTexel>& found, int k_first, int k_texels,
+                std::vector<PendingTexel>& texels, std::vector<int>& by_k) {
+  by_k.assign(size_t(k_texels - k_first + 2), 0);
+  for (const PendingTexel& p : found) ++by_k[size_t(p.k - k_first) + 1];
+  for (size_t i = 1; i < by_k.size(); ++i) by_k[i] += by_k[i - 1];
+  texels.resize(found.size());
+  for (const PendingTexel& p : found) texels[size_t(by_k[size_t(p.k - k_first)]++)] = p;
+  for (size_t i = by_k.size() - 1; i > 0; --i) by_k[i] = by_k[i - 1];  // back to the starts
+  by_k[0] = 0;
+}
+
+// What one worker reuses from bundle to bundle.
+struct BundleScratch {
+  std::vector<SweptLine> lines;
+  std::vector<PendingTexel> found, texels;
+  std::vector<int> by_k;
+};
+
 // Lines first_line .. first_line + strips swept together from their far ends, each texel of the
 // strips between them resolved when the sweep reaches its first far sample.
 void sweep_bundle(const TiledHeights& g, const LineFrame& f, const HorizonSweepOptions& o,
-                  int first_line, int strips, std::vector<SweptLine>& lines,
-                  std::vector<float>& tan_out) {
-  const float w1 = float(g.width() - 1), h1 = float(g.height() - 1);
+                  int first_line, int strips, BundleScratch& b, std::vector<float>& tan_out) {
+  gather_texels(g, f, o, first_line, strips, b.found);
+  if (b.found.empty()) return;  // the strips miss the map
   float lo, hi;
-  strip_extent(f, w1, h1, float(f.t0 + first_line), float(f.t0 + first_line + strips), lo, hi);
-  if (lo > hi) return;  // the strips miss the map
-  const int k_first = floor_of(lo + float(o.near_steps)) - f.s0 - 1;
-  const int k_texels = ceil_of(hi + float(o.near_steps)) - f.s0 + 1;
-  const int k_last = k_texels + o.reach;
-  // Each strip's own stretch of k holding texels.
-  std::vector<glm::ivec2> strip_k(static_cast<size_t>(strips));
-  for (int i = 0; i < strips; ++i) {
-    float a, b;
-    strip_extent(f, w1, h1, float(f.t0 + first_line + i), float(f.t0 + first_line + i + 1), a, b);
-    strip_k[size_t(i)] = a > b ? glm::ivec2(1, 0)
-                               : glm::ivec2(floor_of(a + float(o.near_steps)) - f.s0 - 1,
-                                            ceil_of(b + float(o.near_steps)) - f.s0 + 1);
+  strip_extent(f, float(g.width() - 1), float(g.height() - 1), float(f.t0 + first_line),
+               float(f.t0 + first_line + strips), lo, hi);
+  int k_first = floor_of(lo + float(o.near_steps)) - f.s0 - 1;
+  int k_texels = ceil_of(hi + float(o.near_steps)) - f.s0 + 1;
+  // The strips' extent, and the texels slot_of gives them where rounding puts one outside it: a
+  // row of texels exactly on a line (phi = pi, row 0) was once left out so.
+  for (const PendingTexel& p : b.found) {
+    k_first = std::min(k_first, p.k);
+    k_texels = std::max(k_texels, p.k);
   }
+  const int k_last = k_texels + o.reach;
+  group_by_k(b.found, k_first, k_texels, b.texels, b.by_k);
+  std::vector<SweptLine>& lines = b.lines;
   lines.resize(size_t(strips) + 1);
   std::vector<glm::dvec2> at(lines.size());  // each line's sample point, wrapped
   for (size_t i = 0; i < lines.size(); ++i) {
     lines[i].height.resize(size_t(k_last - k_first + 1));
-    lines[i].hull.clear();
+    lines[i].hull.resize(size_t(k_last - k_first + 1));
+    lines[i].hull_size = 0;
     const double s = f.s0 + k_last, t = f.t0 + first_line + int(i);
     at[i] = {wrapped(s * f.c - t * f.sn, g.width()), wrapped(s * f.sn + t * f.c, g.height())};
   }
@@ -187,22 +289,12 @@ void sweep_bundle(const TiledHeights& g, const LineFrame& f, const HorizonSweepO
       g.step_back_wrapped(q.x, q.y, f.c, f.sn);  // one sample back
     }
     if (k > k_texels) continue;
-    // The texels whose first far sample is k: in the rotated unit square s in (S - 1, S],
-    // t in [t, t + 1) of each strip, at most 2 x 2 texel centres in its bounding box.
-    const float S = float(f.s0 + k - o.near_steps);
-    for (int i = 0; i < strips; ++i) {
-      if (k < strip_k[size_t(i)].x || k > strip_k[size_t(i)].y) continue;
-      const float t = float(f.t0 + first_line + i);
-      const float xs[4] = {f.x_at(S - 1, t), f.x_at(S, t), f.x_at(S - 1, t + 1), f.x_at(S, t + 1)};
-      const float ys[4] = {f.y_at(S - 1, t), f.y_at(S, t), f.y_at(S - 1, t + 1), f.y_at(S, t + 1)};
-      const glm::ivec2 xr = centres_within(xs, g.width()), yr = centres_within(ys, g.height());
-      for (int y = yr.x; y <= yr.y; ++y)
-        for (int x = xr.x; x <= xr.y; ++x) {
-          const TexelSlot p = slot_of(f, o.near_steps, x, y);
-          if (p.j != first_line + i || p.k != k) continue;
-          tan_out[size_t(y) * g.width() + size_t(x)] =
-              texel_horizon(g, f, o, p, x, y, lines[size_t(i)], lines[size_t(i) + 1], k_first);
-        }
+    const int end = b.by_k[size_t(k - k_first) + 1];
+    for (int n = b.by_k[size_t(k - k_first)]; n < end; ++n) {
+      const PendingTexel& p = b.texels[size_t(n)];
+      const size_t i = size_t(p.j - first_line);
+      float& out = tan_out[size_t(p.y) * g.width() + size_t(p.x)];
+      out = texel_horizon(f, p, g.at(p.x, p.y), out, lines[i], lines[i + 1], k_first);
     }
   }
 }
@@ -241,16 +333,17 @@ void sweep_horizon(const TiledHeights& g, double phi, const HorizonSweepOptions&
   f.t0 = int(std::floor(*std::min_element(ts, ts + 4))) - 1;
   f.s0 = int(std::floor(*std::min_element(ss, ss + 4))) - 1;
   f.lines = int(std::ceil(*std::max_element(ts, ts + 4))) - f.t0 + 2;
-  tan_out.assign(size_t(g.width()) * g.height(), 0.0f);
+  tan_out.resize(size_t(g.width()) * g.height());
+  near_horizons(g, NearStencil(f, o.near_steps), tan_out);
   constexpr int kStrips = 8;  // strips per bundle: a bundle's lines share the cache lines read
   const int bundles = (f.lines - 1 + kStrips - 1) / kStrips;
   parallel_for(
       size_t(bundles),
       [&](size_t begin, size_t end) {
-        std::vector<SweptLine> lines;
+        BundleScratch scratch;
         for (size_t b = begin; b < end; ++b) {
           const int first = int(b) * kStrips;
-          sweep_bundle(g, f, o, first, std::min(kStrips, f.lines - 1 - first), lines, tan_out);
+          sweep_bundle(g, f, o, first, std::min(kStrips, f.lines - 1 - first), scratch, tan_out);
         }
       },
       1);

@@ -30,7 +30,11 @@ class TiledHeights {
   // 0 <= y < height: the wrap is already taken.
   float bilinear_wrapped(double x, double y) const {
     const int x0 = int(x), y0 = int(y);
-    const float a = float(x - x0), b = float(y - y0);
+    return bilinear_at(x0, y0, float(x - x0), float(y - y0));
+  }
+  // Between texel (x0, y0), 0 <= x0 < width, 0 <= y0 < height, and its neighbours at + 1,
+  // weighted a across x and b across y.
+  float bilinear_at(int x0, int y0, float a, float b) const {
     const float* r0 = &padded_[size_t(y0) * (w_ + 1) + size_t(x0)];
     const float* r1 = r0 + (w_ + 1);
     const float top = r0[0] + (r0[1] - r0[0]) * a;
