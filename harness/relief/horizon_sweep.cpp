@@ -158,23 +158,29 @@ struct PendingTexel {
 // vectorises).
 void near_horizons(const TiledHeights& g, const NearStencil& near, std::vector<float>& tan_out) {
   const int w = g.width(), h = g.height();
-  for (int y = 0; y < h; ++y) {
-    float* out = &tan_out[size_t(y) * w];
-    for (int x = 0; x < w; ++x) out[x] = 0;  // below the horizontal counts as open
-    for (size_t m = 0; m < near.steps.size(); ++m) {
-      const NearStencil::Step& st = near.steps[m];
-      const int y0 = wrapped_index(y + st.dy, h);
-      const float distance = float(m + 1);
-      auto at = [&](int x) {
-        return (g.bilinear_at(wrapped_index(x + st.dx, w), y0, st.a, st.b) - g.at(x, y)) / distance;
-      };
-      // Texels whose x + dx lies in [0, w): no wrap.
-      const int lo = std::clamp(-st.dx, 0, w), hi = std::clamp(w - st.dx, lo, w);
-      for (int x = 0; x < lo; ++x) out[x] = std::max(out[x], at(x));
-      for (int x = lo; x < hi; ++x) out[x] = std::max(out[x], at(x));
-      for (int x = hi; x < w; ++x) out[x] = std::max(out[x], at(x));
-    }
-  }
+  parallel_for(
+      size_t(h),
+      [&](size_t begin, size_t end) {
+        for (int y = int(begin); y < int(end); ++y) {
+          float* out = &tan_out[size_t(y) * w];
+          for (int x = 0; x < w; ++x) out[x] = 0;  // below the horizontal counts as open
+          for (size_t m = 0; m < near.steps.size(); ++m) {
+            const NearStencil::Step& st = near.steps[m];
+            const int y0 = wrapped_index(y + st.dy, h);
+            const float distance = float(m + 1);
+            auto at = [&](int x) {
+              return (g.bilinear_at(wrapped_index(x + st.dx, w), y0, st.a, st.b) - g.at(x, y)) /
+                     distance;
+            };
+            // Texels whose x + dx lies in [0, w): no wrap.
+            const int lo = std::clamp(-st.dx, 0, w), hi = std::clamp(w - st.dx, lo, w);
+            for (int x = 0; x < lo; ++x) out[x] = std::max(out[x], at(x));
+            for (int x = lo; x < hi; ++x) out[x] = std::max(out[x], at(x));
+            for (int x = hi; x < w; ++x) out[x] = std::max(out[x], at(x));
+          }
+        }
+      },
+      16);
 }
 
 // The horizon of texel p, between lines `below` and `above` whose hulls hold the samples from
