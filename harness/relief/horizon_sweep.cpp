@@ -89,10 +89,20 @@ int tangent_from(const SweptLine& line, const LineFrame& f, float s, float h) {
   return hull[i].k;
 }
 
-// Reads sample k of `line` (at t) and takes it into the hull: the nearest hull point leaves
-// when it lies on or under the chord from the new point to the one after it.
-void take_sample(const TiledHeights& g, double x, double y, int k, int k_first, SweptLine& line) {
-  const float hk = g.bilinear_wrapped(x, y);
+// The samples of a line, k_last down to k_first, from the point (x, y) of k_last (wrapped) one
+// step back at a time.
+void sample_line(const TiledHeights& g, const LineFrame& f, double x, double y, int k_count,
+                 float* height) {
+  for (int n = k_count - 1; n >= 0; --n) {
+    height[n] = g.bilinear_wrapped(x, y);
+    g.step_back_wrapped(x, y, f.c, f.sn);
+  }
+}
+
+// Takes sample k of `line` into its hull: the nearest hull point leaves when it lies on or under
+// the chord from the new point to the one after it.
+void take_sample(int k, int k_first, SweptLine& line) {
+  const float hk = line.height[size_t(k - k_first)];
   HullPoint* hull = line.hull.data();
   size_t n = line.hull_size;
   while (n >= 2) {
@@ -100,7 +110,6 @@ void take_sample(const TiledHeights& g, double x, double y, int k, int k_first, 
     if ((a.h - hk) * float(b.k - k) > (b.h - hk) * float(a.k - k)) break;
     --n;
   }
-  line.height[size_t(k - k_first)] = hk;
   hull[n] = {k, hk};
   line.hull_size = n + 1;
 }
@@ -149,8 +158,9 @@ int wrapped_index(int v, int n) {
 // A texel whose horizon waits for the sweep to reach its first far sample.
 struct PendingTexel {
   int32_t x, y;
-  int32_t j, k;  // the line below it and its first far sample (slot_of)
-  float s, u;    // along and across the lines (u from line t0)
+  int32_t j, k;   // the line below it and its first far sample (slot_of)
+  float s, u;     // along and across the lines (u from line t0)
+  float h, near;  // its height and its horizon over its near samples (read in row order)
 };
 
 // The horizon over each texel's first near_steps samples, for every texel: where the stencil
@@ -184,10 +194,11 @@ void near_horizons(const TiledHeights& g, const NearStencil& near, std::vector<f
 }
 
 // The horizon of texel p, between lines `below` and `above` whose hulls hold the samples from
-// the texel's first far one on; `near` is its horizon over its near samples.
-float texel_horizon(const LineFrame& f, const PendingTexel& p, float hp, float near,
-                    const SweptLine& below, const SweptLine& above, int k_first) {
-  float best = near;
+// the texel's first far one on, starting from its horizon over its near samples.
+float texel_horizon(const LineFrame& f, const PendingTexel& p, const SweptLine& below,
+                    const SweptLine& above, int k_first) {
+  const float hp = p.h;
+  float best = p.near;
   // Beyond, the texel's ray runs between the lines, `across` of the way from one to the other.
   // Two estimates of its steepest point, each biased on its own where the other is not (tests:
   // AoMap.SweepStaysCloseToThePerTexelMarch): the point between the two lines' own tangent
@@ -214,11 +225,13 @@ float texel_horizon(const LineFrame& f, const PendingTexel& p, float hp, float n
 // to the strip slot_of gives it. The candidates are read along rows (or columns, whichever the
 // lines cross more steeply) with a texel's margin either side.
 void gather_texels(const TiledHeights& g, const LineFrame& f, const HorizonSweepOptions& o,
-                   int first_line, int strips, std::vector<PendingTexel>& found) {
+                   const std::vector<float>& tan_out, int first_line, int strips,
+                   std::vector<PendingTexel>& found) {
   found.clear();
   auto consider = [&](int x, int y) {
     const TexelSlot p = slot_of(f, o.near_steps, x, y);
-    if (p.j >= first_line && p.j < first_line + strips) found.push_back({x, y, p.j, p.k, p.s, p.u});
+    if (p.j >= first_line && p.j < first_line + strips)
+      found.push_back({x, y, p.j, p.k, p.s, p.u, g.at(x, y), tan_out[size_t(y) * g.width() + x]});
   };
   // Strip edges at t = y c - x sn = t_lo and t_hi.
   const float t_lo = float(f.t0 + first_line), t_hi = float(f.t0 + first_line + strips);
@@ -263,7 +276,7 @@ struct BundleScratch {
 // strips between them resolved when the sweep reaches its first far sample.
 void sweep_bundle(const TiledHeights& g, const LineFrame& f, const HorizonSweepOptions& o,
                   int first_line, int strips, BundleScratch& b, std::vector<float>& tan_out) {
-  gather_texels(g, f, o, first_line, strips, b.found);
+  gather_texels(g, f, o, tan_out, first_line, strips, b.found);
   if (b.found.empty()) return;  // the strips miss the map
   float lo, hi;
   strip_extent(f, float(g.width() - 1), float(g.height() - 1), float(f.t0 + first_line),
@@ -280,27 +293,24 @@ void sweep_bundle(const TiledHeights& g, const LineFrame& f, const HorizonSweepO
   group_by_k(b.found, k_first, k_texels, b.texels, b.by_k);
   std::vector<SweptLine>& lines = b.lines;
   lines.resize(size_t(strips) + 1);
-  std::vector<glm::dvec2> at(lines.size());  // each line's sample point, wrapped
   for (size_t i = 0; i < lines.size(); ++i) {
-    lines[i].height.resize(size_t(k_last - k_first + 1));
-    lines[i].hull.resize(size_t(k_last - k_first + 1));
+    const int k_count = k_last - k_first + 1;
+    lines[i].height.resize(size_t(k_count));
+    lines[i].hull.resize(size_t(k_count));
     lines[i].hull_size = 0;
     const double s = f.s0 + k_last, t = f.t0 + first_line + int(i);
-    at[i] = {wrapped(s * f.c - t * f.sn, g.width()), wrapped(s * f.sn + t * f.c, g.height())};
+    sample_line(g, f, wrapped(s * f.c - t * f.sn, g.width()),
+                wrapped(s * f.sn + t * f.c, g.height()), k_count, lines[i].height.data());
   }
   for (int k = k_last; k >= k_first; --k) {
-    for (size_t i = 0; i < lines.size(); ++i) {
-      glm::dvec2& q = at[i];
-      take_sample(g, q.x, q.y, k, k_first, lines[i]);
-      g.step_back_wrapped(q.x, q.y, f.c, f.sn);  // one sample back
-    }
+    for (SweptLine& line : lines) take_sample(k, k_first, line);
     if (k > k_texels) continue;
     const int end = b.by_k[size_t(k - k_first) + 1];
     for (int n = b.by_k[size_t(k - k_first)]; n < end; ++n) {
       const PendingTexel& p = b.texels[size_t(n)];
       const size_t i = size_t(p.j - first_line);
-      float& out = tan_out[size_t(p.y) * g.width() + size_t(p.x)];
-      out = texel_horizon(f, p, g.at(p.x, p.y), out, lines[i], lines[i + 1], k_first);
+      tan_out[size_t(p.y) * g.width() + size_t(p.x)] =
+          texel_horizon(f, p, lines[i], lines[i + 1], k_first);
     }
   }
 }

@@ -7,12 +7,12 @@
 // A texel centre lies between two lines. Its horizon is exact over its first `near_steps`
 // samples (bilinear, one texel apart along its own ray, as the per-texel march takes them);
 // beyond them it comes from the tangents from the texel's own point to the two lines' hulls,
-// interpolated across the lines. Lines are swept in bundles of 8 in lockstep and each texel is
-// resolved while the hulls it needs are live, so no azimuth's line samples are stored whole
-// (about 30 MB at 1024^2); it was not faster than storing them and looking texels up after
-// (4.7 against 4.5 s for a 1024^2 map on 2 cores). What the
-// interpolation costs in accuracy against the per-texel march is measured in
-// tests/test_ambient_occlusion.cpp.
+// interpolated across the lines. Lines are swept in bundles of 8 strips: a bundle samples its 9
+// lines, gathers its texels row by row (reading their heights and near horizons in memory
+// order) and sorts them by the sample that resolves them, then builds the lines' hulls from the
+// far end, resolving each texel while the hulls it needs are live; so no azimuth's line samples
+// are stored whole (about 30 MB at 1024^2). What the interpolation costs in accuracy against
+// the per-texel march is measured in tests/test_ambient_occlusion.cpp.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
