@@ -188,8 +188,9 @@ AoMap compute_ao_map(const ReliefMap& map, const AoMapOptions& o) {
   // Polygon area sum_j 1/2 r_j r_j+1 sin(2 pi / n), one azimuth at a time.
   std::vector<float> r_first, r_prev, r_now;
   std::vector<double> area(map.relief.size(), 0.0);
+  HorizonSweep sweep_at(g, sweep);
   for (int j = 0; j < n; ++j) {
-    sweep_horizon(g, 2.0 * M_PI * j / n, sweep, r_now);
+    sweep_at(2.0 * M_PI * j / n, r_now);
     parallel_for(
         area.size(),
         [&](size_t begin, size_t end) {
@@ -230,7 +231,8 @@ AoMap cached_ao_map(const ReliefMap& map, const AoMapOptions& o, AoMapMethod met
   // Bump when a method changes its answers (2: the fragment shader's open directions are made
   // exactly 1, as the CPU's always were; 3: the CPU's map is the line sweep's, not the march's;
   // 4: the sweep no longer reads past its padding at the far edge; 5: it no longer leaves out
-  // a row lying exactly on a bundle's first line).
+  // a row lying exactly on a bundle's first line, finds tangents without dividing, and reads
+  // some lines farther, its bundles being wider).
   constexpr int kAlgorithmVersion = 5;
   char options[128];
   std::snprintf(options, sizeof options, "v%d|%d|%d|%.9g|%s|", kAlgorithmVersion, o.directions,

@@ -78,12 +78,14 @@ struct SweptLine {
 int tangent_from(const SweptLine& line, const LineFrame& f, float s, float h) {
   const HullPoint* hull = line.hull.data();
   size_t i = line.hull_size - 1;
-  float best = (hull[i].h - h) / (float(f.s0 + hull[i].k) - s);
+  // The steepest so far as rise / run (run > 0): compared by cross-multiplying, no division.
+  float rise = hull[i].h - h, run = float(f.s0 + hull[i].k) - s;
   while (i > 0) {
     const HullPoint next = hull[i - 1];
-    const float slope = (next.h - h) / (float(f.s0 + next.k) - s);
-    if (slope <= best) break;
-    best = slope;
+    const float next_rise = next.h - h, next_run = float(f.s0 + next.k) - s;
+    if (next_rise * run <= rise * next_run) break;
+    rise = next_rise;
+    run = next_run;
     --i;
   }
   return hull[i].k;
@@ -338,8 +340,18 @@ float TiledHeights::bilinear(double x, double y) const {
   return bilinear_wrapped(wrapped(x, w_), wrapped(y, h_));
 }
 
-void sweep_horizon(const TiledHeights& g, double phi, const HorizonSweepOptions& o,
-                   std::vector<float>& tan_out) {
+struct HorizonSweep::WorkerScratch : BundleScratch {};
+
+HorizonSweep::HorizonSweep(const TiledHeights& heights, const HorizonSweepOptions& options)
+    : heights_(heights), options_(options) {
+  for (size_t i = 0; i < parallel_workers(); ++i)
+    scratch_.push_back(std::make_unique<WorkerScratch>());
+}
+
+HorizonSweep::~HorizonSweep() = default;
+
+void HorizonSweep::operator()(double phi, std::vector<float>& tan_out) {
+  const TiledHeights& g = heights_;
   LineFrame f;
   f.c = float(std::cos(phi));
   f.sn = float(std::sin(phi));
@@ -350,19 +362,26 @@ void sweep_horizon(const TiledHeights& g, double phi, const HorizonSweepOptions&
   f.s0 = int(std::floor(*std::min_element(ss, ss + 4))) - 1;
   f.lines = int(std::ceil(*std::max_element(ts, ts + 4))) - f.t0 + 2;
   tan_out.resize(size_t(g.width()) * g.height());
-  near_horizons(g, NearStencil(f, o.near_steps), tan_out);
-  constexpr int kStrips = 8;  // strips per bundle: a bundle's lines share the cache lines read
+  near_horizons(g, NearStencil(f, options_.near_steps), tan_out);
+  // Strips per bundle: a bundle's lines share the cache lines they read, and the lines between
+  // bundles are read twice. 32 measured 12% faster than 8 and 3% faster than 64 (1024^2, 2 cores).
+  constexpr int kStrips = 32;
   const int bundles = (f.lines - 1 + kStrips - 1) / kStrips;
-  parallel_for(
+  parallel_for_workers(
       size_t(bundles),
-      [&](size_t begin, size_t end) {
-        BundleScratch scratch;
+      [&](size_t worker, size_t begin, size_t end) {
         for (size_t b = begin; b < end; ++b) {
           const int first = int(b) * kStrips;
-          sweep_bundle(g, f, o, first, std::min(kStrips, f.lines - 1 - first), scratch, tan_out);
+          sweep_bundle(g, f, options_, first, std::min(kStrips, f.lines - 1 - first),
+                       *scratch_[worker], tan_out);
         }
       },
       1);
+}
+
+void sweep_horizon(const TiledHeights& heights, double phi, const HorizonSweepOptions& options,
+                   std::vector<float>& tan_out) {
+  HorizonSweep(heights, options)(phi, tan_out);
 }
 
 }  // namespace rl

@@ -15,6 +15,7 @@
 // the per-texel march is measured in tests/test_ambient_occlusion.cpp.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace rl {
@@ -58,8 +59,24 @@ struct HorizonSweepOptions {
   int near_steps = 2;  // samples taken exactly along each texel's own ray
 };
 
-// tan of the horizon's elevation along (cos phi, sin phi) from every texel centre, at least 0
-// (a horizon below the horizontal counts as open), into `tan_out` (row-major).
+// Sweeps one height field along azimuth after azimuth, each core keeping its working memory
+// (a few MB at 1024^2) from one to the next rather than faulting it in afresh.
+class HorizonSweep {
+ public:
+  HorizonSweep(const TiledHeights& heights, const HorizonSweepOptions& options);
+  ~HorizonSweep();
+  // tan of the horizon's elevation along (cos phi, sin phi) from every texel centre, at least 0
+  // (a horizon below the horizontal counts as open), into `tan_out` (row-major).
+  void operator()(double phi, std::vector<float>& tan_out);
+
+ private:
+  struct WorkerScratch;
+  const TiledHeights& heights_;
+  HorizonSweepOptions options_;
+  std::vector<std::unique_ptr<WorkerScratch>> scratch_;  // one per parallel_for worker
+};
+
+// One azimuth on its own.
 void sweep_horizon(const TiledHeights& heights, double phi, const HorizonSweepOptions& options,
                    std::vector<float>& tan_out);
 
