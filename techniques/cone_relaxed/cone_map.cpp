@@ -145,6 +145,12 @@ void conservative_along_line(const std::vector<float>& h, int sub, size_t apexes
 // Depth by which h / n must rise across a segment for the relaxed test to count it.
 constexpr float kRelaxedTie = 1e-6f;
 
+// How much wider than the cone found so far a block's bound must be before the scan steps over
+// it: rounding in the bound's arithmetic must never hide a segment that narrows the cone by an
+// ulp. Without it the map depended, at the last bit of a few texels, on the order the cores
+// took the directions in (the bound a scan starts from is the narrowest cone found so far).
+constexpr float kSkipSlack = 1.0f + 1e-5f;
+
 // Relaxed cones along one line. Segment k (samples k - 1 to k, depth linear on it) keeps the cone
 // out of both its ends when the ray from the top point above the apex leaves the surface there:
 // when h / n rises across it, n the distance from the apex in samples. Scanned forward per apex
@@ -181,13 +187,13 @@ struct RelaxedLineScan {
     float best = widest;
     if (hint >= i + 2 && hint < h.size()) narrow(h, i, hint, apex, best, hint);
     const int top = int(block_min.size()) - 1;
-    for (size_t k = i + 2; k < h.size() && float(k - 1 - i) < best * apex;) {
+    for (size_t k = i + 2; k < h.size() && float(k - 1 - i) < best * apex * kSkipSlack;) {
       // Step over the largest block starting at k that cannot narrow the cone.
       const float near = float(k - 1 - i);  // no candidate end in a block at k is nearer
       int l = std::min(top, __builtin_ctzll(k));
       for (; l >= 1; --l) {
         const float m = block_min[size_t(l)][k >> l];
-        if (m >= apex || near >= best * (apex - m)) break;
+        if (m >= apex || near >= best * (apex - m) * kSkipSlack) break;
       }
       if (l >= 1) {
         k += size_t(1) << l;
@@ -313,8 +319,8 @@ ConeMap compute_cone_map(const ReliefMap& map, const ConeMapOptions& o) {
   // Directions handed out one at a time to whichever core is free (their costs differ by up
   // to 2x: interleaving them into fixed groups left one core idle for a fifth of the time);
   // each core narrows a copy of the map of its own, then the narrowest over copies. A cone is
-  // the narrowest over directions whatever their order: a direction's scan only stops early at
-  // the narrowest cone found so far.
+  // the narrowest over directions whatever their order, bit for bit (kSkipSlack): a direction's
+  // scan only stops early at the narrowest cone found so far.
   const std::vector<ConeScanDirection> dirs = cone_scan_directions(o.directions);
   std::vector<std::vector<float>> narrowed(parallel_workers());
   parallel_for_workers(
@@ -334,8 +340,23 @@ ConeMap compute_cone_map(const ReliefMap& map, const ConeMapOptions& o) {
   return out;
 }
 
+ConeMap compute_cone_map_in_order(const ReliefMap& map, const ConeMapOptions& o,
+                                  const std::vector<size_t>& order) {
+  const DepthSampler depth(map);
+  const std::vector<ConeScanDirection> dirs = cone_scan_directions(o.directions);
+  ConeMap out;
+  out.width = map.width;
+  out.height = map.height;
+  out.ratio.assign(size_t(map.width) * map.height, float(o.max_ratio));
+  for (size_t d : order) narrow_along_direction(depth, dirs.at(d), o, out.ratio);
+  if (!o.relaxed) hold_out_near_texel_centres(map, std::max(map.width, map.height), out.ratio);
+  return out;
+}
+
 ConeMap cached_cone_map(const ReliefMap& map, const ConeMapOptions& o) {
-  constexpr int kAlgorithmVersion = 4;  // bump when compute_cone_map changes its answers
+  // Bump when compute_cone_map changes its answers (5: the scan's slack for rounding; before it
+  // a few texels could differ by an ulp from run to run).
+  constexpr int kAlgorithmVersion = 5;
   char options[128];
   std::snprintf(options, sizeof options, "v%d|%d|%d|%.9g|", kAlgorithmVersion, int(o.relaxed),
                 o.directions, o.max_ratio);

@@ -57,6 +57,13 @@ struct ConeMap {
 
 ConeMap compute_cone_map(const ReliefMap& map, const ConeMapOptions& options);
 
+// The same on one core, the directions taken one after another in `order` (indices into
+// cone_scan_directions(options.directions)): the same map, bit for bit, whatever the order
+// (tests hold it to that; compute_cone_map's cores take the directions in whatever order
+// they come free).
+ConeMap compute_cone_map_in_order(const ReliefMap& map, const ConeMapOptions& options,
+                                  const std::vector<size_t>& order);
+
 // The ratios the shader reads through GL_LINEAR: each texel's the least over its 3 x 3
 // neighbourhood (wrapping), so the ratio interpolated anywhere in a cell is no wider than the
 // narrowest of the cones at its four corners. Interpolating the raw ratios is not conservative:
