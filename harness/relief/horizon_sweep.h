@@ -7,7 +7,7 @@
 // A texel centre lies between two lines. Its horizon is exact over its first `near_steps`
 // samples (bilinear, one texel apart along its own ray, as the per-texel march takes them);
 // beyond them it comes from the tangents from the texel's own point to the two lines' hulls,
-// interpolated across the lines. Lines are swept in bundles of 8 strips: a bundle samples its 9
+// interpolated across the lines. Lines are swept in bundles of 32 strips: a bundle samples its 33
 // lines, gathers its texels row by row (reading their heights and near horizons in memory
 // order) and sorts them by the sample that resolves them, then builds the lines' hulls from the
 // far end, resolving each texel while the hulls it needs are live; so no azimuth's line samples
