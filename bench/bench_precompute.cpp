@@ -48,11 +48,12 @@ ReliefMap bench_map(const std::string& kind, int size) {
 }
 
 // FNV-1a of a map's bits: "the same map" at a glance when a change is meant to keep it.
-double fingerprint(const std::vector<float>& values) {
+template <typename T>
+double fingerprint(const std::vector<T>& values) {
   uint32_t f = 2166136261u;
-  for (float v : values) {
-    uint32_t bits;
-    std::memcpy(&bits, &v, sizeof bits);
+  for (const T& v : values) {
+    uint32_t bits = 0;
+    std::memcpy(&bits, &v, sizeof v);
     f = (f ^ bits) * 16777619u;
   }
   return double(f);
@@ -71,6 +72,7 @@ void BM_SafetyRadius(benchmark::State& state, std::string kind, bool ignore_bloc
   for (uint8_t v : r.radius) mean += v;
   state.counters["mean_radius"] = mean / r.radius.size();
   state.counters["zero_pct"] = 100.0 * r.zero_count() / r.radius.size();
+  state.counters["fingerprint"] = fingerprint(r.radius);
 }
 
 #define RL_RADIUS_BENCH(name, kind, ignore)              \

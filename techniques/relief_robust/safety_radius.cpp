@@ -30,12 +30,24 @@ class PaddedHeights {
         pad_(pad),
         stride_(size_t(w_ + 2 * pad)) {
     data_.resize(stride_ * size_t(h_ + 2 * pad));
-    for (int y = -pad; y < h_ + pad; ++y)
-      for (int x = -pad; x < w_ + pad; ++x) {
-        const int sx = ((x % w_) + w_) % w_, sy = ((y % h_) + h_) % h_;
-        const size_t src = transposed ? m.index(sy, sx) : m.index(sx, sy);
-        data_[size_t(y + pad) * stride_ + size_t(x + pad)] = -m.relief[src].a;
-      }
+    auto wrapped = [](int v, int n) { return ((v % n) + n) % n; };
+    std::vector<int> source_x(stride_);
+    for (size_t i = 0; i < stride_; ++i) source_x[i] = wrapped(int(i) - pad, w_);
+    parallel_for(
+        size_t(h_ + 2 * pad),
+        [&](size_t begin, size_t end) {
+          for (size_t row = begin; row < end; ++row) {
+            const int sy = wrapped(int(row) - pad, h_);
+            float* out = &data_[row * stride_];
+            for (size_t i = 0; i < stride_; ++i) {
+              const int sx = source_x[i];
+              out[i] = -m.relief[transposed ? size_t(sx) * m.width + size_t(sy)
+                                            : size_t(sy) * m.width + size_t(sx)]
+                            .a;
+            }
+          }
+        },
+        16);
   }
   int width() const { return w_; }
   int height() const { return h_; }
@@ -67,93 +79,111 @@ struct LineStarts {
   long begin, end, stride;
 };
 
-// Section 3.5's sampling, shared by both kinds of radii: per direction, lines 1/starts texel
-// apart, each sampled every `step` from where it enters the map to cap + 1 centerlines past its
-// exit (wrapping there); `first_violations(h, starts, scratch, first)` gives each start's
-// first violation (an index into h, or h.size()), and each start bounds the radius of the texel its
-// centerline crossing lies in, or every texel within `reach` across. Directions run in parallel,
-// each on its own radius array; the arrays are then combined by the minimum (or, as Section 3.5's
-// words have it, the maximum).
+// What one core reuses from line to line and direction to direction.
+template <typename T>
+struct LineScratch {
+  std::vector<T> h;
+  std::vector<int> scratch, first;
+};
+
+// One direction of Section 3.5's sampling: lines 1/starts texel apart, each sampled every `step`
+// from where it enters the map to cap + 1 centerlines past its exit (wrapping there);
+// `first_violations(h, starts, scratch, first)` gives each start's first violation (an index
+// into h, or h.size()), and each start bounds (by the minimum, into `radius`) the radius of the
+// texel its centerline crossing lies in, or of every texel within `reach` across.
+template <typename T, typename FirstViolations>
+void sweep_direction(const ReliefMap& map, const PaddedHeights& rows, const PaddedHeights& columns,
+                     const SafetyRadiusOptions& o, int cap, double reach, double theta,
+                     FirstViolations& first_violations, LineScratch<T>& line,
+                     std::vector<uint8_t>& radius) {
+  const int W = map.width;
+  const double step = o.step;
+  const int per_centerline = std::max(1, int(std::lround(1.0 / step)));
+  const double cx = std::cos(theta), cy = std::sin(theta);
+  // Line coordinates: a along the ray's major axis (forward), b across; the grid is the map or
+  // its transpose so that a runs along memory rows. A line is b = c + ub a.
+  const bool major_x = std::abs(cx) >= std::abs(cy);
+  const PaddedHeights& grid = major_x ? rows : columns;
+  const int A = grid.width(), B = grid.height();
+  const bool flip = major_x ? cx < 0 : cy < 0;
+  const double ub = major_x ? cy / std::abs(cx) : cx / std::abs(cy);
+  const double c_min = -0.5 - std::max(-0.5 * ub, (A - 0.5) * ub);
+  const double c_max = B - 0.5 - std::min(-0.5 * ub, (A - 0.5) * ub);
+  const double spacing = 1.0 / o.starts;
+  for (double c = c_min + 0.5 * spacing; c < c_max; c += spacing) {
+    // The part of the line inside the map.
+    double a0 = -0.5, a1 = A - 0.5;
+    if (ub != 0) {
+      const double at_lo = (-0.5 - c) / ub, at_hi = (B - 0.5 - c) / ub;
+      a0 = std::max(a0, std::min(at_lo, at_hi));
+      a1 = std::min(a1, std::max(at_lo, at_hi));
+    } else if (c < -0.5 || c >= B - 0.5) {
+      continue;
+    }
+    if (a0 > a1) continue;
+    const long k0 = long(std::ceil(a0 / step));
+    const long k1 = long(std::floor((a1 + cap + 1) / step));
+    std::vector<T>& h = line.h;
+    h.resize(size_t(k1 - k0 + 1));
+    for (long k = k0; k <= k1; ++k) {
+      const double a = k * step;
+      h[size_t(k - k0)] = grid.sample<T>(flip ? (A - 1) - a : a, c + ub * a);
+    }
+    // Starts: centerline crossings (integer a) inside the map.
+    const long ja_lo = std::max<long>(long(std::ceil(std::max(a0, 0.0))), 0);
+    const long ja_hi = std::min<long>(long(std::floor(a1)), A - 1);
+    if (ja_lo > ja_hi) continue;
+    first_violations(
+        h, LineStarts{ja_lo * per_centerline - k0, ja_hi * per_centerline - k0, per_centerline},
+        line.scratch, line.first);
+    const int n = int(h.size());
+    for (long ja = ja_lo; ja <= ja_hi; ++ja) {
+      const long j = ja * per_centerline - k0;
+      const double b = c + ub * double(ja);
+      int r = cap;
+      if (line.first[size_t(j)] < n)
+        r = std::min(cap, int(std::ceil((line.first[size_t(j)] - j) * step - 1e-9)) - 1);
+      const int ta = flip ? (A - 1) - int(ja) : int(ja);
+      // Every texel within `reach` of the crossing (0: the texel it lies in).
+      const int tb_lo = std::max(0, int(std::floor(b - reach + 0.5)));
+      const int tb_hi = std::min(B - 1, int(std::floor(b + reach + 0.5)));
+      for (int tb = tb_lo; tb <= tb_hi; ++tb) {
+        const size_t idx = major_x ? size_t(tb) * W + ta : size_t(ta) * W + tb;
+        radius[idx] = std::min(radius[idx], uint8_t(std::max(r, 0)));
+      }
+    }
+  }
+}
+
+// Section 3.5's radii over every direction, in parallel. Kept as the minimum over directions,
+// each core narrows one radius array of its own (a fresh 1 MB array per direction at 1024^2
+// was page faults and fills for nothing); as Section 3.5's words have it (the maximum over
+// directions), each direction needs its own array, combined after.
 template <typename T, typename FirstViolations>
 SafetyRadii sweep_lines(const ReliefMap& map, const SafetyRadiusOptions& o, int cap, double reach,
                         FirstViolations&& first_violations) {
-  const int W = map.width, H = map.height;
+  const size_t texels = size_t(map.width) * map.height;
   const PaddedHeights rows(map, cap + 4, false), columns(map, cap + 4, true);
-  const double two_pi = 2 * glm::pi<double>();
-  const double step = o.step;
-  const int per_centerline = std::max(1, int(std::lround(1.0 / step)));
-  std::vector<std::vector<uint8_t>> per_direction(size_t(o.directions));
-  parallel_for(
+  const size_t arrays = o.max_over_directions ? size_t(o.directions) : parallel_workers();
+  std::vector<std::vector<uint8_t>> radii(arrays);
+  std::vector<LineScratch<T>> scratch(parallel_workers());
+  parallel_for_workers(
       size_t(o.directions),
-      [&](size_t d_begin, size_t d_end) {
-        std::vector<T> h;
-        std::vector<int> scratch, first;  // per thread
+      [&](size_t worker, size_t d_begin, size_t d_end) {
         for (size_t d = d_begin; d < d_end; ++d) {
-          std::vector<uint8_t>& radius = per_direction[d];
-          radius.assign(size_t(W) * H, uint8_t(cap));
-          const double theta = two_pi * (double(d) + 0.5) / o.directions;
-          const double cx = std::cos(theta), cy = std::sin(theta);
-          // Line coordinates: a along the ray's major axis (forward), b across; the grid is
-          // the map or its transpose so that a runs along memory rows. A line is b = c + ub a.
-          const bool major_x = std::abs(cx) >= std::abs(cy);
-          const PaddedHeights& grid = major_x ? rows : columns;
-          const int A = grid.width(), B = grid.height();
-          const bool flip = major_x ? cx < 0 : cy < 0;
-          const double ub = major_x ? cy / std::abs(cx) : cx / std::abs(cy);
-          const double c_min = -0.5 - std::max(-0.5 * ub, (A - 0.5) * ub);
-          const double c_max = B - 0.5 - std::min(-0.5 * ub, (A - 0.5) * ub);
-          const double spacing = 1.0 / o.starts;
-          for (double c = c_min + 0.5 * spacing; c < c_max; c += spacing) {
-            // The part of the line inside the map.
-            double a0 = -0.5, a1 = A - 0.5;
-            if (ub != 0) {
-              const double at_lo = (-0.5 - c) / ub, at_hi = (B - 0.5 - c) / ub;
-              a0 = std::max(a0, std::min(at_lo, at_hi));
-              a1 = std::min(a1, std::max(at_lo, at_hi));
-            } else if (c < -0.5 || c >= B - 0.5) {
-              continue;
-            }
-            if (a0 > a1) continue;
-            const long k0 = long(std::ceil(a0 / step));
-            const long k1 = long(std::floor((a1 + cap + 1) / step));
-            h.resize(size_t(k1 - k0 + 1));
-            for (long k = k0; k <= k1; ++k) {
-              const double a = k * step;
-              h[size_t(k - k0)] = grid.sample<T>(flip ? (A - 1) - a : a, c + ub * a);
-            }
-            // Starts: centerline crossings (integer a) inside the map.
-            const long ja_lo = std::max<long>(long(std::ceil(std::max(a0, 0.0))), 0);
-            const long ja_hi = std::min<long>(long(std::floor(a1)), A - 1);
-            if (ja_lo > ja_hi) continue;
-            first_violations(h,
-                             LineStarts{ja_lo * per_centerline - k0, ja_hi * per_centerline - k0,
-                                        per_centerline},
-                             scratch, first);
-            const int n = int(h.size());
-            for (long ja = ja_lo; ja <= ja_hi; ++ja) {
-              const long j = ja * per_centerline - k0;
-              const double b = c + ub * double(ja);
-              int r = cap;
-              if (first[size_t(j)] < n)
-                r = std::min(cap, int(std::ceil((first[size_t(j)] - j) * step - 1e-9)) - 1);
-              const int ta = flip ? (A - 1) - int(ja) : int(ja);
-              // Every texel within `reach` of the crossing (0: the texel it lies in).
-              const int tb_lo = std::max(0, int(std::floor(b - reach + 0.5)));
-              const int tb_hi = std::min(B - 1, int(std::floor(b + reach + 0.5)));
-              for (int tb = tb_lo; tb <= tb_hi; ++tb) {
-                const size_t idx = major_x ? size_t(tb) * W + ta : size_t(ta) * W + tb;
-                radius[idx] = std::min(radius[idx], uint8_t(std::max(r, 0)));
-              }
-            }
-          }
+          std::vector<uint8_t>& radius = radii[o.max_over_directions ? d : worker];
+          if (radius.empty()) radius.assign(texels, uint8_t(cap));
+          const double theta = 2 * glm::pi<double>() * (double(d) + 0.5) / o.directions;
+          sweep_direction<T>(map, rows, columns, o, cap, reach, theta, first_violations,
+                             scratch[worker], radius);
         }
       },
       1);
   SafetyRadii out;
-  out.width = W;
-  out.height = H;
-  out.radius.assign(size_t(W) * H, o.max_over_directions ? uint8_t(0) : uint8_t(cap));
-  for (const auto& r : per_direction)
+  out.width = map.width;
+  out.height = map.height;
+  out.radius.assign(texels, o.max_over_directions ? uint8_t(0) : uint8_t(cap));
+  for (const auto& r : radii)
     for (size_t i = 0; i < r.size(); ++i)
       out.radius[i] =
           o.max_over_directions ? std::max(out.radius[i], r[i]) : std::min(out.radius[i], r[i]);
