@@ -8,6 +8,7 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include "core/fast_floor.h"
 #include "core/parallel.h"
 #include "core/precompute_cache.h"
 
@@ -79,6 +80,12 @@ struct LineStarts {
   long begin, end, stride;
 };
 
+// Whether a ray at azimuth theta runs mostly along x: its lines are then swept along the map's
+// rows, else along its transpose's.
+bool x_is_major(double theta) {
+  return std::abs(std::cos(theta)) >= std::abs(std::sin(theta));
+}
+
 // What one core reuses from line to line and direction to direction.
 template <typename T>
 struct LineScratch {
@@ -90,19 +97,20 @@ struct LineScratch {
 // from where it enters the map to cap + 1 centerlines past its exit (wrapping there);
 // `first_violations(h, starts, scratch, first)` gives each start's first violation (an index
 // into h, or h.size()), and each start bounds (by the minimum, into `radius`) the radius of the
-// texel its centerline crossing lies in, or of every texel within `reach` across.
+// texel its centerline crossing lies in, or of every texel within `reach` across. `radius` is
+// laid out like the grid the lines run along (the map, or its transpose where y is the major
+// axis), so that a line's writes run along memory rows too.
 template <typename T, typename FirstViolations>
-void sweep_direction(const ReliefMap& map, const PaddedHeights& rows, const PaddedHeights& columns,
+void sweep_direction(const PaddedHeights& rows, const PaddedHeights& columns,
                      const SafetyRadiusOptions& o, int cap, double reach, double theta,
                      FirstViolations& first_violations, LineScratch<T>& line,
                      std::vector<uint8_t>& radius) {
-  const int W = map.width;
   const double step = o.step;
   const int per_centerline = std::max(1, int(std::lround(1.0 / step)));
   const double cx = std::cos(theta), cy = std::sin(theta);
   // Line coordinates: a along the ray's major axis (forward), b across; the grid is the map or
   // its transpose so that a runs along memory rows. A line is b = c + ub a.
-  const bool major_x = std::abs(cx) >= std::abs(cy);
+  const bool major_x = x_is_major(theta);
   const PaddedHeights& grid = major_x ? rows : columns;
   const int A = grid.width(), B = grid.height();
   const bool flip = major_x ? cx < 0 : cy < 0;
@@ -137,56 +145,70 @@ void sweep_direction(const ReliefMap& map, const PaddedHeights& rows, const Padd
         h, LineStarts{ja_lo * per_centerline - k0, ja_hi * per_centerline - k0, per_centerline},
         line.scratch, line.first);
     const int n = int(h.size());
+    const int* const first = line.first.data();
     for (long ja = ja_lo; ja <= ja_hi; ++ja) {
       const long j = ja * per_centerline - k0;
       const double b = c + ub * double(ja);
       int r = cap;
-      if (line.first[size_t(j)] < n)
-        r = std::min(cap, int(std::ceil((line.first[size_t(j)] - j) * step - 1e-9)) - 1);
+      if (first[j] < n) r = std::min(cap, int(ceil_fast((first[j] - j) * step - 1e-9)) - 1);
+      const uint8_t here = uint8_t(std::max(r, 0));
       const int ta = flip ? (A - 1) - int(ja) : int(ja);
       // Every texel within `reach` of the crossing (0: the texel it lies in).
-      const int tb_lo = std::max(0, int(std::floor(b - reach + 0.5)));
-      const int tb_hi = std::min(B - 1, int(std::floor(b + reach + 0.5)));
+      const int tb_lo = std::max(0, int(floor_fast(b - reach + 0.5)));
+      const int tb_hi = std::min(B - 1, int(floor_fast(b + reach + 0.5)));
       for (int tb = tb_lo; tb <= tb_hi; ++tb) {
-        const size_t idx = major_x ? size_t(tb) * W + ta : size_t(ta) * W + tb;
-        radius[idx] = std::min(radius[idx], uint8_t(std::max(r, 0)));
+        uint8_t& at = radius[size_t(tb) * A + size_t(ta)];
+        at = std::min(at, here);
       }
     }
   }
 }
 
-// Section 3.5's radii over every direction, in parallel. Kept as the minimum over directions,
-// each core narrows one radius array of its own (a fresh 1 MB array per direction at 1024^2
-// was page faults and fills for nothing); as Section 3.5's words have it (the maximum over
-// directions), each direction needs its own array, combined after.
+// Section 3.5's radii over every direction, in parallel, each direction's in the layout of its
+// grid (GridRadii). Kept as the minimum over directions, each core narrows one array per layout
+// of its own (a fresh 1 MB array per direction at 1024^2 was page faults and fills for
+// nothing); as Section 3.5's words have it (the maximum over directions), each direction needs
+// its own array. Combined after, transposing where a layout is the map's transpose.
+struct GridRadii {
+  bool transposed = false;
+  std::vector<uint8_t> radius;
+};
+
 template <typename T, typename FirstViolations>
 SafetyRadii sweep_lines(const ReliefMap& map, const SafetyRadiusOptions& o, int cap, double reach,
                         FirstViolations&& first_violations) {
-  const size_t texels = size_t(map.width) * map.height;
+  const int W = map.width, H = map.height;
   const PaddedHeights rows(map, cap + 4, false), columns(map, cap + 4, true);
-  const size_t arrays = o.max_over_directions ? size_t(o.directions) : parallel_workers();
-  std::vector<std::vector<uint8_t>> radii(arrays);
-  std::vector<LineScratch<T>> scratch(parallel_workers());
+  const size_t workers = parallel_workers();
+  std::vector<GridRadii> radii(o.max_over_directions ? size_t(o.directions) : 2 * workers);
+  std::vector<LineScratch<T>> scratch(workers);
   parallel_for_workers(
       size_t(o.directions),
       [&](size_t worker, size_t d_begin, size_t d_end) {
         for (size_t d = d_begin; d < d_end; ++d) {
-          std::vector<uint8_t>& radius = radii[o.max_over_directions ? d : worker];
-          if (radius.empty()) radius.assign(texels, uint8_t(cap));
           const double theta = 2 * glm::pi<double>() * (double(d) + 0.5) / o.directions;
-          sweep_direction<T>(map, rows, columns, o, cap, reach, theta, first_violations,
-                             scratch[worker], radius);
+          const bool transposed = !x_is_major(theta);
+          GridRadii& g = radii[o.max_over_directions ? d : 2 * worker + size_t(transposed)];
+          if (g.radius.empty()) g.radius.assign(size_t(W) * H, uint8_t(cap));
+          g.transposed = transposed;
+          sweep_direction<T>(rows, columns, o, cap, reach, theta, first_violations, scratch[worker],
+                             g.radius);
         }
       },
       1);
   SafetyRadii out;
-  out.width = map.width;
-  out.height = map.height;
-  out.radius.assign(texels, o.max_over_directions ? uint8_t(0) : uint8_t(cap));
-  for (const auto& r : radii)
-    for (size_t i = 0; i < r.size(); ++i)
-      out.radius[i] =
-          o.max_over_directions ? std::max(out.radius[i], r[i]) : std::min(out.radius[i], r[i]);
+  out.width = W;
+  out.height = H;
+  out.radius.assign(size_t(W) * H, o.max_over_directions ? uint8_t(0) : uint8_t(cap));
+  for (const GridRadii& g : radii) {
+    if (g.radius.empty()) continue;
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x) {
+        uint8_t& into = out.radius[size_t(y) * W + x];
+        const uint8_t r = g.radius[g.transposed ? size_t(x) * H + y : size_t(y) * W + x];
+        into = o.max_over_directions ? std::max(into, r) : std::min(into, r);
+      }
+  }
   return out;
 }
 
