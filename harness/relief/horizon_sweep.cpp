@@ -133,7 +133,8 @@ TexelSlot slot_of(const LineFrame& f, int near_steps, int x, int y) {
 
 // The samples each texel takes exactly along its own ray, m = 1 .. near_steps texels away: the
 // same offset (m cos phi, m sin phi) from every texel, so the same whole-texel step and the
-// same bilinear weights (the exact fractional parts, as TiledHeights::bilinear finds them).
+// same bilinear weights (the exact fractional parts, as the per-texel march finds them at x + m cos
+// phi).
 struct NearStencil {
   struct Step {
     int dx, dy;  // whole texels
@@ -180,15 +181,17 @@ void near_horizons(const TiledHeights& g, const NearStencil& near, std::vector<f
             const NearStencil::Step& st = near.steps[m];
             const int y0 = wrapped_index(y + st.dy, h);
             const float distance = float(m + 1);
-            auto at = [&](int x) {
-              return (g.bilinear_at(wrapped_index(x + st.dx, w), y0, st.a, st.b) - g.at(x, y)) /
-                     distance;
+            // Rise over distance to the sample from texel x, whose column is x0 (x + dx wrapped).
+            auto at = [&](int x, int x0) {
+              return (g.bilinear_at(x0, y0, st.a, st.b) - g.at(x, y)) / distance;
             };
-            // Texels whose x + dx lies in [0, w): no wrap.
+            // Texels whose x + dx lies in [0, w) need no wrap: a straight loop.
             const int lo = std::clamp(-st.dx, 0, w), hi = std::clamp(w - st.dx, lo, w);
-            for (int x = 0; x < lo; ++x) out[x] = std::max(out[x], at(x));
-            for (int x = lo; x < hi; ++x) out[x] = std::max(out[x], at(x));
-            for (int x = hi; x < w; ++x) out[x] = std::max(out[x], at(x));
+            for (int x = 0; x < lo; ++x)
+              out[x] = std::max(out[x], at(x, wrapped_index(x + st.dx, w)));
+            for (int x = lo; x < hi; ++x) out[x] = std::max(out[x], at(x, x + st.dx));
+            for (int x = hi; x < w; ++x)
+              out[x] = std::max(out[x], at(x, wrapped_index(x + st.dx, w)));
           }
         }
       },
@@ -334,10 +337,6 @@ void TiledHeights::step_back_wrapped(double& x, double& y, double dx, double dy)
   if (x >= w_) x -= w_;
   if (y < 0) y += h_;
   if (y >= h_) y -= h_;
-}
-
-float TiledHeights::bilinear(double x, double y) const {
-  return bilinear_wrapped(wrapped(x, w_), wrapped(y, h_));
 }
 
 struct HorizonSweep::WorkerScratch : BundleScratch {};

@@ -42,8 +42,6 @@ class TiledHeights {
     const float bottom = r1[0] + (r1[1] - r1[0]) * a;
     return top + (bottom - top) * b;
   }
-  // The same at any coordinates.
-  float bilinear(double x, double y) const;
   // (x, y) moved back by (dx, dy), |dx|, |dy| <= 1, and taken into [0, width) x [0, height):
   // where rounding lands a point on the far edge it wraps to 0, never onto the edge, which
   // bilinear_wrapped would read one row or column past its padding (a 2048^2 sweep crashed so).
