@@ -133,8 +133,7 @@ TexelSlot slot_of(const LineFrame& f, int near_steps, int x, int y) {
 
 // The samples each texel takes exactly along its own ray, m = 1 .. near_steps texels away: the
 // same offset (m cos phi, m sin phi) from every texel, so the same whole-texel step and the
-// same bilinear weights (the exact fractional parts, as the per-texel march finds them at x + m cos
-// phi).
+// same bilinear weights (the exact fractional parts of m cos phi and m sin phi).
 struct NearStencil {
   struct Step {
     int dx, dy;  // whole texels
