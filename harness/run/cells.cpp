@@ -51,6 +51,14 @@ const ColumnDeclaration runner_columns(
       "the technique drew the scene's AO (false: ambient_occlusion.render = false, the scene "
       "without AO scored against the AO truth)",
       ColumnKind::Flag},
+     {"curvature_fit_err_mean_pct", "%",
+      "the base's fitted vertex curvature (Listing 5.8) against its closed form, sphere and torus "
+      "bases: per vertex the larger error of A and B over the larger exact coefficient, the mean "
+      "over vertices"},
+     {"curvature_fit_err_max_pct", "%", "the same, the largest over vertices"},
+     {"curvature_sign_match_pct", "%",
+      "of the base's exact curvature coefficients that are not planar, the share the fit gives "
+      "the right sign (Figure 5.28's red and blue)"},
      {"effects", "", "the effects the scene asks for", ColumnKind::Text},
      {"texture_size", "texels", "the map's size as built, WxH", ColumnKind::Text},
      {"renderer", "", "the GL renderer the row was measured on", ColumnKind::Text},

@@ -95,6 +95,8 @@ struct Asset {
   // The texel errors are measured in: the truth's where it has its own resolution, so that
   // every texture resolution of a scene is judged by one yardstick.
   double metric_texel = 0;
+  // The base's fitted curvature against its closed form (sphere, torus): Figure 5.28.
+  std::optional<CurvatureFitError> curvature_fit;
   double ao_ms = 0;  // the texture-space AO map's precompute (ambient_occlusion)
   bool ao_from_cache = false;
   // Prepared technique instances by (technique, parameters): prepare() runs once per asset.
@@ -342,6 +344,7 @@ std::unique_ptr<Asset> build_asset(const SweepConfig& config, const SceneDesc& s
   if (scene.base.curved()) {
     // One base mesh for the GPU, the truth and the texel size.
     const BaseMesh mesh = make_base_mesh(scene.base, scene.size, scene.tile);
+    asset->curvature_fit = curvature_fit_error(scene.base, mesh);
     asset->base = std::make_unique<GpuBase>(base_geometry(mesh));
     asset->truth =
         std::make_unique<SceneTruth>(scene, asset->truth_source(), config.truth_tolerance, &mesh);
@@ -605,6 +608,11 @@ Row cell_row(const Cell& cell, const SceneDesc& scene, const Camera& camera, con
     row["ao_rescale"] = scene.ao.rescale(scene.depth);
     row["ao_drawn"] = scene.ao.render;
     row["truth_ao_rays"] = double(truth.stats.ao_rays);
+  }
+  if (asset.curvature_fit) {
+    row["curvature_fit_err_mean_pct"] = asset.curvature_fit->mean_pct;
+    row["curvature_fit_err_max_pct"] = asset.curvature_fit->max_pct;
+    row["curvature_sign_match_pct"] = asset.curvature_fit->sign_match_pct;
   }
   row["effects"] = join_effects(scene.effects);
   row["texture_size"] = std::to_string(asset.map.width) + "x" + std::to_string(asset.map.height);

@@ -16,6 +16,9 @@
 namespace rl {
 namespace {
 
+// The generated torus's radii as fractions of the base's size (its bounding diameter).
+constexpr double kTorusMajor = 0.35, kTorusMinor = 0.15;
+
 constexpr double kPi = glm::pi<double>();
 
 SurfaceChart sphere_chart(double radius, double tile, int segments) {
@@ -226,7 +229,7 @@ BaseMesh make_base_mesh(const BaseDesc& desc, double size, double tile, bool req
   } else if (desc.kind == "sphere") {
     m.charts.push_back(sphere_chart(0.5 * size, tile, segments));
   } else if (desc.kind == "torus") {
-    m.charts.push_back(torus_chart(0.35 * size, 0.15 * size, tile, segments));
+    m.charts.push_back(torus_chart(kTorusMajor * size, kTorusMinor * size, tile, segments));
   } else if (desc.kind == "cube") {
     // Side such that the corners lie on the sphere of diameter `size`; each face's (u, v)
     // axes with u x v = its outward normal. Faces are split so that only the vertices on the
@@ -375,6 +378,36 @@ void compute_curvature(BaseMesh& m) {
     }
     m.curvature[i] = fit_quadric(local);
   }
+}
+
+std::optional<CurvatureFitError> curvature_fit_error(const BaseDesc& desc, const BaseMesh& m) {
+  const bool sphere = desc.kind == "sphere", torus = desc.kind == "torus";
+  if ((!sphere && !torus) || m.position.empty()) return std::nullopt;
+  const double size = 2 * m.radius;
+  const double major = kTorusMajor * size, minor = kTorusMinor * size;
+  CurvatureFitError e;
+  long signs = 0, matched = 0;
+  for (size_t i = 0; i < m.position.size(); ++i) {
+    glm::dvec2 exact(1 / size);  // the sphere: 1 / (2 R), R = size / 2
+    if (torus) {
+      // Around the main circle cos(v) / rho (negative inside the hole), around the tube 1 / r.
+      const double rho = std::hypot(m.position[i].x, m.position[i].y);
+      exact = {(rho - major) / (2 * minor * rho), 1 / (2 * minor)};
+    }
+    const glm::dvec2 fit = m.curvature[i];
+    const double scale = std::max(std::abs(exact.x), std::abs(exact.y));
+    const double err = 100 * std::max(std::abs(fit.x - exact.x), std::abs(fit.y - exact.y)) / scale;
+    e.mean_pct += err;
+    e.max_pct = std::max(e.max_pct, err);
+    for (int k = 0; k < 2; ++k)
+      if (std::abs(exact[k]) >= 0.05 * scale) {
+        ++signs;
+        matched += (fit[k] > 0) == (exact[k] > 0);
+      }
+  }
+  e.mean_pct /= double(m.position.size());
+  e.sign_match_pct = signs > 0 ? 100.0 * double(matched) / double(signs) : 100.0;
+  return e;
 }
 
 }  // namespace rl

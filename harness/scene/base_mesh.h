@@ -6,6 +6,7 @@
 // chapter's tangent.w and binormal.w) and the quadric curvature (A, B) of its one-ring
 // (Listing 5.8), which the silhouette technique bends its rays with.
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -73,5 +74,20 @@ glm::dvec2 fit_quadric(const std::vector<glm::dvec3>& ring);
 // Per-vertex curvature from each vertex's one-ring, vertices welded by position so that uv
 // seams and poles see their whole ring.
 void compute_curvature(BaseMesh& mesh);
+
+// The fitted curvature against the exact surface's, where a generated base has a closed form
+// (Figure 5.28's curvature of the torus; the sphere): per vertex the exact quadric is A* = k1 / 2
+// along dpdu, B* = k2 / 2 along dpdv (the uv frames of both run along principal directions).
+struct CurvatureFitError {
+  // Per vertex max(|A - A*|, |B - B*|) / max(|A*|, |B*|), in %: the mean and the largest.
+  double mean_pct = 0, max_pct = 0;
+  // Of the coefficients that are not planar (|A*| or |B*| at least 5% of the vertex's larger),
+  // the share whose fitted sign is the exact one: Figure 5.28's red and blue.
+  double sign_match_pct = 0;
+};
+
+// Empty where no closed form is known here: plane and cube (flat but at their edges, where no
+// quadric holds), the teapot and mesh files.
+std::optional<CurvatureFitError> curvature_fit_error(const BaseDesc& desc, const BaseMesh& mesh);
 
 }  // namespace rl
