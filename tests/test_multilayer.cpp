@@ -92,6 +92,40 @@ TEST(LayerBake, CrossingsBeyondTheLayersAreCountedAndTheTopOnesKept) {
   EXPECT_NEAR(eight.layers.depth[5 * 64 + centre], 0.8, 1e-5);
 }
 
+// Figure 5 stores a layer's normal as x and y in 8 bits and rebuilds z on the layer's side;
+// quantize_8bit does the same and says what it cost. Three texels of two layers: an up normal,
+// one leaning 36.9 degrees on the back layer, and one 2.56 degrees off the base plane, whose x
+// rounds to 1 and leaves z = 0 (the worst case of the representation: z is ill-conditioned near
+// the plane); a texel with no surface on a layer does not count. 0 is not among the stored
+// values (0.5 x 255 = 127.5 rounds to 128, 0.0039 after decoding), so even an up normal leans
+// 0.32 degrees.
+TEST(LayerStorage, QuantizingReportsTheAngleThe8BitNormalsCost) {
+  ReliefMap m;
+  m.width = 3;
+  m.height = 1;
+  m.relief.assign(3, glm::vec4(0.5f, 0.5f, 1.0f, 0.0f));
+  m.color.assign(3, glm::vec4(1.0f));
+  LayerStack& l = m.layers;
+  l.count = 2;
+  l.depth = {0.2f, 0.3f, 0.4f, 0.6f, 0.7f, 1.0f};
+  const double off_plane = std::sin(2.56 * M_PI / 180);
+  l.normal = {{0, 0, 1},
+              {0.6f, 0, 0.8f},
+              {float(std::sqrt(1 - off_plane * off_plane)), 0, float(off_plane)},
+              {0, 0, -1},
+              {0.6f, 0, -0.8f},
+              {1, 0, 0}};
+  l.color.assign(6, glm::vec3(1.0f));
+  quantize_8bit(m);
+  EXPECT_NEAR(l.normal_storage_err_max_deg, 2.56, 0.01);
+  // The other four: each component moves by at most 1 / 255 (at most 0.33 degrees here).
+  EXPECT_GT(l.normal_storage_err_mean_deg, (2.56 + 4 * 0.1) / 5);
+  EXPECT_LT(l.normal_storage_err_mean_deg, (2.56 + 4 * 0.33) / 5);
+  EXPECT_EQ(l.normal[2].x, 1.0f);
+  EXPECT_EQ(l.normal[2].z, 0.0f);
+  EXPECT_NEAR(l.normal[0].x, 1.0 / 255, 1e-6);  // 0 stored as 128 / 255
+}
+
 TEST(PatternMesh, TilesCloseUpAndAreWoundOutward) {
   for (const char* kind : {"weave", "helix"}) {
     SCOPED_TRACE(kind);

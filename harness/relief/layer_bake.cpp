@@ -21,7 +21,12 @@ const ColumnDeclaration layer_columns(
       "texels whose ray crossed more surfaces than the map has layers for"},
      {"layer_odd_pct", "% of texels",
       "texels with an odd number of crossings (an open or non-manifold mesh)"},
-     {"depth_complexity", "crossings", "the most surface crossings of one texel's ray"}});
+     {"depth_complexity", "crossings", "the most surface crossings of one texel's ray"},
+     {"normal_storage_err_mean_deg", "degrees",
+      "on an 8-bit multilayer map, the layers' normals as Figure 5 stores them (x and y in 8 "
+      "bits, z rebuilt on the layer's side) against the normals before: the mean angle over "
+      "surface texels"},
+     {"normal_storage_err_max_deg", "degrees", "the same, the largest"}});
 
 }  // namespace
 

@@ -137,14 +137,29 @@ void quantize_8bit(ReliefMap& map) {
   for (auto& c : map.color) c = glm::vec4(q(c.r), q(c.g), q(c.b), 1.0f);
   LayerStack& layers = map.layers;
   const size_t texels = size_t(map.width) * map.height;
+  double angle_sum = 0, angle_max = 0;
+  long surface = 0;
   for (size_t k = 0; k < layers.depth.size(); ++k) {
+    const bool on_surface = layers.depth[k] < 1.0f;  // depth 1: no surface on this layer here
     layers.depth[k] = q(layers.depth[k]);
     // Stored as the paper does: x and y in 8 bits each, z rebuilt with the layer's sign.
     const glm::vec3 n = layers.normal[k];
     layers.normal[k] = layer_normal_from_xy(q(n.x * 0.5f + 0.5f) * 2.0f - 1.0f,
                                             q(n.y * 0.5f + 0.5f) * 2.0f - 1.0f, int(k / texels));
+    if (on_surface && glm::length(n) > 0) {
+      const double cos_angle =
+          glm::dot(glm::normalize(glm::dvec3(n)), glm::normalize(glm::dvec3(layers.normal[k])));
+      const double deg = std::acos(std::clamp(cos_angle, -1.0, 1.0)) * 180.0 / M_PI;
+      angle_sum += deg;
+      angle_max = std::max(angle_max, deg);
+      ++surface;
+    }
     const glm::vec3 c = layers.color[k];
     layers.color[k] = glm::vec3(q(c.r), q(c.g), q(c.b));
+  }
+  if (surface > 0) {
+    layers.normal_storage_err_mean_deg = angle_sum / double(surface);
+    layers.normal_storage_err_max_deg = angle_max;
   }
   map.quantized = true;
 }

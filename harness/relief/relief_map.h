@@ -39,6 +39,10 @@ struct LayerStack {
   // (the Utah teapot's spout and rim); a closed mesh has none. An impostor's bake drops the
   // deepest crossing there (a hole rather than a solid curtain below the last layer).
   long odd_texels = 0;
+  // What storing the normals as the paper does cost (Figure 5: x and y in 8 bits, z rebuilt on
+  // the layer's side; quantize_8bit): the angle between each surface texel's normal before and
+  // after, mean and largest, in degrees (0 before quantisation).
+  double normal_storage_err_mean_deg = 0, normal_storage_err_max_deg = 0;
 
   static constexpr int kMaxLayers = 8;
   bool empty() const { return count == 0; }

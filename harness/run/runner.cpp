@@ -570,6 +570,10 @@ void add_representation_columns(Row& row, const Asset& asset, const CellMeasure&
                              : nlohmann::ordered_json(100.0 * double(layers.odd_texels) / texels);
   row["depth_complexity"] =
       layers.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(layers.max_crossings);
+  if (!layers.empty() && asset.map.quantized) {
+    row["normal_storage_err_mean_deg"] = layers.normal_storage_err_mean_deg;
+    row["normal_storage_err_max_deg"] = layers.normal_storage_err_max_deg;
+  }
   if (asset.map.cells) add_cell_columns(row, *asset.map.cells, c.g, c.timing.median_ms);
   if (asset.map.faces) row["face_count"] = asset.map.faces->count();
 }
