@@ -11,17 +11,11 @@
 #include "core/fast_floor.h"
 #include "core/parallel.h"
 #include "core/precompute_cache.h"
+#include "core/wrap.h"
 #include "relief/horizon_sweep.h"
 
 namespace rl {
 namespace {
-
-// Most samples lie inside the map: no division for them (the horizon march reads millions).
-int floor_mod(long a, int n) {
-  if (a >= 0 && a < n) return int(a);
-  const long r = a % n;
-  return int(r < 0 ? r + n : r);
-}
 
 // Heights in texel units (top = height_texels) with a pyramid of block maxima, for a horizon
 // search that skips, whole, the stretches of a profile that cannot rise above the horizon found
@@ -69,7 +63,7 @@ class HeightPyramid {
   // same arithmetic as sampling the map itself.
   double sample(double x, double y) const {
     const double fx = floor_fast(x), fy = floor_fast(y);
-    const int x0 = floor_mod(long(fx), w_), y0 = floor_mod(long(fy), h_);
+    const int x0 = wrap_index(long(fx), w_), y0 = wrap_index(long(fy), h_);
     const double a = x - fx, b = y - fy;
     const double top = at(x0, y0) * (1 - a) + at(x0 + 1, y0) * a;
     const double bottom = at(x0, y0 + 1) * (1 - a) + at(x0 + 1, y0 + 1) * a;
@@ -81,7 +75,7 @@ class HeightPyramid {
   // maximum over the level's blocks the box's texels fall in (at most 2 x 2 of them).
   float box_max(double x0, double x1, double y0, double y1, int level) const {
     const long fx = long(floor_fast(x0)), fy = long(floor_fast(y0));
-    const int lx = floor_mod(fx, w_), ly = floor_mod(fy, h_);
+    const int lx = wrap_index(fx, w_), ly = wrap_index(fy, h_);
     const int hx = lx + int(long(floor_fast(x1)) - fx) + 1;  // + 1: the bilinear neighbour
     const int hy = ly + int(long(floor_fast(y1)) - fy) + 1;
     const std::vector<float>& m = levels_[level];

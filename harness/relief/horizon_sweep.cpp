@@ -6,6 +6,7 @@
 
 #include "core/fast_floor.h"
 #include "core/parallel.h"
+#include "core/wrap.h"
 
 namespace rl {
 namespace {
@@ -150,13 +151,6 @@ struct NearStencil {
   }
 };
 
-// v taken into [0, n) (v within a few n of it).
-int wrapped_index(int v, int n) {
-  while (v < 0) v += n;
-  while (v >= n) v -= n;
-  return v;
-}
-
 // A texel whose horizon waits for the sweep to reach its first far sample.
 struct PendingTexel {
   int32_t x, y;
@@ -178,7 +172,7 @@ void near_horizons(const TiledHeights& g, const NearStencil& near, std::vector<f
           for (int x = 0; x < w; ++x) out[x] = 0;  // below the horizontal counts as open
           for (size_t m = 0; m < near.steps.size(); ++m) {
             const NearStencil::Step& st = near.steps[m];
-            const int y0 = wrapped_index(y + st.dy, h);
+            const int y0 = wrap_index(y + st.dy, h);
             const float distance = float(m + 1);
             // Rise over distance to the sample from texel x, whose column is x0 (x + dx wrapped).
             auto at = [&](int x, int x0) {
@@ -186,11 +180,9 @@ void near_horizons(const TiledHeights& g, const NearStencil& near, std::vector<f
             };
             // Texels whose x + dx lies in [0, w) need no wrap: a straight loop.
             const int lo = std::clamp(-st.dx, 0, w), hi = std::clamp(w - st.dx, lo, w);
-            for (int x = 0; x < lo; ++x)
-              out[x] = std::max(out[x], at(x, wrapped_index(x + st.dx, w)));
+            for (int x = 0; x < lo; ++x) out[x] = std::max(out[x], at(x, wrap_index(x + st.dx, w)));
             for (int x = lo; x < hi; ++x) out[x] = std::max(out[x], at(x, x + st.dx));
-            for (int x = hi; x < w; ++x)
-              out[x] = std::max(out[x], at(x, wrapped_index(x + st.dx, w)));
+            for (int x = hi; x < w; ++x) out[x] = std::max(out[x], at(x, wrap_index(x + st.dx, w)));
           }
         }
       },

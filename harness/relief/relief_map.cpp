@@ -4,24 +4,20 @@
 #include <cmath>
 
 #include "core/hash.h"
+#include "core/wrap.h"
 #include "relief/image_backend.h"
 #include "relief/meta_relief.h"
 
 namespace rl {
 namespace {
 
-int wrap(int i, int n) {
-  int r = i % n;
-  return r < 0 ? r + n : r;
-}
-
 // GL_LINEAR footprint of coordinate u on n texels: texel i0, i0 + 1 and the weight of i0 + 1.
 void linear_footprint(double u, int n, int& i0, int& i1, double& f) {
   double x = u * n - 0.5;
   double fl = std::floor(x);
   f = x - fl;
-  i0 = wrap(static_cast<int>(static_cast<long long>(fl) % n), n);
-  i1 = wrap(i0 + 1, n);
+  i0 = wrap_index(static_cast<long>(fl), n);
+  i1 = wrap_index(i0 + 1, n);
 }
 
 template <typename Get>
@@ -37,7 +33,7 @@ glm::dvec4 bilinear(const ReliefMap& m, double u, double v, Get get) {
 }  // namespace
 
 size_t ReliefMap::index(int x, int y) const {
-  return static_cast<size_t>(wrap(y, height)) * width + wrap(x, width);
+  return static_cast<size_t>(wrap_index(y, height)) * width + size_t(wrap_index(x, width));
 }
 
 double ReliefMap::sample_depth(double u, double v) const {

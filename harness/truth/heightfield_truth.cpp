@@ -11,6 +11,7 @@
 #include "core/embree_util.h"
 #include "core/grid_walk.h"
 #include "core/parallel.h"
+#include "core/wrap.h"
 #include "relief/heightfield_reference.h"
 
 namespace rl {
@@ -46,14 +47,10 @@ double bilinear(double d00, double d10, double d01, double d11, double x, double
   return d00 + (d10 - d00) * x + (d01 - d00) * y + (d00 - d10 - d01 + d11) * x * y;
 }
 
-long wrap(long i, int n) {
-  return ((i % n) + n) % n;
-}
-
 }  // namespace
 
 double HeightfieldTruth::depth_at(long i, long j) const {
-  return depth_[size_t(wrap(j, height_)) * width_ + size_t(wrap(i, width_))];
+  return depth_[size_t(wrap_index(j, height_)) * width_ + size_t(wrap_index(i, width_))];
 }
 
 HeightfieldTruth::HeightfieldTruth(const ReliefMap& map, double band_tolerance, size_t max_vertices,
@@ -92,7 +89,8 @@ HeightfieldTruth::HeightfieldTruth(const ReliefMap& map, double band_tolerance, 
       double around = 0;
       for (int dj = -1; dj <= 1; ++dj)
         for (int di = -1; di <= 1; ++di)
-          around = std::max(around, double(lift[size_t(wrap(j + dj, H)) * W + wrap(i + di, W)]));
+          around = std::max(
+              around, double(lift[size_t(wrap_index(j + dj, H)) * W + wrap_index(i + di, W)]));
       const size_t c = size_t(j) * W + i;
       band_[c] = float(deviation[c] + 2.0 * around + kBandClearance);
       band_max_ = std::max(band_max_, double(band_[c]));
@@ -112,8 +110,8 @@ HeightfieldTruth::HeightfieldTruth(const ReliefMap& map, double band_tolerance, 
   // The cells a vertex at tessellation index a touches along one axis: one inside a cell, two
   // on a crease (every k-th index).
   auto cells_of = [k](int a, int n, long out[2]) {
-    out[0] = wrap(a / k, n);
-    out[1] = a % k == 0 ? wrap(a / k - 1, n) : out[0];
+    out[0] = wrap_index(a / k, n);
+    out[1] = a % k == 0 ? wrap_index(a / k - 1, n) : out[0];
   };
   parallel_for(
       size_t(nv),
@@ -172,7 +170,8 @@ bool HeightfieldTruth::above_band(const glm::dvec3& p) const {
   const long i = long(std::floor(X)), j = long(std::floor(Y));
   const double surface = bilinear(depth_at(i, j), depth_at(i + 1, j), depth_at(i, j + 1),
                                   depth_at(i + 1, j + 1), X - double(i), Y - double(j));
-  return p.z < surface - band_[size_t(wrap(j, height_)) * width_ + size_t(wrap(i, width_))];
+  return p.z <
+         surface - band_[size_t(wrap_index(j, height_)) * width_ + size_t(wrap_index(i, width_))];
 }
 
 double HeightfieldTruth::lifted_entry(const glm::dvec3& origin, const glm::dvec3& direction,
@@ -217,7 +216,8 @@ double HeightfieldTruth::exact_walk(const glm::dvec3& o, const glm::dvec3& d, do
     // Where the ray leaves the cell: still in the band, or clear above it (Embree's turn)?
     const double x = std::clamp(X0 + dX * t_exit - double(i), 0.0, 1.0);
     const double y = std::clamp(Y0 + dY * t_exit - double(j), 0.0, 1.0);
-    const double band = band_[size_t(wrap(j, height_)) * width_ + size_t(wrap(i, width_))];
+    const double band =
+        band_[size_t(wrap_index(j, height_)) * width_ + size_t(wrap_index(i, width_))];
     if (o.z + d.z * t_exit < bilinear(d00, d10, d01, d11, x, y) - band) {
       resume = t_exit;
       return true;

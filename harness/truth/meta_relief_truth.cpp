@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/wrap.h"
 #include "relief/heightfield_reference.h"
 
 namespace rl {
@@ -28,7 +29,7 @@ struct AxisWalk {
     n = cells;
     const double x = x0 + dx * t;
     cell = static_cast<long>(std::floor(x));
-    wrapped = int(((cell % n) + n) % n);
+    wrapped = wrap_index(cell, n);
     step = dx > 0 ? 1 : (dx < 0 ? -1 : 0);
     delta = step ? 1.0 / std::abs(dx) : kInf;
     next = step > 0 ? t + (cell + 1 - x) / dx : (step < 0 ? t + (x - cell) / -dx : kInf);

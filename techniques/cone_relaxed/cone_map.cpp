@@ -10,6 +10,7 @@
 
 #include "core/parallel.h"
 #include "core/precompute_cache.h"
+#include "core/wrap.h"
 
 namespace rl {
 namespace {
@@ -25,8 +26,8 @@ struct DepthSampler {
         h(map.height),
         pow2((w & (w - 1)) == 0 && (h & (h - 1)) == 0),
         d(map.depths()) {}
-  int wrap_x(int x) const { return pow2 ? x & (w - 1) : ((x % w) + w) % w; }
-  int wrap_y(int y) const { return pow2 ? y & (h - 1) : ((y % h) + h) % h; }
+  int wrap_x(int x) const { return pow2 ? x & (w - 1) : wrap_index(x, w); }
+  int wrap_y(int y) const { return pow2 ? y & (h - 1) : wrap_index(y, h); }
   float at(int x, int y) const { return d[size_t(wrap_y(y)) * w + wrap_x(x)]; }
 };
 

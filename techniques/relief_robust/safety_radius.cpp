@@ -11,6 +11,7 @@
 #include "core/fast_floor.h"
 #include "core/parallel.h"
 #include "core/precompute_cache.h"
+#include "core/wrap.h"
 
 namespace rl {
 
@@ -31,14 +32,13 @@ class PaddedHeights {
         pad_(pad),
         stride_(size_t(w_ + 2 * pad)) {
     data_.resize(stride_ * size_t(h_ + 2 * pad));
-    auto wrapped = [](int v, int n) { return ((v % n) + n) % n; };
     std::vector<int> source_x(stride_);
-    for (size_t i = 0; i < stride_; ++i) source_x[i] = wrapped(int(i) - pad, w_);
+    for (size_t i = 0; i < stride_; ++i) source_x[i] = wrap_index(long(i) - pad, w_);
     parallel_for(
         size_t(h_ + 2 * pad),
         [&](size_t begin, size_t end) {
           for (size_t row = begin; row < end; ++row) {
-            const int sy = wrapped(int(row) - pad, h_);
+            const int sy = wrap_index(long(row) - pad, h_);
             float* out = &data_[row * stride_];
             for (size_t i = 0; i < stride_; ++i) {
               const int sx = source_x[i];
