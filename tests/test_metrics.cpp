@@ -113,6 +113,29 @@ TEST(Metrics, PsnrOfAKnownDifference) {
   EXPECT_LT(ssim(a, b), 1.0);
 }
 
+TEST(Metrics, FootprintColourAveragesEverySampleUnderThePixel) {
+  // A 4 x 2 fine image to 2 x 1 at 2 samples a side: each pixel the mean of its 2 x 2 block,
+  // the background's colour included and alpha the covered share.
+  GBuffer fine = filled(4, 2);
+  const float r[8] = {0.0f, 0.2f, 1.0f, 1.0f, 0.4f, 0.6f, 1.0f, 0.0f};
+  for (int i = 0; i < 8; ++i) fine.color[size_t(i)] = glm::vec4(r[i], 0.5f, 0.0f, 1.0f);
+  fine.color[7] = glm::vec4(0.0f);  // uncovered: black background
+  const GBuffer f = footprint_color(fine, 2);
+  ASSERT_EQ(f.width, 2);
+  ASSERT_EQ(f.height, 1);
+  EXPECT_FLOAT_EQ(f.color[0].r, 0.3f);  // (0 + 0.2 + 0.4 + 0.6) / 4
+  EXPECT_FLOAT_EQ(f.color[0].g, 0.5f);
+  EXPECT_FLOAT_EQ(f.color[0].a, 1.0f);
+  EXPECT_FLOAT_EQ(f.color[1].r, 0.75f);  // (1 + 1 + 1 + 0) / 4
+  EXPECT_FLOAT_EQ(f.color[1].g, 0.375f);
+  EXPECT_FLOAT_EQ(f.color[1].a, 0.75f);
+  // Against itself at one sample a side it is the image: no error.
+  const auto same = footprint_metrics(fine, footprint_color(fine, 1));
+  EXPECT_EQ(same[0].first, "psnr_footprint_db");
+  EXPECT_EQ(same[0].second, 100.0);
+  EXPECT_NEAR(same[1].second, 1.0, 1e-9);
+}
+
 TEST(Metrics, NonFiniteOutputsAreCountedNotHidden) {
   GBuffer truth = filled(4, 4), tech = filled(4, 4);
   tech.position[3].x = std::numeric_limits<float>::quiet_NaN();

@@ -251,7 +251,33 @@ binary_steps = [0, 4, 8]
       "product.toml", ".");
   const std::vector<ParamValues> grid = parameter_settings(product.techniques[0]);
   ASSERT_EQ(grid.size(), 6u);
-  EXPECT_EQ(grid[1], (ParamValues{{"linear_steps", 8}, {"binary_steps", 4}}));
+  EXPECT_EQ(grid[1], (ParamValues{{"linear_steps", 8}, {"binary_steps", 4}, {"mipmap", 0}}));
+}
+
+// A parameter added later with a neutral default (ParamSpec::neutral_default) leaves the keys of
+// cells at that default as they were, so stored runs and committed reproductions still match:
+// relief's mipmap, added after every results/ folder was measured.
+TEST(Registry, ANeutralDefaultLeavesCellKeysAsTheyWere) {
+  auto keys = [](const std::string& extra) {
+    const SweepConfig c = parse_sweep_config(R"(
+[sweep]
+name = "keys"
+elevations = [45]
+[[scene]]
+name = "flat"
+relief = { procedural = "flat", resolution = 8 }
+[[technique]]
+name = "relief"
+linear_steps = 16
+)" + extra,
+                                             "keys.toml", ".");
+    return expand_cells(c).at(0).key;
+  };
+  // Pinned: the key this cell had before relief had a mipmap parameter (the one
+  // results/ch5-fig5.12/rows.csv's relief rows were keyed by, by the same rule).
+  EXPECT_EQ(keys(""), "610aed6f419cc9ab");
+  EXPECT_EQ(keys("mipmap = 0\n"), keys(""));
+  EXPECT_NE(keys("mipmap = 1\n"), keys(""));
 }
 
 }  // namespace

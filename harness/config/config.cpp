@@ -36,10 +36,11 @@ void parse_sweep_table(const toml::table& root, const Src& src, SweepConfig& c) 
   if (auto* n = root.get("sweep")) {
     const toml::table* t = n->as_table();
     if (!t) fail(src.at(*n), "[sweep] must be a table");
-    check_keys(*t,
-               {"name", "elevations", "azimuths", "views", "viewports", "texture_res", "frames",
-                "warmup", "heat_map_scale", "truth_tolerance", "images", "gbuffers"},
-               src, "[sweep]");
+    check_keys(
+        *t,
+        {"name", "elevations", "azimuths", "views", "viewports", "texture_res", "frames", "warmup",
+         "heat_map_scale", "truth_tolerance", "footprint_samples", "images", "gbuffers"},
+        src, "[sweep]");
     if (auto* v = t->get("name")) c.name = plain_name(*v, src, "name");
     if (auto* v = t->get("elevations")) elevations = number_list(*v, src, "elevations");
     if (auto* v = t->get("azimuths")) azimuths = number_list(*v, src, "azimuths");
@@ -99,6 +100,8 @@ void parse_sweep_table(const toml::table& root, const Src& src, SweepConfig& c) 
       if (!(c.truth_tolerance > 0 && c.truth_tolerance < 1))
         fail(src.at(*v), "'truth_tolerance' must be in (0, 1)");
     }
+    if (auto* v = t->get("footprint_samples"))
+      c.footprint_samples = positive_int(*v, src, "footprint_samples", 1, 8);
     if (auto* v = t->get("images")) c.write_images = boolean_of(*v, src, "images");
     if (auto* v = t->get("gbuffers")) c.write_gbuffers = boolean_of(*v, src, "gbuffers");
   }
@@ -323,6 +326,17 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
   canon["frames"] = c.frames;
   canon["warmup"] = c.warmup;
   canon["truth_tolerance"] = c.truth_tolerance;
+  if (c.footprint_samples > 1) {
+    // The footprint's truth traces samples^2 rays a pixel; its reference AO would multiply that
+    // by the hemisphere's.
+    for (const SceneDesc& s : c.scenes)
+      if (s.effects.has(Effect::AmbientOcclusion))
+        fail(src.at(*root.get("sweep")->as_table()->get("footprint_samples")),
+             "'footprint_samples' traces the truth samples^2 times a pixel: scene '" + s.name +
+                 "' asks for ambient_occlusion, whose reference would cost that many times its "
+                 "hemisphere rays; measure footprints on scenes without it");
+    canon["footprint_samples"] = c.footprint_samples;  // absent at 1: older sweeps hash alike
+  }
   c.canonical = canon.dump();
   return c;
 }

@@ -59,6 +59,10 @@ struct SweepConfig {
   int warmup = 1;
   double heat_map_scale = 4;      // texels at the top of the heat map's colour scale
   double truth_tolerance = 2e-3;  // stated tessellation tolerance, depth units
+  // Truth rays per pixel side for the footprint colour (psnr_footprint_db, ssim_footprint): what
+  // a pixel shows when it averages everything under it, the reference for filtering and
+  // mip-mapping. 1: off (the point-sampled truth alone).
+  int footprint_samples = 1;
   bool write_images = true;
   bool write_gbuffers = false;  // raw G-buffers as OpenEXR (output/gbuffer_export.h)
   std::vector<TableSpec> tables;

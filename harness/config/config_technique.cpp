@@ -141,9 +141,19 @@ void check_technique_sweep(const TechniqueSweep& ts, const std::vector<SceneDesc
                          "; restrict it with scenes = [...]");
   }
   // Every setting through the plugin's own checks, before any work.
-  for (const ParamValues& setting : parameter_settings(ts))
-    TechniqueRegistry::instance().resolve(ts.name, setting,
-                                          ts.where + " (" + describe_setting(info, setting) + ")");
+  for (const ParamValues& setting : parameter_settings(ts)) {
+    const std::string where = ts.where + " (" + describe_setting(info, setting) + ")";
+    const ParamValues resolved = TechniqueRegistry::instance().resolve(ts.name, setting, where);
+    if (!info.setting_cannot_render) continue;
+    for (const SceneDesc& s : scenes) {
+      if (!ts.scenes.empty() &&
+          std::find(ts.scenes.begin(), ts.scenes.end(), s.name) == ts.scenes.end())
+        continue;
+      const std::string why = info.setting_cannot_render(resolved, s);
+      if (!why.empty())
+        fail(where, "technique '" + ts.name + "' cannot render scene '" + s.name + "': " + why);
+    }
+  }
 }
 
 }  // namespace rl

@@ -16,6 +16,10 @@ struct ParamSpec {
   double min_value = 0;
   double max_value = 0;
   std::string doc;
+  // Its default draws exactly what the technique drew before the parameter existed (no define
+  // compiled, no resource bound): a cell at the default leaves it out of its key, so stored runs
+  // and committed reproductions keep theirs. For parameters added to a technique later.
+  bool neutral_default = false;
 };
 
 // Parameter values by name; ints and bools are stored as exact doubles.

@@ -59,6 +59,19 @@ float rl_relief_depth(vec2 uv) {
     d += rl_meta_depth_share[i] * RL_FETCH(rl_meta_layer[i], uv * rl_meta_tiling[i]).a;
   return d;
 }
+#elif defined(RL_MIPMAP)
+// Chapter 5, "Texture filtering and mip-mapping": normals and depths read from the mip level of
+// the fragment's footprint (trilinear, the level from the gradients of the base's texture
+// coordinate across the pixel, which the pass's main() sets before the search; zero, level 0,
+// for probe rays, which have no footprint). The colour stays at level 0, as the truth shades
+// it, so the error columns see what mip-mapping does to the geometry alone.
+layout(binding = 9) uniform sampler2D rl_relief_mipmapped;
+vec2 rl_uv_dx = vec2(0.0), rl_uv_dy = vec2(0.0);
+vec4 rl_relief_texel(vec2 uv) {
+  rl_fetches++;
+  return textureGrad(rl_relief_mipmapped, uv, rl_uv_dx, rl_uv_dy);
+}
+float rl_relief_depth(vec2 uv) { return rl_relief_texel(uv).a; }
 #else
 // The relief texel (normal rgb, depth a) and depth at uv: one fetch of the map.
 vec4 rl_relief_texel(vec2 uv) { return RL_FETCH(rl_relief, uv); }

@@ -54,6 +54,11 @@ vec3 rl_texture_direction(vec3 d, vec3 n) {
 }
 
 void main() {
+#ifdef RL_MIPMAP
+  // The footprint of this pixel on the texture, while control flow is still uniform.
+  rl_uv_dx = dFdx(v_uv);
+  rl_uv_dy = dFdy(v_uv);
+#endif
   rl_depth_aspect = rl_depth_scale / max(vec2(length(v_dpdu), length(v_dpdv)), vec2(1e-30));
   vec3 N = normalize(v_normal);
   vec3 V = normalize(v_world - rl_eye);

@@ -63,7 +63,40 @@ const ColumnDeclaration image_metric_columns(
       "the ambient term's AO difference as a share of the colour error, jointly covered"},
      {"color_bias", "colour", "mean signed colour difference (rgb mean): > 0 brighter"}});
 
+// The columns footprint_metrics() writes, where a sweep asks for footprint_samples.
+const ColumnDeclaration footprint_columns(
+    "metrics",
+    {{"psnr_footprint_db", "dB",
+      "PSNR of the shaded colour against the truth averaged over each pixel's footprint "
+      "(footprint_samples^2 rays a pixel; capped at 100): what filtering and mip-mapping aim at"},
+     {"ssim_footprint", "", "SSIM against the same footprint colour"}});
+
 }  // namespace
+
+GBuffer footprint_color(const GBuffer& fine, int samples) {
+  GBuffer out;
+  out.width = fine.width / samples;
+  out.height = fine.height / samples;
+  out.color.assign(size_t(out.width) * out.height, glm::vec4(0));
+  const double share = 1.0 / (double(samples) * samples);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      glm::dvec4 sum(0);
+      for (int j = 0; j < samples; ++j)
+        for (int i = 0; i < samples; ++i) {
+          const glm::vec4 c = fine.color[size_t(y * samples + j) * fine.width + x * samples + i];
+          sum += glm::dvec4(glm::dvec3(c), c.a > 0.5f ? 1.0 : 0.0);
+        }
+      out.color[size_t(y) * out.width + x] = glm::vec4(sum * share);
+    }
+  return out;
+}
+
+std::vector<std::pair<std::string, double>> footprint_metrics(const GBuffer& technique,
+                                                              const GBuffer& footprint) {
+  return {{"psnr_footprint_db", psnr_db(technique, footprint)},
+          {"ssim_footprint", ssim(technique, footprint)}};
+}
 
 namespace {
 

@@ -102,6 +102,16 @@ ImageMetrics compare_gbuffers(const GBuffer& technique, const GBuffer& truth, do
 double psnr_db(const GBuffer& a, const GBuffer& b);
 double ssim(const GBuffer& a, const GBuffer& b);
 
+// The colour each pixel of an image `samples` times smaller shows when it averages the
+// samples x samples pixels of `fine` under it (a box filter over the pixel's footprint, the
+// background's colour included, so coverage blends at edges); alpha is the covered share. Only
+// `color` is filled: the reference of psnr_footprint_db.
+GBuffer footprint_color(const GBuffer& fine, int samples);
+
+// psnr_footprint_db and ssim_footprint: `technique`'s colour against the footprint colour.
+std::vector<std::pair<std::string, double>> footprint_metrics(const GBuffer& technique,
+                                                              const GBuffer& footprint);
+
 // Per-pixel position error in texels (NaN where not jointly covered), for heat maps.
 std::vector<float> position_error_texels(const GBuffer& technique, const GBuffer& truth,
                                          double texel_world);

@@ -133,9 +133,12 @@ std::vector<Cell> expand_cells(const SweepConfig& config, size_t* duplicates) {
                                                  {"tol", config.truth_tolerance},
                                                  {"v", kMeasurementVersion}};
               c.truth_key = hex64(fnv1a64(truth_id.dump()));
+              ParamValues keyed = params;
+              for (const ParamSpec& p : info.params)
+                if (p.neutral_default && params.at(p.name) == p.default_value) keyed.erase(p.name);
               nlohmann::ordered_json id = {
                   {"truth", c.truth_key},    {"technique", ts.name},
-                  {"params", params},        {"frames", config.frames},
+                  {"params", keyed},         {"frames", config.frames},
                   {"warmup", config.warmup}, {"images", config.write_images}};
               // Only when asked, so cells of sweeps without G-buffers keep their keys.
               if (config.write_gbuffers) id["gbuffers"] = true;

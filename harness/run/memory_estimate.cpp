@@ -29,7 +29,9 @@ MemoryEstimate estimate_cell_memory(const SweepConfig& config, const Cell& cell)
   const MapSize size = r.size_at(cell.texture_res);
   const double pixels = double(cell.width) * cell.height;
   const double texels = double(size.width) * size.height;
-  const double viewport = pixels * kBytesPerPixel;
+  // The footprint's truth: a G-buffer of samples^2 as many pixels (5 vec4 each) while traced.
+  const double viewport =
+      pixels * (kBytesPerPixel + 80.0 * config.footprint_samples * config.footprint_samples);
   const double maps = texels * kBytesPerTexel * std::max(1, r.faces);
   double cells = 0;
   if (r.cells.active) {

@@ -387,12 +387,13 @@ void log_asset(Log& log, const SceneDesc& scene, const Asset& asset) {
 struct TruthView {
   GBuffer g;
   TruthStats stats;
+  GBuffer footprint;  // colour averaged over each pixel (footprint_samples > 1), else empty
 };
 
 // The truth of one (asset, viewport, view). The reference AO is most of an AO scene's truth:
 // an earlier run's is reused where the hits are the same (truth/ao_truth_cache.h).
-TruthView trace_truth(const SceneDesc& scene, const Asset& asset, const Cell& cell,
-                      const Camera& camera) {
+TruthView trace_truth(const SweepConfig& config, const SceneDesc& scene, const Asset& asset,
+                      const Cell& cell, const Camera& camera) {
   std::optional<AoTruthCache> ao_cache;
   if (scene.effects.has(Effect::AmbientOcclusion))
     ao_cache.emplace(cell.truth_key, truth_source_hash(asset.truth_source()), ao_sampling(scene),
@@ -401,6 +402,12 @@ TruthView trace_truth(const SceneDesc& scene, const Asset& asset, const Cell& ce
   t.g = asset.truth->render(asset.truth_source(), scene, camera, scene.effects, &t.stats,
                             ao_cache ? &*ao_cache : nullptr);
   if (ao_cache) ao_cache->save();
+  if (const int n = config.footprint_samples; n > 1) {
+    // The same view on a grid n times finer: n x n truth rays spread evenly over each pixel.
+    const Camera fine = make_camera(scene, cell.view, cell.width * n, cell.height * n);
+    t.footprint = footprint_color(
+        asset.truth->render(asset.truth_source(), scene, fine, scene.effects, nullptr, nullptr), n);
+  }
   return t;
 }
 
@@ -433,10 +440,14 @@ CellFiles cell_files(const RunOptions& options, const SceneDesc& scene) {
 }
 
 void write_truth_files(const SweepConfig& config, const CellFiles& files, const SceneDesc& scene,
-                       const Cell& cell, const Camera& camera, const GBuffer& truth) {
+                       const Cell& cell, const Camera& camera, const GBuffer& truth,
+                       const GBuffer& footprint) {
   if (config.write_images)
     write_png(files.image_dir + "/truth_" + cell.truth_key + ".png", truth.width, truth.height, 3,
               rgb_of(truth));
+  if (config.write_images && !footprint.color.empty())
+    write_png(files.image_dir + "/truth_footprint_" + cell.truth_key + ".png", footprint.width,
+              footprint.height, 3, rgb_of(footprint));
   if (config.write_gbuffers)
     write_gbuffer_exr(files.gbuffer_dir + "/truth_" + cell.truth_key + ".exr", truth, scene, camera,
                       {scene.name, "", "", cell.truth_key});
@@ -594,6 +605,8 @@ Row cell_row(const Cell& cell, const SceneDesc& scene, const Camera& camera, con
   Row row = cell.identity;
   // An error column that measures nothing (no pixel covered) is empty, never zero.
   for (const auto& [name, value] : c.m.named()) row[name] = number_or_empty(value);
+  if (!truth.footprint.color.empty())
+    for (const auto& [name, value] : footprint_metrics(c.g, truth.footprint)) row[name] = value;
   add_elevation_columns(row, scene, camera, c.g, truth.g);
   add_timing_columns(row, cell, c.timing);
   row["precompute_ms"] = c.precompute_ms;
@@ -760,10 +773,10 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       if (auto memo = truth_memo.find(cell.truth_key); memo != truth_memo.end()) {
         truth = memo->second;  // the same surface and view at another texture resolution
       } else {
-        truth = trace_truth(scene, *asset, cell, camera);
+        truth = trace_truth(config, scene, *asset, cell, camera);
         if (scene.truth_texture_res > 0) truth_memo[cell.truth_key] = truth;
         log_truth(log, scene, cell, truth, asset->metric_texel, ++summary.truth_traces);
-        write_truth_files(config, files, scene, cell, camera, truth.g);
+        write_truth_files(config, files, scene, cell, camera, truth.g, truth.footprint);
       }
       truth_key = cell.truth_key;
     }

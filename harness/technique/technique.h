@@ -64,6 +64,11 @@ struct TechniqueInfo {
   TechniqueContract contract;
   // The columns its frame_columns() writes (core/columns.h), declared when it registers.
   std::vector<ColumnSpec> columns{};
+  // Why one of its settings cannot draw `scene` ("" when it can), beyond what the flags above
+  // say for every setting (relief's mip-mapped reads on a meta-relief combined per fetch, whose
+  // layers have no mip levels). Asked for every setting and scene when the config is read.
+  std::function<std::string(const ParamValues& setting, const SceneDesc& scene)>
+      setting_cannot_render{};
 };
 
 // Why a technique cannot render `scene` ("" when it can): effects it does not simulate, a

@@ -1,5 +1,8 @@
 // Relief mapping with linear + binary search, book chapter 5 Listings 5.3 / 5.4.
 #include <cmath>
+#include <string>
+
+#include "technique/mipmapped_relief.h"
 #include "technique/shader_technique.h"
 
 namespace rl {
@@ -29,7 +32,16 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
               .default_value = 5,
               .min_value = 0,
               .max_value = 32,
-              .doc = "binary search refinements after the linear search (Listing 5.3: 5)"}},
+              .doc = "binary search refinements after the linear search (Listing 5.3: 5)"},
+             {.name = "mipmap",
+              .kind = ParamKind::Bool,
+              .default_value = 0,
+              .min_value = 0,
+              .max_value = 1,
+              .doc = "1: normals and depths read from mip-mapped copies at the pixel's footprint "
+                     "(chapter 5, 'Texture filtering and mip-mapping'); 0: level 0, the surface "
+                     "the truth reconstructs",
+              .neutral_default = true}},
         .box_proxy = true,
         .meta_relief = true,
         .contract = {.answer = Answer::Converging,
@@ -44,15 +56,41 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
                      .accuracy =
                          "the first crossing to within one linear step / 2^binary_steps along the "
                          "ray, on surfaces with no feature thinner than a linear step",
-                     .t_resolution = one_linear_step}};
+                     .t_resolution = one_linear_step},
+        // A meta-relief combined per fetch reads its layers, which have no mip levels.
+        .setting_cannot_render = [](const ParamValues& setting, const SceneDesc& scene) {
+          return setting.at("mipmap") != 0 && scene.meta.runtime()
+                     ? std::string(
+                           "mipmap = 1 reads one map's mip chain, and this scene's "
+                           "meta-relief is combined per fetch; set combine = \"baked\" "
+                           "in its meta_relief")
+                     : std::string();
+        }};
   }
 
  protected:
   std::string intersect_file() const override { return "techniques/relief/relief.glsl"; }
   Defines parameter_defines() const override {
-    return {{"RL_LINEAR_STEPS", std::to_string(static_cast<int>(param("linear_steps")))},
-            {"RL_BINARY_STEPS", std::to_string(static_cast<int>(param("binary_steps")))}};
+    Defines d = {{"RL_LINEAR_STEPS", std::to_string(static_cast<int>(param("linear_steps")))},
+                 {"RL_BINARY_STEPS", std::to_string(static_cast<int>(param("binary_steps")))}};
+    if (mipmapped()) d["RL_MIPMAP"] = "1";
+    return d;
   }
+
+ public:
+  void prepare(const ReliefMap& map) override {
+    if (mipmapped()) mipmaps_.upload(map);
+  }
+  size_t memory_bytes() const override { return mipmaps_.bytes(); }
+
+ protected:
+  void bind_resources(GLuint) const override {
+    if (mipmapped()) mipmaps_.bind();
+  }
+
+ private:
+  bool mipmapped() const { return param("mipmap") != 0; }
+  MipmappedRelief mipmaps_;
 };
 
 RL_REGISTER_TECHNIQUE(ReliefMapping);

@@ -1,0 +1,36 @@
+#include "technique/mipmapped_relief.h"
+
+#include <algorithm>
+
+namespace rl {
+
+MipmappedRelief::~MipmappedRelief() {
+  if (texture_) glDeleteTextures(1, &texture_);
+}
+
+void MipmappedRelief::upload(const ReliefMap& map) {
+  if (texture_) glDeleteTextures(1, &texture_);
+  levels_ = 1;
+  for (int side = std::max(map.width, map.height); side > 1; side /= 2) ++levels_;
+  const GLenum format = map.quantized ? GL_RGBA8 : GL_RGBA32F;
+  glCreateTextures(GL_TEXTURE_2D, 1, &texture_);
+  glTextureStorage2D(texture_, levels_, format, map.width, map.height);
+  glTextureSubImage2D(texture_, 0, 0, 0, map.width, map.height, GL_RGBA, GL_FLOAT,
+                      map.relief.data());
+  glGenerateTextureMipmap(texture_);
+  glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(texture_, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTextureParameteri(texture_, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  const size_t texel_bytes = map.quantized ? 4 : 16;
+  bytes_ = 0;
+  for (int l = 0; l < levels_; ++l)
+    bytes_ +=
+        size_t(std::max(1, map.width >> l)) * size_t(std::max(1, map.height >> l)) * texel_bytes;
+}
+
+void MipmappedRelief::bind() const {
+  glBindTextureUnit(kUnit, texture_);
+}
+
+}  // namespace rl

@@ -1,0 +1,40 @@
+#pragma once
+// A relief map's normals and depths with a full mip chain, for techniques that read them at the
+// pixel's footprint (chapter 5, "Texture filtering and mip-mapping": "both normal and depth
+// components are mip-mapped to lower resolutions"). Each level averages 2 x 2 texels of the one
+// above (the driver's glGenerateTextureMipmap): depths and encoded normals alike, which is what
+// regular mip-mapping does to a relief map. The shared relief texture (GpuRelief) keeps a
+// single level, the surface the truth reconstructs; this is a technique's own copy, bound to
+// unit 9 (harness/glsl/relief_common.glsl, RL_MIPMAP).
+#include <cstddef>
+
+#include <epoxy/gl.h>
+
+#include "relief/relief_map.h"
+
+namespace rl {
+
+class MipmappedRelief {
+ public:
+  MipmappedRelief() = default;
+  ~MipmappedRelief();
+  MipmappedRelief(const MipmappedRelief&) = delete;
+  MipmappedRelief& operator=(const MipmappedRelief&) = delete;
+
+  // Uploads `map` (RGBA8 when it is quantised, else RGBA32F, as GpuRelief) and builds its mip
+  // chain down to 1 x 1; trilinear, repeating.
+  void upload(const ReliefMap& map);
+  void bind() const;
+  // Every level's texels.
+  size_t bytes() const { return bytes_; }
+  int levels() const { return levels_; }
+
+  static constexpr GLuint kUnit = 9;
+
+ private:
+  GLuint texture_ = 0;
+  int levels_ = 0;
+  size_t bytes_ = 0;
+};
+
+}  // namespace rl
