@@ -306,6 +306,24 @@ TEST(Multilayer, AgainstItsOwnLayersOnlySearchErrorRemains) {
   EXPECT_GT(skins.metrics.wrong_pct, m.metrics.wrong_pct);
 }
 
+TEST(Multilayer, MipMappedLayersGrowSkinsWherePixelsSpanManyTexels) {
+  // Section 6: regular mip-mapping averages surface and empty texels level after level. The
+  // weave repeated 8 times (128 texels a repeat over 64 pixels: 16 texels a pixel) against its
+  // own layers: level 0 keeps them clean, the mip chains put surface where there is none.
+  SceneDesc scene = test::weave_scene(128, TruthLevel::Layers);
+  scene.tile = 8;
+  scene.depth = 0.15 / 4;
+  const test::Measured level0 =
+      test::measure(scene, "multilayer", {{"linear_steps", 64}}, View{30, 30}, 64);
+  const test::Measured mipmapped =
+      test::measure(scene, "multilayer", {{"linear_steps", 64}, {"mipmap", 1}}, View{30, 30}, 64);
+  std::printf("weave x8, 30 deg: false coverage level 0 %.2f%%, mip-mapped %.2f%%\n",
+              level0.metrics.false_pct, mipmapped.metrics.false_pct);
+  EXPECT_LT(level0.metrics.false_pct, 0.5);
+  EXPECT_GT(mipmapped.metrics.false_pct, 2.0);
+  EXPECT_GT(mipmapped.metrics.false_pct, 10 * level0.metrics.false_pct);
+}
+
 TEST(Multilayer, ShadowRaysOnlyWhenAskedAndTheyAgreeWithTheLayers) {
   SceneDesc scene = test::weave_scene(64, TruthLevel::Layers);
   const test::Measured plain =

@@ -32,6 +32,15 @@ vec3 rl_decode_normal(vec4 texel) {
   return len > 0.0 ? n / len : vec3(0.0, 0.0, 1.0);
 }
 
+#ifdef RL_MIPMAP
+// Mip-mapped reads (chapter 5, "Texture filtering and mip-mapping"; Policarpo & Oliveira,
+// Section 6): the footprint of the fragment's pixel on the texture, the gradients of the
+// base's texture coordinate across it, which the pass's main() sets before the search while
+// control flow is uniform; zero (level 0) for probe rays, which have no footprint.
+vec2 rl_uv_dx = vec2(0.0), rl_uv_dy = vec2(0.0);
+#define RL_FETCH_GRAD(tex, uv) (rl_fetches++, textureGrad(tex, uv, rl_uv_dx, rl_uv_dy))
+#endif
+
 #ifdef RL_META_LAYERS
 // A meta-relief combined per fetch (Limberger, Schetinger & Oliveira, Eqs. 1-2; the CPU's
 // relief/meta_relief.cpp evaluates the same): layer i is sampled at its own tiling and
@@ -59,18 +68,12 @@ float rl_relief_depth(vec2 uv) {
     d += rl_meta_depth_share[i] * RL_FETCH(rl_meta_layer[i], uv * rl_meta_tiling[i]).a;
   return d;
 }
-#elif defined(RL_MIPMAP)
-// Chapter 5, "Texture filtering and mip-mapping": normals and depths read from the mip level of
-// the fragment's footprint (trilinear, the level from the gradients of the base's texture
-// coordinate across the pixel, which the pass's main() sets before the search; zero, level 0,
-// for probe rays, which have no footprint). The colour stays at level 0, as the truth shades
-// it, so the error columns see what mip-mapping does to the geometry alone.
+#elif defined(RL_MIPMAPPED_RELIEF)
+// Normals and depths from the relief's mip chain (technique/mipmapped_relief.h), trilinear at
+// the pixel's footprint. The colour stays at level 0, as the truth shades it, so the error
+// columns see what mip-mapping does to the geometry alone.
 layout(binding = 9) uniform sampler2D rl_relief_mipmapped;
-vec2 rl_uv_dx = vec2(0.0), rl_uv_dy = vec2(0.0);
-vec4 rl_relief_texel(vec2 uv) {
-  rl_fetches++;
-  return textureGrad(rl_relief_mipmapped, uv, rl_uv_dx, rl_uv_dy);
-}
+vec4 rl_relief_texel(vec2 uv) { return RL_FETCH_GRAD(rl_relief_mipmapped, uv); }
 float rl_relief_depth(vec2 uv) { return rl_relief_texel(uv).a; }
 #else
 // The relief texel (normal rgb, depth a) and depth at uv: one fetch of the map.

@@ -4,14 +4,26 @@
 
 namespace rl {
 
+int mip_levels(int width, int height) {
+  int levels = 1;
+  for (int side = std::max(width, height); side > 1; side /= 2) ++levels;
+  return levels;
+}
+
+size_t mip_chain_bytes(int width, int height, size_t texel_bytes) {
+  size_t bytes = 0;
+  for (int l = 0; l < mip_levels(width, height); ++l)
+    bytes += size_t(std::max(1, width >> l)) * size_t(std::max(1, height >> l)) * texel_bytes;
+  return bytes;
+}
+
 MipmappedRelief::~MipmappedRelief() {
   if (texture_) glDeleteTextures(1, &texture_);
 }
 
 void MipmappedRelief::upload(const ReliefMap& map) {
   if (texture_) glDeleteTextures(1, &texture_);
-  levels_ = 1;
-  for (int side = std::max(map.width, map.height); side > 1; side /= 2) ++levels_;
+  levels_ = mip_levels(map.width, map.height);
   const GLenum format = map.quantized ? GL_RGBA8 : GL_RGBA32F;
   glCreateTextures(GL_TEXTURE_2D, 1, &texture_);
   glTextureStorage2D(texture_, levels_, format, map.width, map.height);
@@ -22,11 +34,7 @@ void MipmappedRelief::upload(const ReliefMap& map) {
   glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTextureParameteri(texture_, GL_TEXTURE_WRAP_S, GL_REPEAT);
   glTextureParameteri(texture_, GL_TEXTURE_WRAP_T, GL_REPEAT);
-  const size_t texel_bytes = map.quantized ? 4 : 16;
-  bytes_ = 0;
-  for (int l = 0; l < levels_; ++l)
-    bytes_ +=
-        size_t(std::max(1, map.width >> l)) * size_t(std::max(1, map.height >> l)) * texel_bytes;
+  bytes_ = mip_chain_bytes(map.width, map.height, map.quantized ? 4 : 16);
 }
 
 void MipmappedRelief::bind() const {

@@ -14,6 +14,10 @@
 
 namespace rl {
 
+// Levels of a full mip chain down to 1 x 1, and the texels of all of them times `texel_bytes`.
+int mip_levels(int width, int height);
+size_t mip_chain_bytes(int width, int height, size_t texel_bytes);
+
 class MipmappedRelief {
  public:
   MipmappedRelief() = default;

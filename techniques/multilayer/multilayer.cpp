@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "technique/mipmapped_relief.h"
 #include "technique/shader_technique.h"
 
 namespace rl {
@@ -37,6 +38,16 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
                     .max_value = 1,
                     .doc = "sample layers with GL_LINEAR instead of the paper's nearest "
                            "(Section 6: filtering mixes surface and empty texels into skins)"},
+                   {.name = "mipmap",
+                    .kind = ParamKind::Bool,
+                    .default_value = 0,
+                    .min_value = 0,
+                    .max_value = 1,
+                    .doc = "Section 6's regular mip-mapping: depths and normals from mip chains "
+                           "(each level the 2 x 2 average, empty texels' depth 1 included) at the "
+                           "pixel's footprint, nearest within a level unless linear_filter; "
+                           "colour at level 0",
+                    .neutral_default = true},
                    {.name = "interface_fix",
                     .kind = ParamKind::Bool,
                     .default_value = 1,
@@ -117,23 +128,31 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
         color[l * texels + i] =
             map.layers.empty() ? map.color[i] : glm::vec4(map.layers.color[l * texels + i], 1.0f);
     const GLenum format = map.quantized ? GL_RGBA8 : GL_RGBA32F;
-    const GLenum filter = param("linear_filter") != 0 ? GL_LINEAR : GL_NEAREST;
+    const bool linear = param("linear_filter") != 0;
+    const GLenum filter = linear ? GL_LINEAR : GL_NEAREST;
+    const GLenum mip_filter = linear ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_NEAREST;
     bytes_ = 0;
-    auto upload = [&](GLuint& tex, const std::vector<glm::vec4>& data, int slices) {
+    // `mipmapped`: the full chain, each level the driver's 2 x 2 average of the one above.
+    auto upload = [&](GLuint& tex, const std::vector<glm::vec4>& data, int slices, bool mipmapped) {
+      const int levels = mipmapped ? mip_levels(map.width, map.height) : 1;
       glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &tex);
-      glTextureStorage3D(tex, 1, format, map.width, map.height, slices);
+      glTextureStorage3D(tex, levels, format, map.width, map.height, slices);
       glTextureSubImage3D(tex, 0, 0, 0, 0, map.width, map.height, slices, GL_RGBA, GL_FLOAT,
                           data.data());
-      glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, filter);
+      if (mipmapped) glGenerateTextureMipmap(tex);
+      glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, mipmapped ? mip_filter : filter);
       glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, filter);
       glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
       glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
-      bytes_ += texels * slices * (map.quantized ? 4 : 16);
+      const size_t texel_bytes = size_t(slices) * (map.quantized ? 4 : 16);
+      bytes_ +=
+          mipmapped ? mip_chain_bytes(map.width, map.height, texel_bytes) : texels * texel_bytes;
     };
-    upload(textures_[0], depth, groups_);
-    upload(textures_[1], nx, groups_);
-    upload(textures_[2], ny, groups_);
-    upload(textures_[3], color, count);
+    const bool mipmapped = param("mipmap") != 0;
+    upload(textures_[0], depth, groups_, mipmapped);
+    upload(textures_[1], nx, groups_, mipmapped);
+    upload(textures_[2], ny, groups_, mipmapped);
+    upload(textures_[3], color, count, false);
   }
   size_t memory_bytes() const override { return bytes_; }
 
@@ -145,6 +164,7 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
                  {"RL_INTERFACE_FIX", param("interface_fix") != 0 ? "1" : "0"},
                  {"RL_GRAZING_BIAS", param("grazing_bias") != 0 ? "1" : "0"},
                  {"RL_LAYER_GROUPS", std::to_string(groups_)}};
+    if (param("mipmap") != 0) d["RL_MIPMAP"] = "1";
     d.insert(floor_.begin(), floor_.end());
     return d;
   }

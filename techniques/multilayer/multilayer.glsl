@@ -13,6 +13,14 @@ layout(binding = 5) uniform sampler2DArray rl_layer_nx;     // x of each layer's
 layout(binding = 6) uniform sampler2DArray rl_layer_ny;     // y, likewise
 layout(binding = 7) uniform sampler2DArray rl_layer_color;  // slice l: layer l's colour
 
+// Depths and normals at level 0, or (RL_MIPMAP, Section 6's "regular mip map filtering") from
+// their mip chains at the pixel's footprint; colour at level 0 either way.
+#ifdef RL_MIPMAP
+#define RL_LAYER_FETCH(tex, uvw) RL_FETCH_GRAD(tex, uvw)
+#else
+#define RL_LAYER_FETCH(tex, uvw) RL_FETCH(tex, uvw)
+#endif
+
 // (layers above depth d, layers used) at uv: the parallel comparison of Algorithm 1.
 ivec2 rl_layer_counts(vec2 uv, float d) {
   ivec2 c = ivec2(0);
@@ -22,7 +30,7 @@ ivec2 rl_layer_counts(vec2 uv, float d) {
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return c;
 #endif
   for (int g = 0; g < RL_LAYER_GROUPS; g++) {
-    vec4 layers = RL_FETCH(rl_layer_depth, vec3(uv, float(g)));
+    vec4 layers = RL_LAYER_FETCH(rl_layer_depth, vec3(uv, float(g)));
     c.x += int(dot(vec4(lessThan(layers, vec4(d))), vec4(1.0)));
     c.y += int(dot(vec4(lessThan(layers, vec4(1.0))), vec4(1.0)));
   }
@@ -100,7 +108,7 @@ RlHit rl_layer_search(vec3 p, vec3 s, float t_max, bool bent, vec2 quadric, vec3
   float nearest = 2.0;
   h.layer = 0;
   for (int g = 0; g < RL_LAYER_GROUPS; g++) {
-    vec4 layers = RL_FETCH(rl_layer_depth, vec3(h.uv, float(g)));
+    vec4 layers = RL_LAYER_FETCH(rl_layer_depth, vec3(h.uv, float(g)));
     for (int k = 0; k < 4; k++) {
       float gap = abs(layers[k] - h.depth);
       if (layers[k] < 1.0 && gap < nearest) {
@@ -149,8 +157,8 @@ void rl_hit_attributes(RlHit h, out vec3 tn, out vec3 albedo) {
     return;
   }
   int g = h.layer / 4, k = h.layer % 4;
-  float x = RL_FETCH(rl_layer_nx, vec3(h.uv, float(g)))[k] * 2.0 - 1.0;
-  float y = RL_FETCH(rl_layer_ny, vec3(h.uv, float(g)))[k] * 2.0 - 1.0;
+  float x = RL_LAYER_FETCH(rl_layer_nx, vec3(h.uv, float(g)))[k] * 2.0 - 1.0;
+  float y = RL_LAYER_FETCH(rl_layer_ny, vec3(h.uv, float(g)))[k] * 2.0 - 1.0;
   float z = sqrt(max(0.0, 1.0 - (x * x + y * y)));
   tn = vec3(x, y, (h.layer & 1) == 1 ? -z : z);
   albedo = RL_FETCH(rl_layer_color, vec3(h.uv, float(h.layer))).rgb;

@@ -73,7 +73,10 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
   Defines parameter_defines() const override {
     Defines d = {{"RL_LINEAR_STEPS", std::to_string(static_cast<int>(param("linear_steps")))},
                  {"RL_BINARY_STEPS", std::to_string(static_cast<int>(param("binary_steps")))}};
-    if (mipmapped()) d["RL_MIPMAP"] = "1";
+    if (mipmapped()) {
+      d["RL_MIPMAP"] = "1";
+      d["RL_MIPMAPPED_RELIEF"] = "1";
+    }
     return d;
   }
 
