@@ -15,7 +15,8 @@ class ReliefSilhouette final : public Described<ReliefSilhouette, ShaderTechniqu
         .citation =
             "Book chapter 5, 'Silhouette edges and Relief Texture mapping', Listings 5.5-5.7, "
             "Equations 5.1-5.3 (Oliveira & Policarpo 2005)",
-        .effects = {Effect::Silhouette, Effect::DepthCorrect, Effect::AmbientOcclusion},
+        .effects = {Effect::Silhouette, Effect::SelfShadow, Effect::DepthCorrect,
+                    Effect::AmbientOcclusion},
         .params =
             {{.name = "linear_steps",
               .kind = ParamKind::Int,
