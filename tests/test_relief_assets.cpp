@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "relief/image_io.h"
 #include "relief/procedural.h"
+#include "scene/relief_asset.h"
 #include "support/test_support.h"
 
 namespace rl {
@@ -80,6 +81,42 @@ TEST(Sampling, MatchesGlLinearRepeat) {
               1e-7);
   // Periodic in whole tiles, also far from the origin and for negative coordinates.
   EXPECT_NEAR(m.sample_depth(0.3, 0.7), m.sample_depth(-4.7, 5.7), 1e-9);
+}
+
+TEST(Sampling, AColourMapOfItsOwnSizeIsReadOnItsOwnGrid) {
+  // Baboud & Decoret, Section 4.3: a 2 x 2 relief under a 4 x 4 colour map. The colour's texel
+  // centres are at (i + 0.5) / 4, and it wraps on its own grid.
+  ReliefMap m = make("sines", 2);
+  m.color_width = m.color_height = 4;
+  m.color.resize(16);
+  for (int i = 0; i < 16; ++i) m.color[size_t(i)] = glm::vec4(float(i) / 16, 0, 0, 1);
+  EXPECT_NEAR(m.sample_color(2.5 / 4, 1.5 / 4).r, 6.0 / 16, 1e-7);  // texel (2, 1)
+  EXPECT_NEAR(m.sample_color(3.0 / 4, 1.5 / 4).r, 6.5 / 16, 1e-7);  // between (2, 1) and (3, 1)
+  EXPECT_NEAR(m.sample_color(0.0, 0.5 / 4).r, 1.5 / 16, 1e-7);      // (3, 0) and (0, 0)
+  // The relief keeps its own grid, and both sizes key the map.
+  EXPECT_NEAR(m.sample_depth(0.25, 0.25), m.depth_texel(0, 0), 1e-7);
+  ReliefMap same_bytes = m;
+  same_bytes.color_width = 2;
+  same_bytes.color_height = 8;
+  EXPECT_NE(m.content_hash(), same_bytes.content_hash());
+}
+
+TEST(ColourResolution, TheTechniqueShadesWithTheColourMapTheTruthReads) {
+  // A 32^2 brick relief under its colour at 256^2, seen from above: relief_exact finds the
+  // truth's hits, so its colour matches only if the GPU reads the same 256^2 map.
+  SceneDesc scene = test::procedural_scene("bricks", 32, 0.04);
+  scene.color_texture_res = 256;
+  const ReliefMap map = build_relief_asset(scene, 32);
+  ASSERT_EQ(map.width, 32);
+  ASSERT_EQ(map.color_w(), 256);
+  const test::Measured m = test::measure(scene, "relief_exact", {}, View{80, 30}, 128);
+  EXPECT_LT(m.metrics.wrong_pct, 1.0);
+  EXPECT_GT(m.metrics.psnr_db, 35.0);
+  // The same relief with its colour at 32^2 looks different: the test can tell the maps apart.
+  SceneDesc coarse = scene;
+  coarse.color_texture_res = 0;
+  const test::Measured c = test::measure(coarse, "relief_exact", {}, View{80, 30}, 128);
+  EXPECT_LT(psnr_db(c.technique, m.technique), m.metrics.psnr_db - 3.0);
 }
 
 TEST(Quantize, MakesEveryChannelAnExactByte) {

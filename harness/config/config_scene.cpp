@@ -124,6 +124,21 @@ void parse_truth_level(const toml::table& t, const Src& src, SceneDesc& s, nlohm
   }
 }
 
+// color_resolution: the colour map at its own resolution (Baboud & Decoret, Section 4.3), read
+// after the relief and the meta-relief it must not be.
+void parse_color_resolution(const toml::table& t, const Src& src, SceneDesc& s,
+                            nlohmann::json& canon) {
+  const toml::node* n = t.get("color_resolution");
+  if (!n) return;
+  if (s.relief.layers > 0 || !s.relief.mesh_path.empty() || s.cell_complex() ||
+      s.relief.pattern_mesh() || s.meta.active())
+    fail(src.at(*n), "scene '" + s.name +
+                         "': 'color_resolution' applies to a heightfield from images or a "
+                         "procedure (a meta-relief has its own, in meta_relief)");
+  s.color_texture_res = positive_int(*n, src, "color_resolution", 2, 8192);
+  canon["color_resolution"] = s.color_texture_res;
+}
+
 // Combinations of keys that are not built (each refused naming the scene).
 void check_scene_combinations(const SceneDesc& s, const Src& src, const toml::node& node) {
   if (s.projection.active() && s.proxy != Proxy::Box)
@@ -198,19 +213,34 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
                         const toml::node& node) {
   ParsedScene parsed;
   json& canon = parsed.canon;
-  check_keys(t, {"name",        "relief",
-                 "base",        "segments",
-                 "objects",     "proxy",
-                 "truth",       "floor",
-                 "size",        "tile",
-                 "depth",       "quantize",
-                 "effects",     "light",
-                 "fov",         "distance",
-                 "shadow_bias", "ambient",
-                 "diffuse",     "specular",
-                 "shininess",   "shadow_intensity",
-                 "framing",     "ambient_occlusion",
-                 "meta_relief", "truth_resolution"},
+  check_keys(t,
+             {"name",
+              "relief",
+              "base",
+              "segments",
+              "objects",
+              "proxy",
+              "truth",
+              "floor",
+              "size",
+              "tile",
+              "depth",
+              "quantize",
+              "effects",
+              "light",
+              "fov",
+              "distance",
+              "shadow_bias",
+              "ambient",
+              "diffuse",
+              "specular",
+              "shininess",
+              "shadow_intensity",
+              "framing",
+              "ambient_occlusion",
+              "meta_relief",
+              "truth_resolution",
+              "color_resolution"},
              src, "[[scene]]");
   SceneDesc& s = parsed.scene;
   parsed.sites.scene = src.at(node);
@@ -281,6 +311,7 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
   parse_objects(t, src, base_dir, s, canon);
   parse_effect_options(t, src, node, s, canon);
   parse_meta_relief(t, src, base_dir, node, s, canon);
+  parse_color_resolution(t, src, s, canon);
   apply_in_cube_scene(t, src, node, s);
   canon["name"] = s.name;
   canon["proxy"] = s.proxy == Proxy::Box ? "box" : "base";

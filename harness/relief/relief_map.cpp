@@ -20,12 +20,13 @@ void linear_footprint(double u, int n, int& i0, int& i1, double& f) {
   i1 = wrap_index(i0 + 1, n);
 }
 
+// GL_LINEAR + GL_REPEAT over a w x h grid of texels that get(x, y) reads.
 template <typename Get>
-glm::dvec4 bilinear(const ReliefMap& m, double u, double v, Get get) {
+glm::dvec4 bilinear(int w, int h, double u, double v, Get get) {
   int x0, x1, y0, y1;
   double fx, fy;
-  linear_footprint(u, m.width, x0, x1, fx);
-  linear_footprint(v, m.height, y0, y1, fy);
+  linear_footprint(u, w, x0, x1, fx);
+  linear_footprint(v, h, y0, y1, fy);
   glm::dvec4 a = get(x0, y0), b = get(x1, y0), c = get(x0, y1), d = get(x1, y1);
   return (a * (1 - fx) + b * fx) * (1 - fy) + (c * (1 - fx) + d * fx) * fy;
 }
@@ -41,7 +42,8 @@ double ReliefMap::sample_depth(double u, double v) const {
 }
 
 glm::dvec4 ReliefMap::sample_relief(double u, double v) const {
-  return bilinear(*this, u, v, [&](int x, int y) { return glm::dvec4(relief[index(x, y)]); });
+  return bilinear(width, height, u, v,
+                  [&](int x, int y) { return glm::dvec4(relief[index(x, y)]); });
 }
 
 glm::dvec4 ReliefMap::sample_relief_clamped(double u, double v) const {
@@ -60,7 +62,9 @@ glm::dvec4 ReliefMap::surface_relief(double u, double v) const {
 }
 
 glm::dvec4 ReliefMap::sample_color(double u, double v) const {
-  return bilinear(*this, u, v, [&](int x, int y) { return glm::dvec4(color[index(x, y)]); });
+  const int w = color_w();
+  return bilinear(w, color_h(), u, v,
+                  [&](int x, int y) { return glm::dvec4(color[size_t(y) * w + size_t(x)]); });
 }
 
 float ReliefMap::min_depth() const {
@@ -86,6 +90,10 @@ uint64_t ReliefMap::content_hash() const {
   h = fnv1a64(&height, sizeof height, h);
   h = fnv1a64(relief.data(), relief.size() * sizeof(glm::vec4), h);
   h = fnv1a64(color.data(), color.size() * sizeof(glm::vec4), h);
+  if (color_width > 0) {  // only then, so maps without their own colour size keep their hash
+    h = fnv1a64(&color_width, sizeof color_width, h);
+    h = fnv1a64(&color_height, sizeof color_height, h);
+  }
   if (layers.empty()) return h;
   h = fnv1a64(&layers.count, sizeof layers.count, h);
   h = fnv1a64(layers.depth.data(), layers.depth.size() * sizeof(float), h);
@@ -103,7 +111,8 @@ int LayerStack::used(size_t texel) const {
 size_t ReliefMap::gpu_bytes(bool meta_layers) const {
   size_t texel = quantized ? 4 : 16;
   const size_t ambient = ambient_visibility.empty() ? 0 : (quantized ? 1 : 4);
-  size_t bytes = static_cast<size_t>(width) * height * (texel * 2 + ambient);
+  size_t bytes = static_cast<size_t>(width) * height * (texel + ambient) +
+                 static_cast<size_t>(color_w()) * color_h() * texel;
   if (meta_layers && meta) {
     bytes -= static_cast<size_t>(width) * height * texel;  // the bake is not sampled
     for (const MetaLayer& l : meta->layers()) bytes += size_t(l.map.width) * l.map.height * texel;
@@ -172,7 +181,10 @@ ReliefMap resample(const ReliefMap& map, int width, int height) {
   out.width = width;
   out.height = height;
   out.relief = resize(map.relief);
-  out.color = resize(map.color);
+  // A colour map of its own size keeps it (Section 4.3's independent resolutions).
+  out.color = map.color_width > 0 ? map.color : resize(map.color);
+  out.color_width = map.color_width;
+  out.color_height = map.color_height;
   for (auto& t : out.relief) {
     glm::dvec3 n = decode_normal(glm::dvec4(t));
     t = glm::vec4(glm::vec3(n * 0.5 + 0.5), std::clamp(t.a, 0.0f, 1.0f));

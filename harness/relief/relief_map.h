@@ -60,8 +60,11 @@ struct ReliefMap {
   int height = 0;
   std::vector<glm::vec4> relief;  // rgb: normal * 0.5 + 0.5, a: depth; row 0 is v = 0.5 / height
   std::vector<glm::vec4> color;   // rgb colour (linear), a = 1
-  bool quantized = false;         // every channel holds an exact multiple of 1/255
-  LayerStack layers;              // non-height-field maps: their layers; `relief` is the top one
+  // The colour map's own size, where it has one (Baboud & Decoret, Section 4.3: "depth and
+  // color textures can therefore have different resolutions"); 0: the relief's.
+  int color_width = 0, color_height = 0;
+  bool quantized = false;  // every channel holds an exact multiple of 1/255
+  LayerStack layers;       // non-height-field maps: their layers; `relief` is the top one
   // The texture-space AO map (relief/ao_map.h), only where a scene asks for ambient_occlusion:
   // visibility in [0, 1] per texel, uploaded 8-bit when the map is quantised.
   std::vector<float> ambient_visibility;
@@ -79,6 +82,8 @@ struct ReliefMap {
   std::shared_ptr<const HeightfieldFaces> faces;
 
   size_t index(int x, int y) const;  // wraps like GL_REPEAT
+  int color_w() const { return color_width > 0 ? color_width : width; }
+  int color_h() const { return color_height > 0 ? color_height : height; }
   float depth_texel(int x, int y) const { return relief[index(x, y)].a; }
   // Bilinear samples at texture coordinate (u, v), GL_LINEAR + GL_REPEAT semantics.
   double sample_depth(double u, double v) const;

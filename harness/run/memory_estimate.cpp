@@ -32,7 +32,11 @@ MemoryEstimate estimate_cell_memory(const SweepConfig& config, const Cell& cell)
   // The footprint's truth: a G-buffer of samples^2 as many pixels (5 vec4 each) while traced.
   const double viewport =
       pixels * (kBytesPerPixel + 80.0 * config.footprint_samples * config.footprint_samples);
-  const double maps = texels * kBytesPerTexel * std::max(1, r.faces);
+  // A colour map of its own size (color_resolution): its floats on the CPU and its texture.
+  const MapSize color = r.size_at(scene.color_texture_res);
+  const double color_maps =
+      scene.color_texture_res > 0 ? double(color.width) * color.height * 2 * 16 : 0;
+  const double maps = texels * kBytesPerTexel * std::max(1, r.faces) + color_maps;
   double cells = 0;
   if (r.cells.active) {
     const double n = r.cells.grid > 0 ? r.cells.grid : r.cells.grid_max;

@@ -142,6 +142,14 @@ ReliefMap build_map(const SceneDesc& scene, const ReliefSourceDesc& relief, int 
 ReliefMap build_relief_asset(const SceneDesc& scene, int resolution) {
   if (scene.cell_complex()) return build_cell_complex_asset(scene.relief, resolution);
   ReliefMap map = build_map(scene, scene.relief, resolution, 1.0);
+  if (scene.color_texture_res > 0 &&
+      scene.relief.size_at(scene.color_texture_res).longer() != std::max(map.width, map.height)) {
+    // The colour of the same relief built at its own resolution (Section 4.3).
+    const ReliefMap color = build_map(scene, scene.relief, scene.color_texture_res, 1.0);
+    map.color = color.color;
+    map.color_width = color.width;
+    map.color_height = color.height;
+  }
   if (scene.quantize) quantize_8bit(map);
   if (!scene.meta.active()) return map;
   // A meta-relief: the sweep's resolution is layer 0's; every other layer is scaled by the same

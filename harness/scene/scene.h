@@ -180,6 +180,10 @@ struct SceneDesc {
   // 0 = the cell's. Measures a low-resolution map against the surface a finer one stands for
   // (Limberger et al., Figure 14).
   int truth_texture_res = 0;
+  // The colour map's resolution (longer side) whatever the cell's texture resolution; 0 = the
+  // relief's. Baboud & Decoret, Section 4.3: a larger colour map over a smaller depth map, the
+  // search reading only depths. Heightfields from images or procedures only.
+  int color_texture_res = 0;
   // With a box proxy, is depth 1 (the box's bottom) a floor, or empty (an object baked from a
   // mesh: chapter 5's "alpha = d < 1", Baboud & Decoret's objects)? Rays reaching it hit the
   // floor, or leave the box.

@@ -30,7 +30,7 @@ GpuRelief::GpuRelief(const ReliefMap& map, bool meta_layers) {
   const GLenum rgba = map.quantized ? GL_RGBA8 : GL_RGBA32F;
   relief_ = make_texture(map.width, map.height, rgba, GL_RGBA,
                          reinterpret_cast<const float*>(map.relief.data()));
-  color_ = make_texture(map.width, map.height, rgba, GL_RGBA,
+  color_ = make_texture(map.color_w(), map.color_h(), rgba, GL_RGBA,
                         reinterpret_cast<const float*>(map.color.data()));
   if (!map.ambient_visibility.empty())
     ambient_ = make_texture(map.width, map.height, map.quantized ? GL_R8 : GL_R32F, GL_RED,

@@ -123,10 +123,18 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
           nx[g * texels + i][k] = n.x * 0.5f + 0.5f;
           ny[g * texels + i][k] = n.y * 0.5f + 0.5f;
         }
+    // A heightfield's colour at the layers' texels (its colour map may have its own size).
+    auto heightfield_color = [&](size_t i) {
+      if (map.color_width == 0) return map.color[i];
+      const double u = (double(i % size_t(map.width)) + 0.5) / map.width;
+      const double v = (double(i / size_t(map.width)) + 0.5) / map.height;
+      return glm::vec4(map.sample_color(u, v));
+    };
     for (int l = 0; l < count; ++l)
       for (size_t i = 0; i < texels; ++i)
-        color[l * texels + i] =
-            map.layers.empty() ? map.color[i] : glm::vec4(map.layers.color[l * texels + i], 1.0f);
+        color[l * texels + i] = map.layers.empty()
+                                    ? heightfield_color(i)
+                                    : glm::vec4(map.layers.color[l * texels + i], 1.0f);
     const GLenum format = map.quantized ? GL_RGBA8 : GL_RGBA32F;
     const bool linear = param("linear_filter") != 0;
     const GLenum filter = linear ? GL_LINEAR : GL_NEAREST;
