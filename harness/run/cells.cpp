@@ -142,6 +142,8 @@ std::vector<Cell> expand_cells(const SweepConfig& config, size_t* duplicates) {
                   {"warmup", config.warmup}, {"images", config.write_images}};
               // Only when asked, so cells of sweeps without G-buffers keep their keys.
               if (config.write_gbuffers) id["gbuffers"] = true;
+              // Its rows carry the footprint columns: a run without them is another cell.
+              if (config.footprint_samples > 1) id["footprint"] = config.footprint_samples;
               // A shared truth no longer names the asset: the cell must.
               if (scene.truth_texture_res > 0) id["asset"] = c.asset_key;
               c.key = hex64(fnv1a64(id.dump()));
