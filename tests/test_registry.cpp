@@ -280,5 +280,25 @@ linear_steps = 16
   EXPECT_NE(keys("mipmap = 1\n"), keys(""));
 }
 
+// A sweep with the footprint truth writes columns one without it does not: its cells are others
+// (a store must not resume one from the other), and without it keys are as they were.
+TEST(Registry, AFootprintTruthKeysItsCellsApart) {
+  auto key = [](const std::string& sweep_extra) {
+    return expand_cells(parse_sweep_config("[sweep]\nname = \"keys\"\nelevations = [45]\n" +
+                                               sweep_extra +
+                                               "[[scene]]\nname = \"flat\"\nrelief = { "
+                                               "procedural = \"flat\", resolution = 8 }\n"
+                                               "[[technique]]\nname = \"relief\"\n"
+                                               "linear_steps = 16\n",
+                                           "keys.toml", "."))
+        .at(0)
+        .key;
+  };
+  EXPECT_EQ(key(""), "610aed6f419cc9ab");
+  EXPECT_EQ(key("footprint_samples = 1\n"), key(""));
+  EXPECT_NE(key("footprint_samples = 2\n"), key(""));
+  EXPECT_NE(key("footprint_samples = 4\n"), key("footprint_samples = 2\n"));
+}
+
 }  // namespace
 }  // namespace rl
