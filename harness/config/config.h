@@ -3,6 +3,7 @@
 // viewports and texture resolutions; the harness runs their product. Everything is checked
 // here, before any work: unknown keys, unknown techniques, bad values, missing files and
 // effects a technique cannot simulate are ConfigErrors naming the file, line and key.
+#include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
@@ -34,6 +35,9 @@ struct TechniqueSweep {
   std::map<std::string, std::vector<double>> param_lists;  // declared parameters only
   std::vector<ParamValues> sets;                           // paired settings, or none
   std::string where;                                       // "file:line" for messages
+  bool runs_on(const std::string& scene) const {
+    return scenes.empty() || std::find(scenes.begin(), scenes.end(), scene) != scenes.end();
+  }
 };
 
 struct TableSpec {

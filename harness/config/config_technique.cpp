@@ -132,9 +132,7 @@ void check_technique_sweep(const TechniqueSweep& ts, const std::vector<SceneDesc
   const TechniqueInfo& info = TechniqueRegistry::instance().find(ts.name)->info;
   // Effects: every scene this technique runs on must ask only for effects it simulates.
   for (const SceneDesc& s : scenes) {
-    const bool runs = ts.scenes.empty() ||
-                      std::find(ts.scenes.begin(), ts.scenes.end(), s.name) != ts.scenes.end();
-    if (!runs) continue;
+    if (!ts.runs_on(s.name)) continue;
     const std::string why = cannot_render(info, s);
     if (!why.empty())
       fail(ts.where, "technique '" + ts.name + "' cannot render scene '" + s.name + "': " + why +
@@ -146,9 +144,7 @@ void check_technique_sweep(const TechniqueSweep& ts, const std::vector<SceneDesc
     const ParamValues resolved = TechniqueRegistry::instance().resolve(ts.name, setting, where);
     if (!info.setting_cannot_render) continue;
     for (const SceneDesc& s : scenes) {
-      if (!ts.scenes.empty() &&
-          std::find(ts.scenes.begin(), ts.scenes.end(), s.name) == ts.scenes.end())
-        continue;
+      if (!ts.runs_on(s.name)) continue;
       const std::string why = info.setting_cannot_render(resolved, s);
       if (!why.empty())
         fail(where, "technique '" + ts.name + "' cannot render scene '" + s.name + "': " + why);

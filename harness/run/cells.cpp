@@ -98,9 +98,7 @@ std::vector<Cell> expand_cells(const SweepConfig& config, size_t* duplicates) {
   for (size_t si = 0; si < config.scenes.size(); ++si) {
     const SceneDesc& scene = config.scenes[si];
     for (const TechniqueSweep& ts : config.techniques) {
-      if (!ts.scenes.empty() &&
-          std::find(ts.scenes.begin(), ts.scenes.end(), scene.name) == ts.scenes.end())
-        continue;
+      if (!ts.runs_on(scene.name)) continue;
       const TechniqueInfo& info = TechniqueRegistry::instance().find(ts.name)->info;
       const std::vector<ParamValues> settings = parameter_settings(ts);
       for (int tex : config.texture_res) {

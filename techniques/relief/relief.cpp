@@ -67,6 +67,10 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
                      : std::string();
         }};
   }
+  void prepare(const ReliefMap& map) override {
+    if (mipmapped()) mipmaps_.upload(map);
+  }
+  size_t memory_bytes() const override { return mipmaps_.bytes(); }
 
  protected:
   std::string intersect_file() const override { return "techniques/relief/relief.glsl"; }
@@ -79,14 +83,6 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
     }
     return d;
   }
-
- public:
-  void prepare(const ReliefMap& map) override {
-    if (mipmapped()) mipmaps_.upload(map);
-  }
-  size_t memory_bytes() const override { return mipmaps_.bytes(); }
-
- protected:
   void bind_resources(GLuint) const override {
     if (mipmapped()) mipmaps_.bind();
   }
