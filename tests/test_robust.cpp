@@ -127,6 +127,58 @@ TEST(SafetyRadius, ConservativeLineSweepMatchesThePerStartScan) {
   EXPECT_EQ(fast[0], 3);
 }
 
+// The radii read a line past the map's edge only as far as its starts need (safety_radius.cpp):
+// that rests on a start's answer depending on the samples up to it alone. Read in parts and
+// stopped once every start up to the last has a violation, the ignore_blocked sweep answers
+// those starts as the whole profile does; the conservative sweep over a prefix, or from a later
+// start on, answers as over the whole wherever its answer lies inside what it read.
+TEST(SafetyRadius, ALineReadInPartsAnswersAsTheWholeLine) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1, 0);
+  std::vector<int> scratch, whole, part;
+  UnblockedLineSweep sweep;
+  int stopped_early = 0;
+  for (int profile = 0; profile < 300; ++profile) {
+    std::vector<float> h(size_t(30 + profile % 70));
+    float v = u(rng);
+    for (float& x : h) {
+      v = std::clamp(v + 0.3f * (u(rng) + 0.5f), -1.0f, 0.0f);
+      x = profile % 3 == 0 ? std::round(v * 4) / 4 : v;
+    }
+    const int last_start = int(h.size()) / 2 + profile % 7;
+    for (double e : {0.0, 0.05}) {
+      first_unblocked_violations(h, 0.5, e, scratch, whole);
+      sweep.begin(0.5, e);
+      std::vector<float> read;
+      bool resolved = false;
+      for (size_t chunk = 5; !resolved && read.size() < h.size(); chunk += 3) {
+        read.insert(read.end(), h.begin() + long(read.size()),
+                    h.begin() + long(std::min(h.size(), read.size() + chunk)));
+        resolved = sweep.read(read, last_start);
+      }
+      stopped_early += sweep.samples_read() < int(h.size());
+      ASSERT_TRUE(resolved || sweep.samples_read() == int(h.size()));
+      sweep.answers(part);
+      // Stopped early, every start up to the last has its violation among the samples read.
+      for (int j = 0; j <= last_start; ++j)
+        ASSERT_EQ(part[size_t(j)], whole[size_t(j)])
+            << "profile " << profile << " e " << e << " start " << j;
+    }
+    const std::vector<double> hd(h.begin(), h.end());
+    first_conservative_violations(hd, 0.5, 0, 1, scratch, whole);
+    const int n = int(hd.size()), prefix = n / 2 + profile % 11, from = profile % 13;
+    first_conservative_violations(hd.data(), prefix, 0.5, 0, 1, scratch, part);
+    for (int j = 0; j < prefix; ++j)
+      ASSERT_EQ(part[size_t(j)], whole[size_t(j)] < prefix ? whole[size_t(j)] : prefix)
+          << "profile " << profile << " prefix " << prefix << " start " << j;
+    first_conservative_violations(hd.data() + from, n - from, 0.5, 0, 1, scratch, part);
+    for (int j = from; j < n; ++j)
+      ASSERT_EQ(part[size_t(j - from)] + from, whole[size_t(j)])
+          << "profile " << profile << " from " << from << " start " << j;
+  }
+  EXPECT_GT(stopped_early, 100);  // most of these lines needed only part of their profile
+}
+
 ReliefMap from_depths(int n, const std::function<float(int, int)>& f) {
   std::vector<float> d;
   for (int y = 0; y < n; ++y)

@@ -55,17 +55,24 @@ int first_two_hit_after(const std::vector<double>& h, int j, int limit, double s
 // times the rounding of float heights in [-1, 0], a 4000th of an 8-bit depth step.
 constexpr double kTouch = 1e-6;
 
-void first_unblocked_violations(const std::vector<float>& heights, double step,
-                                double error_allowed, std::vector<int>& hull_storage,
-                                std::vector<int>& first) {
+void UnblockedLineSweep::begin(double step, double error_allowed) {
+  step_ = step;
+  error_allowed_ = error_allowed;
+  hull_.clear();
+  by_horizon_.clear();
+  top_ = read_ = 0;
+  latest_horizon_ = -1;
+}
+
+bool UnblockedLineSweep::read(const std::vector<float>& heights, int last_start) {
   const int n = int(heights.size());
-  // by_horizon[t]: the first sample whose horizon is sample t.
-  first.assign(size_t(n), n);
-  int* const by_horizon = first.data();
+  // by_horizon[t]: the first sample whose horizon is sample t (none yet: the int maximum).
+  by_horizon_.resize(size_t(n), std::numeric_limits<int>::max());
+  int* const by_horizon = by_horizon_.data();
   const float* const h = heights.data();
-  hull_storage.resize(size_t(n) + 1);
-  int* const hull = hull_storage.data();
-  int top = 0;  // the hull is hull[0..top)
+  hull_.resize(size_t(n) + 1);
+  int* const hull = hull_.data();
+  int top = top_;  // the hull is hull[0..top)
   // Is the hull's top on, under, or within kTouch above the edge (second, k)? Such a vertex is
   // a collinear tie: a ray along the edge touches it without dipping in. The tolerance keeps
   // float rounding on planar slopes (a pyramid's face, sampled by bilinear lerps) from
@@ -75,12 +82,13 @@ void first_unblocked_violations(const std::vector<float>& heights, double step,
     return double(j - i) * (double(h[k]) - h[i]) - (double(h[j]) - h[i]) * double(k - i) >=
            -kTouch * double(k - i);
   };
-  for (int k = 0; k < n; ++k) {
+  int k = read_;
+  for (; k < n && latest_horizon_ <= last_start; ++k) {
     // Horizon of (s_k, h_k + e): the hull vertex of maximal backward-rising slope from it.
-    const double qh = double(h[k]) + error_allowed;
-    auto slope = [&](int i) { return (double(h[i]) - qh) / ((k - i) * step); };
+    const double qh = double(h[k]) + error_allowed_;
+    auto slope = [&](int i) { return (double(h[i]) - qh) / ((k - i) * step_); };
     int t = -1;
-    if (error_allowed == 0) {
+    if (error_allowed_ == 0) {
       // The point itself: the vertices the monotone chain drops on pushing it lie on or under
       // its tangent, so the top left is the horizon (collinear ties dropped: the leftmost).
       while (top >= 2 && below_new_edge(k)) --top;
@@ -100,17 +108,35 @@ void first_unblocked_violations(const std::vector<float>& heights, double step,
       while (top >= 2 && below_new_edge(k)) --top;
     }
     // A horizon above the point (beyond float noise in the bilinear lerp): a rising slope.
-    if (t >= 0 && double(h[t]) - qh > kTouch) by_horizon[t] = std::min(by_horizon[t], k);
+    if (t >= 0 && double(h[t]) - qh > kTouch) {
+      by_horizon[t] = std::min(by_horizon[t], k);
+      latest_horizon_ = std::max(latest_horizon_, t);
+    }
     hull[top++] = k;
   }
+  top_ = top;
+  read_ = k;
+  return latest_horizon_ > last_start;
+}
+
+void UnblockedLineSweep::answers(std::vector<int>& first) const {
   // A start at sample j first violates at the earliest sample whose horizon lies strictly
-  // after j: a suffix minimum over horizons, computed in place.
+  // after j: a suffix minimum over horizons.
+  const int n = read_;
+  first.resize(size_t(n));
   int next = n;
   for (int j = n - 1; j >= 0; --j) {
-    const int here = by_horizon[j];
-    by_horizon[j] = next;
-    next = std::min(next, here);
+    first[size_t(j)] = next;
+    next = std::min(next, by_horizon_[size_t(j)]);
   }
+}
+
+void first_unblocked_violations(const std::vector<float>& heights, double step,
+                                double error_allowed, std::vector<int>&, std::vector<int>& first) {
+  UnblockedLineSweep sweep;
+  sweep.begin(step, error_allowed);
+  sweep.read(heights, int(heights.size()));
+  sweep.answers(first);
 }
 
 // The conservative criterion (every ray above the start counts) for every start at once; the
@@ -123,12 +149,17 @@ void first_unblocked_violations(const std::vector<float>& heights, double step,
 void first_conservative_violations(const std::vector<double>& heights, double step, int first_start,
                                    int stride, std::vector<int>& scratch,
                                    std::vector<int>& first_out) {
-  const int n = int(heights.size());
+  first_conservative_violations(heights.data(), int(heights.size()), step, first_start, stride,
+                                scratch, first_out);
+}
+
+void first_conservative_violations(const double* const h, const int n, double step, int first_start,
+                                   int stride, std::vector<int>& scratch,
+                                   std::vector<int>& first_out) {
   first_out.assign(size_t(n), n);
   if (n == 0) return;
   constexpr double kTie = 1e-12;  // scan_profile's slope tolerance: double-rounding collinear
   scratch.resize(2 * size_t(n));
-  const double* const h = heights.data();
   int* const first = first_out.data();
   int* const descent = scratch.data();
   int* const stack = scratch.data() + n;

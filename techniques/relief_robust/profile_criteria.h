@@ -12,6 +12,27 @@ namespace rl {
 void first_unblocked_violations(const std::vector<float>& h, double step, double error_allowed,
                                 std::vector<int>& hull, std::vector<int>& first);
 
+// The same criterion read a part of the profile at a time, so that a line is sampled only as
+// far as its starts need: a sample's horizon depends on the samples before it alone, so the
+// answers over a prefix that holds every start's first violation are the whole profile's.
+class UnblockedLineSweep {
+ public:
+  // A new profile.
+  void begin(double step, double error_allowed);
+  // Takes in h[samples_read() .. h.size()) (h growing from call to call, its earlier samples
+  // unchanged). True once some sample's horizon lies after last_start: every start up to it
+  // then has its first violation among the samples read.
+  bool read(const std::vector<float>& h, int last_start);
+  int samples_read() const { return read_; }
+  // first[j], j < samples_read(): the first violation among the samples read, or their count.
+  void answers(std::vector<int>& first) const;
+
+ private:
+  double step_ = 0, error_allowed_ = 0;
+  std::vector<int> hull_, by_horizon_;
+  int top_ = 0, read_ = 0, latest_horizon_ = -1;
+};
+
 // The first violation distance of one profile h[0..n) sampled every `step` (heights, up =
 // larger), or +infinity: where a descending ray above h[0] could have entered and left.
 double first_two_hit_distance(const std::vector<double>& h, double step, double error_allowed);
@@ -26,5 +47,8 @@ int first_two_hit_after(const std::vector<double>& h, int j, int limit, double s
 // other samples). `scratch` is scratch space.
 void first_conservative_violations(const std::vector<double>& h, double step, int first_start,
                                    int stride, std::vector<int>& scratch, std::vector<int>& first);
+// The same over the n heights from h.
+void first_conservative_violations(const double* h, int n, double step, int first_start, int stride,
+                                   std::vector<int>& scratch, std::vector<int>& first);
 
 }  // namespace rl

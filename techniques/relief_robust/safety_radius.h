@@ -55,8 +55,9 @@ struct SafetyRadii {
 // suffix minimum gives every start's first violation: O(samples) per line, independent of the
 // radii. Lines start where they enter the map (nothing behind a map border blocks: exact for
 // the box proxy, conservative for tiled bases) and run past its far border, wrapping, for the
-// cap. With error_allowed = e, points before s2 count e lower (dips of at most e are not
-// seen; rays up to e below the start count, conservatively).
+// cap, but only until every start of the line has met its first violation. With error_allowed = e,
+// points before s2 count e lower (dips of at most e are not seen; rays up to e below the start
+// count, conservatively).
 //
 // Otherwise (conservative): every ray above the start counts, blocked or not. The same lines
 // are swept and every start of a line answered at once (first_conservative_violations; with
