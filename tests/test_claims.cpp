@@ -1,5 +1,6 @@
 // Claims as data (claims/claims.h): rows.csv read back, values and checks evaluated, the README's
 // verdict section generated and verified, and malformed claims refused with file and line.
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -7,8 +8,10 @@
 
 #include "claims/claims.h"
 #include "claims/ledger.h"
+#include "claims/rows_csv.h"
 #include "core/atomic_write.h"
 #include "core/error.h"
+#include "output/compare.h"
 #include "support/test_support.h"
 
 namespace rl {
@@ -294,6 +297,61 @@ std::string results_with(const std::string& name, const std::string& papers,
   write(results + "/one/claims.toml", claims);
   write(results + "/README.md", std::string("# R\n\n") + kLedgerBegin + "\n" + kLedgerEnd + "\n");
   return results;
+}
+
+// The text between the README's generated-verdict markers, as verify compares it.
+std::string readme_verdicts(const std::string& dir) {
+  std::ifstream in(dir + "/README.md");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t begin = text.find(kClaimsBegin), end = text.find(kClaimsEnd);
+  if (begin == std::string::npos || end == std::string::npos) return "";
+  return text.substr(begin + std::string(kClaimsBegin).size(),
+                     end - begin - std::strlen(kClaimsBegin));
+}
+
+// Issue 30's acceptance test, on every committed folder: scale the error and cost columns that
+// `compare` watches (and the frame and precompute times) by 1.5 and by 1 / 1.5, and verify must
+// fail, naming a claim whose sentence or check the change moved. The checks alone, without the
+// sentence, catch fewer (relative claims - ratios of one column - are scale-free): their count
+// is pinned from below so that claims do not drift back to ratios only.
+TEST(Claims, ScaledCommittedRowsFailVerifyNamingTheClaims) {
+  std::vector<std::string> columns = {"frame_ms", "precompute_ms"};
+  for (const auto& [name, tolerance] : default_tolerances()) columns.push_back(name);
+  int folders = 0;
+  for (const double factor : {1.5, 1 / 1.5}) {
+    int caught = 0, caught_by_checks = 0;
+    folders = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(RELIEFLAB_SOURCE_DIR "/results")) {
+      const std::string dir = entry.path().string();
+      if (!std::filesystem::exists(dir + "/claims.toml")) continue;
+      ++folders;
+      const ClaimsFile file = load_claims(dir + "/claims.toml");
+      std::vector<CsvRow> rows = read_rows_csv(dir + "/rows.csv");
+      for (CsvRow& row : rows)
+        for (const std::string& c : columns) {
+          auto cell = row.find(c);
+          double v = 0;
+          if (cell != row.end() && parse_number(cell->second, v))
+            cell->second = std::to_string(v * factor);
+        }
+      const std::vector<ClaimResult> results = check_claims(file, rows);
+      std::vector<std::string> named;
+      for (const ClaimResult& r : results)
+        if (!r.holds()) named.push_back(r.id);
+      caught_by_checks += !named.empty();
+      // What verify compares against the README: the pictures' links aside, the sentences.
+      std::vector<ClaimResult> committed = check_claims(file, read_rows_csv(dir + "/rows.csv"));
+      for (size_t i = 0; i < results.size(); ++i)
+        if (results[i].sentence != committed[i].sentence) named.push_back(results[i].id);
+      EXPECT_FALSE(readme_verdicts(dir).empty()) << dir << ": no generated verdict section";
+      caught += !named.empty();
+    }
+    EXPECT_GE(caught, folders - 2)
+        << "scaled by " << factor << ": " << caught << " of " << folders << " folders fail verify";
+    EXPECT_GE(caught_by_checks, 12)
+        << "scaled by " << factor << ": only " << caught_by_checks << " folders fail a check";
+  }
+  EXPECT_GE(folders, 40);
 }
 
 TEST(Ledger, StatusesComeFromTheClaimsThatListAnItem) {
