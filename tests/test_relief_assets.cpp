@@ -1,12 +1,16 @@
 // Relief assets: procedural generators, GL-identical sampling, quantisation, image loading.
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <map>
 
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "output/result_store.h"
 #include "relief/image_io.h"
 #include "relief/procedural.h"
+#include "run/cells.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
 
@@ -117,6 +121,60 @@ TEST(ColourResolution, TheTechniqueShadesWithTheColourMapTheTruthReads) {
   coarse.color_texture_res = 0;
   const test::Measured c = test::measure(coarse, "relief_exact", {}, View{80, 30}, 128);
   EXPECT_LT(psnr_db(c.technique, m.technique), m.metrics.psnr_db - 3.0);
+}
+
+// truth_color_resolution: scenes that differ only in their colour map's resolution measured
+// against one reference colour. Their truths' pictures are then the same bytes, where each
+// scene's own colour made them differ; and the coarse colour map scores lower against the fine
+// reference than against its own.
+TEST(ColourResolution, ATruthColourOfItsOwnIsOneReferenceForEveryColourMap) {
+  const std::string dir = test::scratch_dir("truth_colour");
+  const SweepConfig config = test::run_sweep_in(R"(
+[sweep]
+name = "truth_colour"
+views = [[80, 30]]
+viewports = [64]
+texture_res = [32]
+frames = 1
+warmup = 0
+[[scene]]
+name = "coarse"
+relief = { procedural = "bricks", resolution = 32 }
+truth_color_resolution = 256
+[[scene]]
+name = "fine"
+relief = { procedural = "bricks", resolution = 32 }
+color_resolution = 256
+truth_color_resolution = 256
+[[scene]]
+name = "coarse_own"
+relief = { procedural = "bricks", resolution = 32 }
+[[technique]]
+name = "relief_exact"
+)",
+                                                dir);
+  ResultStore store(dir + "/out/results.sqlite");
+  std::map<std::string, nlohmann::json> rows;
+  for (const Cell& c : expand_cells(config)) {
+    const auto row = store.row(c.key);
+    ASSERT_TRUE(row);
+    rows[config.scenes[c.scene_index].name] = *row;
+  }
+  ASSERT_EQ(rows.size(), 3u);
+  auto bytes = [&](const std::string& scene) {
+    std::ifstream in(dir + "/out/" + std::string(rows[scene]["image_truth"]), std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  EXPECT_FALSE(bytes("fine").empty());
+  EXPECT_EQ(bytes("coarse"), bytes("fine"));
+  EXPECT_NE(bytes("coarse_own"), bytes("fine"));
+  EXPECT_EQ(rows["coarse"]["truth"], "sampled color@256");
+  EXPECT_EQ(rows["coarse_own"]["truth"], "sampled");
+  // The geometry is the same: every scene's hits agree with its truth alike.
+  for (const char* scene : {"coarse", "fine", "coarse_own"})
+    EXPECT_LT(double(rows[scene]["wrong_pct"]), 1.0) << scene;
+  EXPECT_LT(double(rows["coarse"]["psnr_db"]), double(rows["coarse_own"]["psnr_db"]) - 3.0);
+  EXPECT_LT(double(rows["coarse"]["psnr_db"]), double(rows["fine"]["psnr_db"]) - 3.0);
 }
 
 TEST(Quantize, MakesEveryChannelAnExactByte) {

@@ -124,19 +124,25 @@ void parse_truth_level(const toml::table& t, const Src& src, SceneDesc& s, nlohm
   }
 }
 
-// color_resolution: the colour map at its own resolution (Baboud & Decoret, Section 4.3), read
-// after the relief and the meta-relief it must not be.
+// color_resolution: the colour map at its own resolution (Baboud & Decoret, Section 4.3), and
+// truth_color_resolution: the truth's; read after the relief and the meta-relief they must not
+// be.
 void parse_color_resolution(const toml::table& t, const Src& src, SceneDesc& s,
                             nlohmann::json& canon) {
-  const toml::node* n = t.get("color_resolution");
-  if (!n) return;
-  if (s.relief.layers > 0 || !s.relief.mesh_path.empty() || s.cell_complex() ||
-      s.relief.pattern_mesh() || s.meta.active())
-    fail(src.at(*n), "scene '" + s.name +
-                         "': 'color_resolution' applies to a heightfield from images or a "
-                         "procedure (a meta-relief has its own, in meta_relief)");
-  s.color_texture_res = positive_int(*n, src, "color_resolution", 2, 8192);
-  canon["color_resolution"] = s.color_texture_res;
+  for (const char* key : {"color_resolution", "truth_color_resolution"}) {
+    const toml::node* n = t.get(key);
+    if (!n) continue;
+    if (s.relief.layers > 0 || !s.relief.mesh_path.empty() || s.cell_complex() ||
+        s.relief.pattern_mesh() || s.meta.active() || s.truth != TruthLevel::Sampled)
+      fail(src.at(*n), "scene '" + s.name + "': '" + key +
+                           "' applies to a heightfield from images or a procedure, measured "
+                           "against its sampled truth (a meta-relief has its own "
+                           "color_resolution, in meta_relief)");
+    const int res = positive_int(*n, src, key, 2, 8192);
+    (std::string(key) == "color_resolution" ? s.color_texture_res : s.truth_color_texture_res) =
+        res;
+    canon[key] = res;
+  }
 }
 
 // Combinations of keys that are not built (each refused naming the scene).
@@ -240,7 +246,8 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
               "ambient_occlusion",
               "meta_relief",
               "truth_resolution",
-              "color_resolution"},
+              "color_resolution",
+              "truth_color_resolution"},
              src, "[[scene]]");
   SceneDesc& s = parsed.scene;
   parsed.sites.scene = src.at(node);

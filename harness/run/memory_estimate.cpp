@@ -32,10 +32,15 @@ MemoryEstimate estimate_cell_memory(const SweepConfig& config, const Cell& cell)
   // The footprint's truth: a G-buffer of samples^2 as many pixels (5 vec4 each) while traced.
   const double viewport =
       pixels * (kBytesPerPixel + 80.0 * config.footprint_samples * config.footprint_samples);
-  // A colour map of its own size (color_resolution): its floats on the CPU and its texture.
+  // A colour map of its own size (color_resolution): its floats on the CPU and its texture; the
+  // truth's (truth_color_resolution): its floats, and the truth's map they come with.
   const MapSize color = r.size_at(scene.color_texture_res);
+  const MapSize truth_color = r.size_at(scene.truth_color_texture_res);
   const double color_maps =
-      scene.color_texture_res > 0 ? double(color.width) * color.height * 2 * 16 : 0;
+      (scene.color_texture_res > 0 ? double(color.width) * color.height * 2 * 16 : 0) +
+      (scene.truth_color_texture_res > 0
+           ? double(truth_color.width) * truth_color.height * 16 + texels * kBytesPerTexel
+           : 0);
   const double maps = texels * kBytesPerTexel * std::max(1, r.faces) + color_maps;
   double cells = 0;
   if (r.cells.active) {

@@ -83,7 +83,7 @@ std::string describe_params(const Cell& c) {
 struct Asset {
   ReliefMap map;
   // The map the truth is built from where the scene asks for another resolution
-  // (truth_resolution); null: `map` itself.
+  // (truth_resolution) or another colour map (truth_color_resolution); null: `map` itself.
   std::unique_ptr<ReliefMap> truth_map;
   const ReliefMap& truth_source() const { return truth_map ? *truth_map : map; }
   std::unique_ptr<GpuRelief> relief;
@@ -335,10 +335,15 @@ std::unique_ptr<Asset> build_asset(const SweepConfig& config, const SceneDesc& s
   stage(scene.relief.cells.active ? "building the relief (a cubic cell complex)"
                                   : "building the relief map");
   asset->map = build_relief_asset(scene, cell.texture_res);
-  if (scene.truth_texture_res > 0 &&
-      scene.relief.size_at(scene.truth_texture_res) != scene.relief.size_at(cell.texture_res))
+  // The truth's own map where the scene gives it another depth resolution (truth_resolution)
+  // or another colour map (truth_color_resolution).
+  const int truth_res = scene.truth_texture_res > 0 ? scene.truth_texture_res : cell.texture_res;
+  const int truth_color =
+      scene.truth_color_texture_res > 0 ? scene.truth_color_texture_res : scene.color_texture_res;
+  if (scene.relief.size_at(truth_res) != scene.relief.size_at(cell.texture_res) ||
+      truth_color != scene.color_texture_res)
     asset->truth_map =
-        std::make_unique<ReliefMap>(build_relief_asset(scene, scene.truth_texture_res));
+        std::make_unique<ReliefMap>(build_relief_asset(scene, truth_res, truth_color));
   asset->objects = std::make_unique<ObjectPass>(scene.objects);
   stage("building the truth's Embree scene");
   if (scene.base.curved()) {
@@ -634,9 +639,14 @@ Row cell_row(const Cell& cell, const SceneDesc& scene, const Camera& camera, con
   row["effects"] = join_effects(scene.effects);
   row["texture_size"] = std::to_string(asset.map.width) + "x" + std::to_string(asset.map.height);
   add_representation_columns(row, asset, c);
-  // "sampled@1024": the truth of the map at another resolution (truth_resolution).
-  row["truth"] = std::string(truth_level_name(scene.truth)) +
-                 (asset.truth_map ? "@" + std::to_string(scene.truth_texture_res) : "");
+  // "sampled@1024": the truth of the map at another resolution (truth_resolution); "color@512":
+  // with a colour map of its own (truth_color_resolution).
+  std::string truth_label = truth_level_name(scene.truth);
+  if (asset.truth_map && scene.truth_texture_res > 0)
+    truth_label += "@" + std::to_string(scene.truth_texture_res);
+  if (scene.truth_color_texture_res > 0)
+    truth_label += " color@" + std::to_string(scene.truth_color_texture_res);
+  row["truth"] = truth_label;
   row["renderer"] = renderer;
   row["key"] = cell.key;
   check_columns_declared(row, cell);

@@ -140,12 +140,16 @@ ReliefMap build_map(const SceneDesc& scene, const ReliefSourceDesc& relief, int 
 }  // namespace
 
 ReliefMap build_relief_asset(const SceneDesc& scene, int resolution) {
+  return build_relief_asset(scene, resolution, scene.color_texture_res);
+}
+
+ReliefMap build_relief_asset(const SceneDesc& scene, int resolution, int color_resolution) {
   if (scene.cell_complex()) return build_cell_complex_asset(scene.relief, resolution);
   ReliefMap map = build_map(scene, scene.relief, resolution, 1.0);
-  if (scene.color_texture_res > 0 &&
-      scene.relief.size_at(scene.color_texture_res).longer() != std::max(map.width, map.height)) {
+  if (color_resolution > 0 &&
+      scene.relief.size_at(color_resolution).longer() != std::max(map.width, map.height)) {
     // The colour of the same relief built at its own resolution (Section 4.3).
-    const ReliefMap color = build_map(scene, scene.relief, scene.color_texture_res, 1.0);
+    const ReliefMap color = build_map(scene, scene.relief, color_resolution, 1.0);
     map.color = color.color;
     map.color_width = color.width;
     map.color_height = color.height;

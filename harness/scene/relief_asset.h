@@ -14,6 +14,9 @@
 namespace rl {
 
 ReliefMap build_relief_asset(const SceneDesc& scene, int resolution);
+// The same with its colour map at `color_resolution` (longer side; 0: the map's own), as the
+// truth's colour where the scene sets truth_color_resolution.
+ReliefMap build_relief_asset(const SceneDesc& scene, int resolution, int color_resolution);
 
 // Where the scene asks for ambient_occlusion, computes (or reads from the cache) the AO map of
 // the relief as tall as scene.ao.map_depth (the scene's depth unless it is a rescale), with

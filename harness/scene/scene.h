@@ -184,6 +184,10 @@ struct SceneDesc {
   // relief's. Baboud & Decoret, Section 4.3: a larger colour map over a smaller depth map, the
   // search reading only depths. Heightfields from images or procedures only.
   int color_texture_res = 0;
+  // The truth's colour map at this resolution (longer side), whatever the technique's; 0 = the
+  // technique's (color_texture_res, else the cell's). One reference colour for scenes that
+  // differ only in their colour map's resolution, so that their rows are judged alike.
+  int truth_color_texture_res = 0;
   // With a box proxy, is depth 1 (the box's bottom) a floor, or empty (an object baked from a
   // mesh: chapter 5's "alpha = d < 1", Baboud & Decoret's objects)? Rays reaching it hit the
   // floor, or leave the box.
