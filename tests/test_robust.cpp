@@ -63,7 +63,7 @@ std::vector<int> brute_first_violations(const std::vector<float>& h, double step
 TEST(SafetyRadius, UnblockedLineCriterionMatchesBruteForce) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(-1, 0);
-  std::vector<int> hull, fast;
+  std::vector<int> fast;
   for (int profile = 0; profile < 200; ++profile) {
     // Random walks, some smoothed: peaks, pits, plateaus and long slopes.
     std::vector<float> h(40);
@@ -73,7 +73,7 @@ TEST(SafetyRadius, UnblockedLineCriterionMatchesBruteForce) {
       x = profile % 3 == 0 ? std::round(v * 4) / 4 : v;
     }
     for (double e : {0.0, 0.05}) {
-      first_unblocked_violations(h, 0.5, e, hull, fast);
+      first_unblocked_violations(h, 0.5, e, fast);
       const std::vector<int> brute = brute_first_violations(h, 0.5, e);
       for (size_t j = 0; j < h.size(); ++j)
         ASSERT_EQ(fast[j], brute[j]) << "profile " << profile << " e " << e << " start " << j;
@@ -82,7 +82,7 @@ TEST(SafetyRadius, UnblockedLineCriterionMatchesBruteForce) {
   // Behind a wall the shallow rays are blocked: a bump right after it no longer counts for
   // the texel in its lee, while the conservative scan (every ray) still sees it.
   const std::vector<float> lee = {0, -0.8f, -0.8f, -0.75f, -0.8f, -0.8f, -0.8f, -0.8f};
-  first_unblocked_violations(lee, 0.5, 0, hull, fast);
+  first_unblocked_violations(lee, 0.5, 0, fast);
   EXPECT_EQ(fast[1], int(lee.size()));
   const std::vector<double> ahead(lee.begin() + 1, lee.end());
   EXPECT_LT(first_two_hit_distance(ahead, 0.5, 0), 100);
@@ -147,7 +147,7 @@ TEST(SafetyRadius, ALineReadInPartsAnswersAsTheWholeLine) {
     }
     const int last_start = int(h.size()) / 2 + profile % 7;
     for (double e : {0.0, 0.05}) {
-      first_unblocked_violations(h, 0.5, e, scratch, whole);
+      first_unblocked_violations(h, 0.5, e, whole);
       sweep.begin(0.5, e);
       std::vector<float> read;
       bool resolved = false;
@@ -191,8 +191,8 @@ TEST(SafetyRadius, ASteadySlopeInFloatsIsTouchedNotEntered) {
   // 1e-8 off collinear, which once read as dips and zeroed the radii of whole faces.
   std::vector<float> h;
   for (int k = 0; k < 120; ++k) h.push_back(float(-0.849719 - 0.00936065 * k));
-  std::vector<int> hull, first;
-  first_unblocked_violations(h, 0.5, 0.0, hull, first);
+  std::vector<int> first;
+  first_unblocked_violations(h, 0.5, 0.0, first);
   for (int j = 0; j < int(h.size()); ++j) EXPECT_EQ(first[size_t(j)], int(h.size())) << j;
 }
 

@@ -132,7 +132,7 @@ void UnblockedLineSweep::answers(std::vector<int>& first) const {
 }
 
 void first_unblocked_violations(const std::vector<float>& heights, double step,
-                                double error_allowed, std::vector<int>&, std::vector<int>& first) {
+                                double error_allowed, std::vector<int>& first) {
   UnblockedLineSweep sweep;
   sweep.begin(step, error_allowed);
   sweep.read(heights, int(heights.size()));

@@ -8,9 +8,9 @@ namespace rl {
 // The line criterion of ignore_blocked on one profile h[0..n) (heights, up = larger) sampled
 // every `step` from where the line enters the map: first[j] = the first sample s2 > j at
 // which a descending ray above h[j], unblocked over h[0..j], could have entered and left
-// the surface (the horizon of s2 lies strictly after j), or n. `hull` is scratch space.
+// the surface (the horizon of s2 lies strictly after j), or n.
 void first_unblocked_violations(const std::vector<float>& h, double step, double error_allowed,
-                                std::vector<int>& hull, std::vector<int>& first);
+                                std::vector<int>& first);
 
 // The same criterion read a part of the profile at a time, so that a line is sampled only as
 // far as its starts need: a sample's horizon depends on the samples before it alone, so the
