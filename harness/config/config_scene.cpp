@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <set>
+#include <utility>
 
 #include "config/config_cube.h"
 #include "config/config_effects.h"
@@ -129,7 +130,10 @@ void parse_truth_level(const toml::table& t, const Src& src, SceneDesc& s, nlohm
 // be.
 void parse_color_resolution(const toml::table& t, const Src& src, SceneDesc& s,
                             nlohmann::json& canon) {
-  for (const char* key : {"color_resolution", "truth_color_resolution"}) {
+  const std::pair<const char*, int*> keys[] = {
+      {"color_resolution", &s.color_texture_res},
+      {"truth_color_resolution", &s.truth_color_texture_res}};
+  for (const auto& [key, field] : keys) {
     const toml::node* n = t.get(key);
     if (!n) continue;
     if (s.relief.layers > 0 || !s.relief.mesh_path.empty() || s.cell_complex() ||
@@ -138,10 +142,8 @@ void parse_color_resolution(const toml::table& t, const Src& src, SceneDesc& s,
                            "' applies to a heightfield from images or a procedure, measured "
                            "against its sampled truth (a meta-relief has its own "
                            "color_resolution, in meta_relief)");
-    const int res = positive_int(*n, src, key, 2, 8192);
-    (std::string(key) == "color_resolution" ? s.color_texture_res : s.truth_color_texture_res) =
-        res;
-    canon[key] = res;
+    *field = positive_int(*n, src, key, 2, 8192);
+    canon[key] = *field;
   }
 }
 

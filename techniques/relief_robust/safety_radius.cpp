@@ -234,16 +234,15 @@ SafetyRadii sweep_lines(const ReliefMap& map, const SafetyRadiusOptions& o, int 
 }
 
 // Section 3.5 with blocked rays ignored: one horizon sweep per line (see safety_radius.h),
-// read past the map's edge only until every start has its first violation. At 1024^2 the
-// starts that need the reach of cap + 1 centerlines are few, and that reach was 28% of the
-// samples read.
+// read past the map's edge only until every start has its first violation. That reach of cap + 1
+// centerlines was 28% of the samples read at 1024^2; on the rock wall 1.7% of the lines need all
+// of it (58% more than 8 centerlines), on the bricks, whose flat tops have large radii, 77%.
 SafetyRadii compute_unblocked(const ReliefMap& map, const SafetyRadiusOptions& o, int cap) {
-  const size_t per_centerline = size_t(std::max(1L, std::lround(1.0 / o.step)));
   return sweep_lines<float>(map, o, cap, 0.0,
                             [&](auto& profile, LineStarts starts, LineScratch<float>& line) {
                               UnblockedLineSweep& sweep = line.unblocked;
                               sweep.begin(o.step, o.error_allowed);
-                              size_t chunk = 8 * per_centerline;
+                              size_t chunk = 8 * size_t(starts.stride);  // 8 centerlines
                               for (size_t count = size_t(starts.end) + 2;; count += chunk) {
                                 profile.read_to(count);
                                 if (sweep.read(profile.h, int(starts.end)) || profile.whole())
@@ -267,7 +266,6 @@ SafetyRadii compute_unblocked(const ReliefMap& map, const SafetyRadiusOptions& o
 // 64 was faster than 8, 24 and 128: a line answered twice costs more than the samples saved.)
 SafetyRadii compute_conservative(const ReliefMap& map, const SafetyRadiusOptions& o, int cap) {
   const int limit = int(std::ceil((cap + 1) / o.step)) + 1;
-  const int per_centerline = std::max(1, int(std::lround(1.0 / o.step)));
   // Line answers for the starts from `from` (a start) on, over all of h.
   auto answer_from = [&](const std::vector<double>& h, LineStarts starts, long from,
                          LineScratch<double>& line) {
@@ -290,7 +288,7 @@ SafetyRadii compute_conservative(const ReliefMap& map, const SafetyRadiusOptions
         // A line whose neighbour needed the rest likely does too (a brick's flat top): it is
         // read whole at once rather than answered twice.
         if (line.read_whole_last) profile.read_to(profile.length);
-        profile.read_to(size_t(starts.end) + 1 + 64 * size_t(per_centerline));
+        profile.read_to(size_t(starts.end) + 1 + 64 * size_t(starts.stride));  // 64 centerlines
         answer_from(profile.h, starts, starts.begin, line);
         long from = starts.begin;
         while (from <= starts.end && line.first[size_t(from)] < int(profile.h.size()))
