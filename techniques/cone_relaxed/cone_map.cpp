@@ -1,6 +1,7 @@
 #include "cone_map.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -254,6 +255,18 @@ void hold_out_near_texel_centres(const ReliefMap& map, int side, std::vector<flo
       256);
 }
 
+// A texel's cone so far, shared by the cores: each reads the narrowest any has found (a stale
+// value only widens its bound) and narrows it without losing another core's narrower one.
+float cone_so_far(std::vector<float>& ratio, uint32_t texel) {
+  return std::atomic_ref<float>(ratio[texel]).load(std::memory_order_relaxed);
+}
+void narrow_cone(std::vector<float>& ratio, uint32_t texel, float to) {
+  std::atomic_ref<float> cone(ratio[texel]);
+  float now = cone.load(std::memory_order_relaxed);
+  while (to < now && !cone.compare_exchange_weak(now, to, std::memory_order_relaxed)) {
+  }
+}
+
 // Narrows `ratio` (per texel, per longer side) by the cones found along one direction's lines.
 void narrow_along_direction(const DepthSampler& depth, const ConeScanDirection& dir,
                             const ConeMapOptions& o, std::vector<float>& ratio) {
@@ -272,8 +285,8 @@ void narrow_along_direction(const DepthSampler& depth, const ConeScanDirection& 
     // narrow it. Unroll the line that far past its end.
     float reach = 0;
     for (size_t t = 0; t < count; ++t)
-      reach =
-          std::max(reach, std::min(widest, ratio[texels[t]] * side / step) * depth.d[texels[t]]);
+      reach = std::max(reach, std::min(widest, cone_so_far(ratio, texels[t]) * side / step) *
+                                  depth.d[texels[t]]);
     sample_line(depth, dir, texels, count, size_t(std::ceil(reach)) + 2, h);
     if (o.relaxed) {
       scan.build(h);
@@ -281,7 +294,7 @@ void narrow_along_direction(const DepthSampler& depth, const ConeScanDirection& 
       size_t hint = 0;  // the segment that narrowed the next texel's cone along the line
       for (size_t t = count; t-- > 0;) {
         const size_t i = t * size_t(dir.sub);
-        const float bound = std::min(widest, ratio[texels[t]] * side / step);
+        const float bound = std::min(widest, cone_so_far(ratio, texels[t]) * side / step);
         const float found = h[i] > 0.0f ? scan.across(h, i, bound, hint) : bound;
         across[t] = found < bound ? found : std::numeric_limits<float>::infinity();
       }
@@ -289,8 +302,7 @@ void narrow_along_direction(const DepthSampler& depth, const ConeScanDirection& 
       conservative_along_line(h, dir.sub, count, hull, across);
     }
     for (size_t t = 0; t < count; ++t)  // +infinity: not narrowed here
-      if (across[t] < widest)
-        ratio[texels[t]] = std::min(ratio[texels[t]], float(double(across[t]) * step / side));
+      if (across[t] < widest) narrow_cone(ratio, texels[t], float(double(across[t]) * step / side));
   }
 }
 
@@ -319,22 +331,17 @@ ConeMap compute_cone_map(const ReliefMap& map, const ConeMapOptions& o) {
   out.height = map.height;
   // Directions handed out one at a time to whichever core is free (their costs differ by up
   // to 2x: interleaving them into fixed groups left one core idle for a fifth of the time);
-  // each core narrows a copy of the map of its own, then the narrowest over copies. A cone is
-  // the narrowest over directions whatever their order, bit for bit (kSkipSlack): a direction's
-  // scan only stops early at the narrowest cone found so far.
+  // the cores narrow one map together, so each direction's scan starts from the narrowest
+  // cones any core has found so far. A cone is the narrowest over directions whatever their
+  // order, bit for bit (kSkipSlack): a direction's scan only stops early at that bound.
   const std::vector<ConeScanDirection> dirs = cone_scan_directions(o.directions);
-  std::vector<std::vector<float>> narrowed(parallel_workers());
+  out.ratio.assign(size_t(map.width) * map.height, float(o.max_ratio));
   parallel_for_workers(
       dirs.size(),
-      [&](size_t worker, size_t begin, size_t end) {
-        std::vector<float>& ratio = narrowed[worker];
-        if (ratio.empty()) ratio.assign(size_t(map.width) * map.height, float(o.max_ratio));
-        for (size_t d = begin; d < end; ++d) narrow_along_direction(depth, dirs[d], o, ratio);
+      [&](size_t, size_t begin, size_t end) {
+        for (size_t d = begin; d < end; ++d) narrow_along_direction(depth, dirs[d], o, out.ratio);
       },
       1);
-  out.ratio.assign(size_t(map.width) * map.height, float(o.max_ratio));
-  for (const std::vector<float>& ratio : narrowed)
-    for (size_t i = 0; i < ratio.size(); ++i) out.ratio[i] = std::min(out.ratio[i], ratio[i]);
   if (!o.relaxed) hold_out_near_texel_centres(map, std::max(map.width, map.height), out.ratio);
   out.compute_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
