@@ -267,16 +267,51 @@ void narrow_cone(std::vector<float>& ratio, uint32_t texel, float to) {
   }
 }
 
-// Narrows `ratio` (per texel, per longer side) by the cones found along one direction's lines.
+// What one direction's lines are scanned with, kept from line to line.
+struct LineScratch {
+  std::vector<float> h, reversed, across;
+  std::vector<uint32_t> reversed_texels;
+  std::vector<glm::dvec2> hull;
+  RelaxedLineScan scan;
+};
+
+// Narrows `ratio` (per texel, per longer side) by the cones one line's samples `h` find for
+// its texels (texel t at sample t * sub), `step` texels apart.
+void narrow_along_line(const std::vector<float>& h, const uint32_t* texels, size_t count, int sub,
+                       float step, float side, const ConeMapOptions& o, std::vector<float>& ratio,
+                       LineScratch& s) {
+  const float widest = float(o.max_ratio) * side / step;  // samples per depth
+  std::vector<float>& across = s.across;
+  if (o.relaxed) {
+    s.scan.build(h);
+    across.resize(count);
+    size_t hint = 0;  // the segment that narrowed the next texel's cone along the line
+    for (size_t t = count; t-- > 0;) {
+      const size_t i = t * size_t(sub);
+      const float bound = std::min(widest, cone_so_far(ratio, texels[t]) * side / step);
+      const float found = h[i] > 0.0f ? s.scan.across(h, i, bound, hint) : bound;
+      across[t] = found < bound ? found : std::numeric_limits<float>::infinity();
+    }
+  } else {
+    conservative_along_line(h, sub, count, s.hull, across);
+  }
+  for (size_t t = 0; t < count; ++t)  // +infinity: not narrowed here
+    if (across[t] < widest) narrow_cone(ratio, texels[t], float(double(across[t]) * step / side));
+}
+
+// Narrows `ratio` by the cones found along one direction's lines, and with `both_ways` along
+// the opposite direction's too. The opposite direction's lines are the same cycles of texels,
+// and its samples are these in reverse: the same points, each blended from the same two texels
+// by the same weight (sample_line's whole texels and parts are the same integers from either
+// end), so they are read once. Its reach is the one found before this direction narrowed any
+// cone: as far or farther than it needs.
 void narrow_along_direction(const DepthSampler& depth, const ConeScanDirection& dir,
-                            const ConeMapOptions& o, std::vector<float>& ratio) {
+                            const ConeMapOptions& o, bool both_ways, std::vector<float>& ratio) {
   const Lines lines = lines_along(depth.w, depth.h, dir.p, dir.q);
   const float side = float(std::max(depth.w, depth.h));
   const float step = dir.step_texels();  // once: a hypot per texel was 14% of the sweep's time
   const float widest = float(o.max_ratio) * side / step;  // samples per depth
-  std::vector<float> h, across;
-  std::vector<glm::dvec2> hull;
-  RelaxedLineScan scan;
+  LineScratch s;
   for (size_t l = 0; l + 1 < lines.start.size(); ++l) {
     const uint32_t* texels = lines.order.data() + lines.start[l];
     const size_t count = lines.start[l + 1] - lines.start[l];
@@ -287,22 +322,18 @@ void narrow_along_direction(const DepthSampler& depth, const ConeScanDirection& 
     for (size_t t = 0; t < count; ++t)
       reach = std::max(reach, std::min(widest, cone_so_far(ratio, texels[t]) * side / step) *
                                   depth.d[texels[t]]);
-    sample_line(depth, dir, texels, count, size_t(std::ceil(reach)) + 2, h);
-    if (o.relaxed) {
-      scan.build(h);
-      across.resize(count);
-      size_t hint = 0;  // the segment that narrowed the next texel's cone along the line
-      for (size_t t = count; t-- > 0;) {
-        const size_t i = t * size_t(dir.sub);
-        const float bound = std::min(widest, cone_so_far(ratio, texels[t]) * side / step);
-        const float found = h[i] > 0.0f ? scan.across(h, i, bound, hint) : bound;
-        across[t] = found < bound ? found : std::numeric_limits<float>::infinity();
-      }
-    } else {
-      conservative_along_line(h, dir.sub, count, hull, across);
-    }
-    for (size_t t = 0; t < count; ++t)  // +infinity: not narrowed here
-      if (across[t] < widest) narrow_cone(ratio, texels[t], float(double(across[t]) * step / side));
+    sample_line(depth, dir, texels, count, size_t(std::ceil(reach)) + 2, s.h);
+    narrow_along_line(s.h, texels, count, dir.sub, step, side, o, ratio, s);
+    if (!both_ways) continue;
+    const size_t period = count * size_t(dir.sub);
+    s.reversed.resize(s.h.size());
+    s.reversed[0] = s.h[0];
+    for (size_t k = 1; k < period; ++k) s.reversed[k] = s.h[period - k];
+    for (size_t k = period; k < s.reversed.size(); ++k) s.reversed[k] = s.reversed[k - period];
+    s.reversed_texels.resize(count);
+    for (size_t t = 0; t < count; ++t) s.reversed_texels[t] = texels[(count - t) % count];
+    narrow_along_line(s.reversed, s.reversed_texels.data(), count, dir.sub, step, side, o, ratio,
+                      s);
   }
 }
 
@@ -334,12 +365,26 @@ ConeMap compute_cone_map(const ReliefMap& map, const ConeMapOptions& o) {
   // the cores narrow one map together, so each direction's scan starts from the narrowest
   // cones any core has found so far. A cone is the narrowest over directions whatever their
   // order, bit for bit (kSkipSlack): a direction's scan only stops early at that bound.
+  // A direction and its opposite are one task, their lines read once.
   const std::vector<ConeScanDirection> dirs = cone_scan_directions(o.directions);
+  struct Task {
+    size_t direction;
+    bool both_ways;
+  };
+  std::vector<Task> tasks;
+  for (size_t d = 0; d < dirs.size(); ++d) {
+    const auto opposite = std::find_if(dirs.begin(), dirs.end(), [&](const ConeScanDirection& e) {
+      return e.p == -dirs[d].p && e.q == -dirs[d].q;
+    });
+    const size_t o_d = size_t(opposite - dirs.begin());
+    if (o_d == dirs.size() || o_d > d) tasks.push_back({d, o_d < dirs.size()});
+  }
   out.ratio.assign(size_t(map.width) * map.height, float(o.max_ratio));
   parallel_for_workers(
-      dirs.size(),
+      tasks.size(),
       [&](size_t, size_t begin, size_t end) {
-        for (size_t d = begin; d < end; ++d) narrow_along_direction(depth, dirs[d], o, out.ratio);
+        for (size_t i = begin; i < end; ++i)
+          narrow_along_direction(depth, dirs[tasks[i].direction], o, tasks[i].both_ways, out.ratio);
       },
       1);
   if (!o.relaxed) hold_out_near_texel_centres(map, std::max(map.width, map.height), out.ratio);
@@ -356,7 +401,7 @@ ConeMap compute_cone_map_in_order(const ReliefMap& map, const ConeMapOptions& o,
   out.width = map.width;
   out.height = map.height;
   out.ratio.assign(size_t(map.width) * map.height, float(o.max_ratio));
-  for (size_t d : order) narrow_along_direction(depth, dirs.at(d), o, out.ratio);
+  for (size_t d : order) narrow_along_direction(depth, dirs.at(d), o, false, out.ratio);
   if (!o.relaxed) hold_out_near_texel_centres(map, std::max(map.width, map.height), out.ratio);
   return out;
 }
