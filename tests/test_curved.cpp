@@ -239,7 +239,7 @@ TEST(DepthCorrect, MeshPushedIntoTheReliefResolvesPerPixel) {
   EXPECT_EQ(corrected.metrics.missed_pct, 0.0);
 }
 
-TEST(Effects, CurvedTruthTracesShadowRaysOnlyWhenAsked) {
+TEST(CurvedEffects, CurvedTruthTracesShadowRaysOnlyWhenAsked) {
   SceneDesc scene = curved_scene("torus", "bricks", 32, 0.08);
   const test::Measured plain = test::measure(scene, "relief", kRelief, View{40, 30}, 64);
   EXPECT_EQ(plain.truth_stats.shadow_rays, 0u);
@@ -252,7 +252,7 @@ TEST(Effects, CurvedTruthTracesShadowRaysOnlyWhenAsked) {
   EXPECT_GT(truth_shadow, 0);
 }
 
-TEST(Effects, SilhouetteAndDepthCodeOnlyWhenAsked) {
+TEST(CurvedEffects, SilhouetteAndDepthCodeOnlyWhenAsked) {
   GlContext::shared();
   auto t = TechniqueRegistry::instance().create("relief_silhouette", {}, "test");
   const auto& shader = dynamic_cast<const ShaderTechnique&>(*t);

@@ -32,7 +32,7 @@ SceneDesc impostor_scene(const std::string& mesh_file, int layers) {
   return s;
 }
 
-TEST(Multilayer, BeatsTheHeightfieldOnTheWeaveAgainstTheMesh) {
+TEST(MultilayerScenes, BeatsTheHeightfieldOnTheWeaveAgainstTheMesh) {
   const SceneDesc scene = test::weave_scene(128, TruthLevel::Mesh);
   for (double el : {60.0, 30.0}) {
     SCOPED_TRACE(el);
@@ -87,7 +87,7 @@ TEST(Impostor, ShadowsFromALightBelowTheQuad) {
   }
 }
 
-TEST(Multilayer, DepthCorrectionLetsAnObjectSitInTheWeave) {
+TEST(MultilayerScenes, DepthCorrectionLetsAnObjectSitInTheWeave) {
   // A plain sphere pushed halfway into the weave: with depth_correct the threads in front of
   // it hide it and it hides the threads behind it, per pixel, as in the truth.
   SceneDesc scene = test::weave_scene(128, TruthLevel::Mesh);
@@ -102,7 +102,7 @@ TEST(Multilayer, DepthCorrectionLetsAnObjectSitInTheWeave) {
   EXPECT_LT(corrected.metrics.object_disagree_pct, 1.0);
 }
 
-TEST(Multilayer, TheWeaveOnASphereShowsItsFarSideThroughTheGaps) {
+TEST(MultilayerScenes, TheWeaveOnASphereShowsItsFarSideThroughTheGaps) {
   // Figure 1 / Section 5: on a closed base the far side shows through the pattern's gaps,
   // searched upward from inside. One pass (all faces) and two passes (front, then back faces)
   // draw the same image; a one-sided heightfield search misses the far side.
@@ -149,7 +149,7 @@ TEST(PatternBaseTruth, TheWeaveMappedOntoASphereStaysInItsShell) {
   EXPECT_TRUE(h.has_surface);
 }
 
-TEST(Multilayer, TheWeaveOnTheTeapotWhoseUvsOverlap) {
+TEST(MultilayerScenes, TheWeaveOnTheTeapotWhoseUvsOverlap) {
   // The teapot's cylindrical uvs cover some uvs twice (spout and handle over the body): the
   // truth maps the pattern onto every triangle anyway, and the technique's error stays finite.
   SceneDesc scene = test::weave_scene(128, TruthLevel::Mesh);
@@ -163,7 +163,7 @@ TEST(Multilayer, TheWeaveOnTheTeapotWhoseUvsOverlap) {
   EXPECT_LT(m.metrics.missed_pct, 10.0);
 }
 
-TEST(Multilayer, TheWeaveOverASolidFloor) {
+TEST(MultilayerScenes, TheWeaveOverASolidFloor) {
   // floor = "solid": the gaps show the floor at depth 1 (facing up, kLayeredFloorColor) in
   // the technique and the truth alike; nothing is counted as an unresolved truth ray.
   SceneDesc scene = test::weave_scene(128, TruthLevel::Mesh);
@@ -183,7 +183,7 @@ TEST(Multilayer, TheWeaveOverASolidFloor) {
   EXPECT_LT(ml.metrics.wrong_pct, 0.3 * hf.metrics.wrong_pct);
 }
 
-TEST(Multilayer, EveryTechniqueDrawsTheWeaveFinitely) {
+TEST(MultilayerScenes, EveryTechniqueDrawsTheWeaveFinitely) {
   // A non-height-field scene is one more hard case for every registered technique: the
   // heightfield ones see its top layer. Outputs finite, whatever their error.
   const SceneDesc scene = test::weave_scene(64, TruthLevel::Mesh);
