@@ -10,12 +10,10 @@
 #include "config/config.h"
 #include "gl/context.h"
 #include "gl/shader_library.h"
-#include "output/result_store.h"
 #include "relief/ao_map.h"
 #include "relief/horizon_sweep.h"
 #include "relief/image_io.h"
 #include "relief/procedural.h"
-#include "run/cells.h"
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
@@ -569,10 +567,7 @@ name = "relief"
 linear_steps = 32
 )",
                                                 dir);
-  ResultStore store(dir + "/out/results.sqlite");
-  std::map<std::string, nlohmann::json> rows;
-  for (const Cell& c : expand_cells(config))
-    rows[config.scenes[c.scene_index].name] = *store.row(c.key);
+  std::map<std::string, nlohmann::json> rows = test::rows_by_scene(config, dir);
   ASSERT_EQ(rows.size(), 2u);
   const nlohmann::json &on = rows["drawn"], &off = rows["not_drawn"];
   EXPECT_TRUE(on["ao_drawn"].get<bool>());

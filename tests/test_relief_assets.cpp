@@ -1,16 +1,14 @@
 // Relief assets: procedural generators, GL-identical sampling, quantisation, image loading.
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
 
 #include <gtest/gtest.h>
 
+#include "core/atomic_write.h"
 #include "core/error.h"
-#include "output/result_store.h"
 #include "relief/image_io.h"
 #include "relief/procedural.h"
-#include "run/cells.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
 
@@ -153,17 +151,10 @@ relief = { procedural = "bricks", resolution = 32 }
 name = "relief_exact"
 )",
                                                 dir);
-  ResultStore store(dir + "/out/results.sqlite");
-  std::map<std::string, nlohmann::json> rows;
-  for (const Cell& c : expand_cells(config)) {
-    const auto row = store.row(c.key);
-    ASSERT_TRUE(row);
-    rows[config.scenes[c.scene_index].name] = *row;
-  }
+  std::map<std::string, nlohmann::json> rows = test::rows_by_scene(config, dir);
   ASSERT_EQ(rows.size(), 3u);
   auto bytes = [&](const std::string& scene) {
-    std::ifstream in(dir + "/out/" + std::string(rows[scene]["image_truth"]), std::ios::binary);
-    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return read_text(dir + "/out/" + std::string(rows[scene]["image_truth"]));
   };
   EXPECT_FALSE(bytes("fine").empty());
   EXPECT_EQ(bytes("coarse"), bytes("fine"));

@@ -14,6 +14,8 @@
 #include "core/atomic_write.h"
 #include "gl/context.h"
 #include "gl/render_target.h"
+#include "output/result_store.h"
+#include "run/cells.h"
 #include "run/runner.h"
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
@@ -163,6 +165,20 @@ SweepConfig run_sweep_in(const std::string& toml, const std::string& dir) {
   opt.progress = false;
   run_sweep(config, opt);
   return config;
+}
+
+std::map<std::string, nlohmann::json> rows_by_scene(const SweepConfig& config,
+                                                    const std::string& dir) {
+  ResultStore store(dir + "/out/results.sqlite");
+  std::map<std::string, nlohmann::json> rows;
+  for (const Cell& c : expand_cells(config)) {
+    const std::string& scene = config.scenes[c.scene_index].name;
+    const auto row = store.row(c.key);
+    if (!row) throw std::runtime_error("no stored row for cell " + c.key + " of " + scene);
+    if (!rows.emplace(scene, *row).second)
+      throw std::runtime_error("scene " + scene + " has more than one cell");
+  }
+  return rows;
 }
 
 int run_cli(const std::string& args, std::string& output, const std::string& prefix) {

@@ -1,8 +1,11 @@
 #pragma once
 // Helpers shared by the tests: small scenes, one technique rendered into a G-buffer, its
 // truth, and a scratch folder per test.
+#include <map>
 #include <memory>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "config/config.h"
 #include "core/gbuffer.h"
@@ -69,6 +72,11 @@ std::string scratch_dir(const std::string& name);
 // Parses the sweep config `toml` (relative paths resolved from `dir`) and runs it quietly
 // into dir + "/out"; returns the parsed config (expand_cells(config) gives its cell keys).
 SweepConfig run_sweep_in(const std::string& toml, const std::string& dir);
+
+// The rows run_sweep_in(..., dir) stored for `config`, by scene name: for sweeps of one cell per
+// scene. Throws naming the cell when a row is missing or two cells share a scene.
+std::map<std::string, nlohmann::json> rows_by_scene(const SweepConfig& config,
+                                                    const std::string& dir);
 
 // Runs the relieflab CLI with `args`; returns its exit status, stderr+stdout in `output`.
 // `prefix` goes before the program (e.g. setpriv to run it as another user).
