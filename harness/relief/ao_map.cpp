@@ -197,12 +197,17 @@ AoMap compute_ao_map(const ReliefMap& map, const AoMapOptions& o) {
     if (j == 0) r_first = r_now;
     std::swap(r_prev, r_now);
   }
-  for (size_t i = 0; i < area.size(); ++i) area[i] += double(r_prev[i]) * r_first[i];
   AoMap out;
   out.width = map.width;
   out.height = map.height;
   out.visibility.resize(area.size());
-  for (size_t i = 0; i < area.size(); ++i) out.visibility[i] = float(std::min(1.0, area[i] / n));
+  parallel_for(
+      area.size(),
+      [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i)
+          out.visibility[i] = float(std::min(1.0, (area[i] + double(r_prev[i]) * r_first[i]) / n));
+      },
+      1 << 14);
   if (o.filter) filter_occluded_texels(map, out.visibility);
   out.compute_ms = ms_since(start);
   return out;
@@ -210,15 +215,29 @@ AoMap compute_ao_map(const ReliefMap& map, const AoMapOptions& o) {
 
 void filter_occluded_texels(const ReliefMap& map, std::vector<float>& visibility) {
   const std::vector<float> raw = visibility;
-  for (int y = 0; y < map.height; ++y)
-    for (int x = 0; x < map.width; ++x) {
-      const size_t i = size_t(y) * map.width + x;
-      if (raw[i] >= 1.0f) continue;
-      double sum = 0;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) sum += raw[map.index(x + dx, y + dy)];
-      visibility[i] = float(sum / 9.0);
-    }
+  const int w = map.width, h = map.height;
+  parallel_for(
+      size_t(h),
+      [&](size_t begin, size_t end) {
+        for (int y = int(begin); y < int(end); ++y) {
+          // The rows above and below, wrapping; within a row only the first and last texel wrap.
+          const float* rows[3] = {&raw[size_t(wrap_index(y - 1, h)) * w], &raw[size_t(y) * w],
+                                  &raw[size_t(wrap_index(y + 1, h)) * w]};
+          for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * w + x;
+            if (raw[i] >= 1.0f) continue;
+            const int left = x > 0 ? x - 1 : w - 1, right = x + 1 < w ? x + 1 : 0;
+            double sum = 0;
+            for (const float* row : rows) {  // the order of the sum: the same bits as before
+              sum += row[left];
+              sum += row[x];
+              sum += row[right];
+            }
+            visibility[i] = float(sum / 9.0);
+          }
+        }
+      },
+      16);
 }
 
 AoMap cached_ao_map(const ReliefMap& map, const AoMapOptions& o, AoMapMethod method) {

@@ -108,11 +108,23 @@ void take_sample(int k, int k_first, SweptLine& line) {
   const float hk = line.height[size_t(k - k_first)];
   HullPoint* hull = line.hull.data();
   size_t n = line.hull_size;
-  while (n >= 2) {
-    const HullPoint a = hull[n - 1], b = hull[n - 2];
-    if ((a.h - hk) * float(b.k - k) > (b.h - hk) * float(a.k - k)) break;
-    --n;
+  // Whether hull point a (b the one after it) lies on or under the chord from the new point to b.
+  auto under = [&](const HullPoint a, const HullPoint b) {
+    return !((a.h - hk) * float(b.k - k) > (b.h - hk) * float(a.k - k));
+  };
+  if (n >= 3) {
+    // The first two tests without a branch between them: how many points leave is hard to
+    // predict, and most often it is none or one.
+    const bool first = under(hull[n - 1], hull[n - 2]);
+    const bool second = first & under(hull[n - 2], hull[n - 3]);
+    n -= size_t(first) + size_t(second);
+    if (!second) {
+      hull[n] = {k, hk};
+      line.hull_size = n + 1;
+      return;
+    }
   }
+  while (n >= 2 && under(hull[n - 1], hull[n - 2])) --n;
   hull[n] = {k, hk};
   line.hull_size = n + 1;
 }
