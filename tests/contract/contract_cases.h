@@ -110,7 +110,8 @@ struct Frame {
   glm::dvec2 depth_aspect{0};        // planar_rays cases: the base's, for probing pixel_rays
   const ReliefMap* map = nullptr;
 };
-// Renders case `index` (its asset and truth built once per process).
+// Renders case `index` (its asset and truth built once per process; each case, technique and
+// setting drawn once per process).
 Frame render(size_t index, const std::string& technique, const ParamValues& params);
 
 // The registry's names, for parameterising the contract's tests.
