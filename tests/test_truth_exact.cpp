@@ -122,6 +122,7 @@ Real closed_form_hit(const ClosedForm& s, const glm::dvec3& o, const glm::dvec3&
 // The map of a closed form: its depth at every texel centre (dyadic values, exact in float).
 ReliefMap closed_form_map(const ClosedForm& s, int width, int height) {
   std::vector<float> depths;
+  depths.reserve(size_t(width) * height);
   for (int j = 0; j < height; ++j)
     for (int i = 0; i < width; ++i) depths.push_back(float(s.depth(i, j)));
   return test::map_from_depths(width, height, depths);

@@ -111,6 +111,8 @@ ReliefMap map_from_depths(int w, int h, const std::vector<float>& depths) {
   ReliefMap m;
   m.width = w;
   m.height = h;
+  m.relief.reserve(depths.size());  // 2048^2 maps: growing by doubling was copies and page faults
+  m.color.reserve(depths.size());
   for (float v : depths) {
     m.relief.push_back(glm::vec4(0.5f, 0.5f, 1.0f, v));
     m.color.push_back(glm::vec4(1));
