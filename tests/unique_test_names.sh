@@ -5,14 +5,24 @@
 # Testing/Temporary/LastTest.log under the ctest run this is part of.
 set -euo pipefail
 build="$1"
-duplicates=$(find "$build" \( -name CTestTestfile.cmake -o -name '*_groups.cmake' \) -print0 |
-  xargs -0 grep -h '^add_test' | sed -nE 's/^add_test\(\[=\[([^]]+)\]=\].*/\1/p' | sort | uniq -d)
+lines=$(find "$build" \( -name CTestTestfile.cmake -o -name '*_groups.cmake' \) -print0 |
+  xargs -0 grep -h '^add_test' || true)
+names=$(sed -nE 's/^add_test\(\[=\[([^]]+)\]=\].*/\1/p' <<<"$lines")
+# A name this cannot read would hide its duplicates: every add_test must give one.
+count() { grep -c . <<<"$1" || true; }
+if [ -z "$lines" ]; then
+  echo "no add_test under $build"
+  exit 1
+fi
+if [ "$(count "$names")" -ne "$(count "$lines")" ]; then
+  echo "could not read a test name from every add_test line:"
+  grep -vE '^add_test\(\[=\[[^]]+\]=\]' <<<"$lines" || true
+  exit 1
+fi
+duplicates=$(sort <<<"$names" | uniq -d)
 if [ -n "$duplicates" ]; then
   echo "ctest names given to more than one test:"
   echo "$duplicates"
   exit 1
 fi
-count=$(find "$build" \( -name CTestTestfile.cmake -o -name '*_groups.cmake' \) -print0 |
-  xargs -0 grep -h '^add_test' | wc -l)
-echo "$count ctest names, each once"
-[ "$count" -gt 0 ]
+echo "$(count "$names") ctest names, each once"
