@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <glm/vec2.hpp>
 
 #include "core/fast_floor.h"
@@ -201,6 +202,9 @@ void near_horizons(const TiledHeights& g, const NearStencil& near, std::vector<f
       16);
 }
 
+// 128 bits, the x86-64 baseline: eight lanes, split by the compiler, ran 35-60% slower.
+constexpr int kBlendLanes = 4;
+
 // The horizon of texel p, between lines `below` and `above` whose hulls hold the samples from
 // the texel's first far one on, starting from its horizon over its near samples.
 float texel_horizon(const LineFrame& f, const PendingTexel& p, const SweptLine& below,
@@ -222,10 +226,24 @@ float texel_horizon(const LineFrame& f, const PendingTexel& p, const SweptLine& 
   const float h_between = (1 - across) * hb[ka] + across * ha[kb];
   best = std::max(best, (h_between - hp) / (float(f.s0) + k_between - p.s));
   const int lo = std::min(ka, kb), hi = std::min(std::max(ka, kb), lo + 16);
-  for (int kt = lo; kt <= hi; ++kt) {
-    const float blend = (1 - across) * hb[kt] + across * ha[kt];
-    best = std::max(best, (blend - hp) / (float(f.s0 + kt) - p.s));
+  // The blend's slopes four samples at a time, with the lanes past hi left out: each lane's
+  // arithmetic is the scalar loop's, so the same bits, and a loop of one or two trips rather
+  // than of up to 17 whose end the branch predictor misses (rock wall 4%, sines 7% faster).
+  using Lanes = float __attribute__((vector_size(kBlendLanes * sizeof(float))));
+  using LaneInts = int32_t __attribute__((vector_size(kBlendLanes * sizeof(int32_t))));
+  static_assert(kBlendLanes == 4, "one initialiser per lane");
+  const LaneInts lane = {0, 1, 2, 3};
+  Lanes steepest = {best, best, best, best};
+  for (int kt = lo; kt <= hi; kt += kBlendLanes) {
+    Lanes below_h, above_h;  // may read past hi: the lines' heights are padded for it
+    std::memcpy(&below_h, hb + kt, sizeof below_h);
+    std::memcpy(&above_h, ha + kt, sizeof above_h);
+    const LaneInts k = kt + lane;
+    const Lanes blend = (1 - across) * below_h + across * above_h;
+    const Lanes slope = (blend - hp) / (__builtin_convertvector(f.s0 + k, Lanes) - p.s);
+    steepest = (k <= hi) & (slope > steepest) ? slope : steepest;
   }
+  for (int i = 0; i < kBlendLanes; ++i) best = std::max(best, steepest[i]);
   return best;
 }
 
@@ -303,7 +321,7 @@ void sweep_bundle(const TiledHeights& g, const LineFrame& f, const HorizonSweepO
   lines.resize(size_t(strips) + 1);
   for (size_t i = 0; i < lines.size(); ++i) {
     const int k_count = k_last - k_first + 1;
-    lines[i].height.resize(size_t(k_count));
+    lines[i].height.resize(size_t(k_count + kBlendLanes - 1));  // texel_horizon's lanes read on
     lines[i].hull.resize(size_t(k_count));
     lines[i].hull_size = 0;
     const double s = f.s0 + k_last, t = f.t0 + first_line + int(i);
