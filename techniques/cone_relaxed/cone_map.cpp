@@ -276,13 +276,13 @@ struct LineScratch {
 };
 
 // Narrows `ratio` (per texel, per longer side) by the cones one line's samples `h` find for
-// its texels (texel t at sample t * sub), `step` texels apart.
+// its texels (texel t at sample t * sub), `step` texels apart; `widest` is the options' cap in
+// samples per depth.
 void narrow_along_line(const std::vector<float>& h, const uint32_t* texels, size_t count, int sub,
-                       float step, float side, const ConeMapOptions& o, std::vector<float>& ratio,
-                       LineScratch& s) {
-  const float widest = float(o.max_ratio) * side / step;  // samples per depth
+                       float step, float side, float widest, bool relaxed,
+                       std::vector<float>& ratio, LineScratch& s) {
   std::vector<float>& across = s.across;
-  if (o.relaxed) {
+  if (relaxed) {
     s.scan.build(h);
     across.resize(count);
     size_t hint = 0;  // the segment that narrowed the next texel's cone along the line
@@ -323,7 +323,7 @@ void narrow_along_direction(const DepthSampler& depth, const ConeScanDirection& 
       reach = std::max(reach, std::min(widest, cone_so_far(ratio, texels[t]) * side / step) *
                                   depth.d[texels[t]]);
     sample_line(depth, dir, texels, count, size_t(std::ceil(reach)) + 2, s.h);
-    narrow_along_line(s.h, texels, count, dir.sub, step, side, o, ratio, s);
+    narrow_along_line(s.h, texels, count, dir.sub, step, side, widest, o.relaxed, ratio, s);
     if (!both_ways) continue;
     const size_t period = count * size_t(dir.sub);
     s.reversed.resize(s.h.size());
@@ -332,8 +332,8 @@ void narrow_along_direction(const DepthSampler& depth, const ConeScanDirection& 
     for (size_t k = period; k < s.reversed.size(); ++k) s.reversed[k] = s.reversed[k - period];
     s.reversed_texels.resize(count);
     for (size_t t = 0; t < count; ++t) s.reversed_texels[t] = texels[(count - t) % count];
-    narrow_along_line(s.reversed, s.reversed_texels.data(), count, dir.sub, step, side, o, ratio,
-                      s);
+    narrow_along_line(s.reversed, s.reversed_texels.data(), count, dir.sub, step, side, widest,
+                      o.relaxed, ratio, s);
   }
 }
 
