@@ -241,7 +241,7 @@ float texel_horizon(const LineFrame& f, const PendingTexel& p, const SweptLine& 
     const LaneInts k = kt + lane;
     const Lanes blend = (1 - across) * below_h + across * above_h;
     const Lanes slope = (blend - hp) / (__builtin_convertvector(f.s0 + k, Lanes) - p.s);
-    steepest = (k <= hi) & (slope > steepest) ? slope : steepest;
+    steepest = ((k <= hi) & (slope > steepest)) ? slope : steepest;
   }
   for (int i = 0; i < kBlendLanes; ++i) best = std::max(best, steepest[i]);
   return best;
