@@ -59,6 +59,11 @@ double fingerprint(const std::vector<T>& values) {
   return double(f);
 }
 
+// Map sizes 256, 512 and 1024, one timed run each (a precompute takes seconds).
+void at_map_sizes(benchmark::internal::Benchmark* b) {
+  b->Arg(256)->Arg(512)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+}
+
 void BM_SafetyRadius(benchmark::State& state, std::string kind, bool ignore_blocked) {
   const ReliefMap map = bench_map(kind, int(state.range(0)));
   SafetyRadiusOptions o;
@@ -75,13 +80,8 @@ void BM_SafetyRadius(benchmark::State& state, std::string kind, bool ignore_bloc
   state.counters["fingerprint"] = fingerprint(r.radius);
 }
 
-#define RL_RADIUS_BENCH(name, kind, ignore)              \
-  BENCHMARK_CAPTURE(BM_SafetyRadius, name, kind, ignore) \
-      ->Arg(256)                                         \
-      ->Arg(1024)                                        \
-      ->Unit(benchmark::kMillisecond)                    \
-      ->UseRealTime()                                    \
-      ->Iterations(1)
+#define RL_RADIUS_BENCH(name, kind, ignore) \
+  BENCHMARK_CAPTURE(BM_SafetyRadius, name, kind, ignore)->Apply(at_map_sizes)
 RL_RADIUS_BENCH(rock, "rock", true);
 RL_RADIUS_BENCH(sines, "sines", true);
 RL_RADIUS_BENCH(bricks, "bricks", true);
@@ -102,11 +102,6 @@ void BM_ConeMap(benchmark::State& state, std::string kind, bool relaxed) {
   for (float v : c.ratio) mean += v;
   state.counters["mean_ratio"] = mean / c.ratio.size();
   state.counters["fingerprint"] = fingerprint(c.ratio);
-}
-
-// Map sizes 256, 512 and 1024, one timed run each (a precompute takes seconds).
-void at_map_sizes(benchmark::internal::Benchmark* b) {
-  b->Arg(256)->Arg(512)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 }
 
 #define RL_CONE_BENCH(name, kind, relaxed) \
