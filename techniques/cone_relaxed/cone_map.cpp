@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <numeric>
 
@@ -193,18 +194,57 @@ struct RelaxedLineScan {
       // Step over the largest block starting at k that cannot narrow the cone.
       const float near = float(k - 1 - i);  // no candidate end in a block at k is nearer
       int l = std::min(top, __builtin_ctzll(k));
-      for (; l >= 1; --l) {
+      for (; l >= kGroupLevel; --l) {
         const float m = block_min[size_t(l)][k >> l];
         if (m >= apex || near >= best * (apex - m) * kSkipSlack) break;
       }
-      if (l >= 1) {
+      if (l >= kGroupLevel) {
         k += size_t(1) << l;
         continue;
       }
-      narrow(h, i, k, apex, best, hint);
-      ++k;
+      // Else the segments from k to the end of k's group, tested together.
+      k = narrow_group(h, i, k, apex, best, hint);
     }
     return best;
+  }
+
+  // Blocks of 2^kGroupLevel segments that are not stepped over are tested lane by lane at once:
+  // smaller blocks' bounds cost as much to test as the segments.
+  static constexpr int kGroupLevel = 2;
+  static constexpr size_t kGroup = size_t(1) << kGroupLevel;
+
+  // narrow() for segments k .. the last of k's aligned group of kGroup, all lanes at once with
+  // the scalar arithmetic (the same bits); returns the segment after them. The line's first
+  // group (whose lane 0 has no sample before it) and a group reaching past the line's end are
+  // left to the scalar test.
+  static size_t narrow_group(const std::vector<float>& h, size_t i, size_t k, float apex,
+                             float& best, size_t& narrowest) {
+    const size_t base = k & ~(kGroup - 1), end = base + kGroup;
+    if (base == 0 || end > h.size()) {
+      for (; k < h.size() && k < end; ++k) narrow(h, i, k, apex, best, narrowest);
+      return k;
+    }
+    using Lanes = float __attribute__((vector_size(kGroup * sizeof(float))));
+    using LaneInts = int32_t __attribute__((vector_size(kGroup * sizeof(int32_t))));
+    static_assert(kGroup == 4, "one initialiser per lane");
+    const LaneInts lane = {0, 1, 2, 3};
+    Lanes at, before;  // h at each lane's segment end and start
+    std::memcpy(&at, h.data() + base, sizeof at);
+    std::memcpy(&before, h.data() + base - 1, sizeof before);
+    const Lanes n = __builtin_convertvector(int32_t(base - i) + lane, Lanes);
+    const Lanes inf = Lanes{} + std::numeric_limits<float>::infinity();
+    const Lanes at_end = at < apex ? n / (apex - at) : inf;
+    const Lanes at_start = before < apex ? (n - 1) / (apex - before) : inf;
+    const Lanes least = at_start < at_end ? at_start : at_end;  // std::min(at_end, at_start)
+    const LaneInts leaves = (at * (n - 1) > (before + kRelaxedTie) * n) &
+                            (lane >= int32_t(k - base));  // lanes before k are not asked
+    const Lanes found = leaves ? least : inf;
+    for (size_t j = 0; j < kGroup; ++j)  // in order: the first of equal candidates is named
+      if (found[j] < best) {
+        best = found[j];
+        narrowest = base + j;
+      }
+    return end;
   }
 
   // Segment k's constraint on the apex at sample i (depth `apex`): both its ends, if the ray from
