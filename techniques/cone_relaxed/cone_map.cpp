@@ -161,17 +161,26 @@ constexpr float kSkipSlack = 1.0f + 1e-5f;
 // highest candidate end cannot (`block_min[l]`: per block of 2^l segments, the least depth of the
 // near end of those that descend along the line; only a descending segment can pass the test).
 struct RelaxedLineScan {
-  std::vector<std::vector<float>> block_min;
+  std::vector<std::vector<float>> block_min;  // levels below kGroupLevel left empty
 
   void build(const std::vector<float>& h) {
     const float none = std::numeric_limits<float>::infinity();
     size_t levels = 1;
     while ((size_t(1) << levels) < h.size() && levels < 16) ++levels;
-    block_min.resize(levels);  // each level's storage is reused from line to line
-    block_min[0].assign(h.size(), none);
-    for (size_t k = 1; k < h.size(); ++k)
-      if (h[k] > h[k - 1]) block_min[0][k] = h[k - 1];
-    for (size_t l = 1; l < levels; ++l) {
+    block_min.resize(levels);                   // each level's storage is reused from line to line
+    if (levels <= size_t(kGroupLevel)) return;  // the scan tests every segment
+    // Blocks smaller than a group are never stepped over (narrow_group), so the first level
+    // kept is the groups', taken from the samples themselves.
+    std::vector<float>& groups = block_min[size_t(kGroupLevel)];
+    groups.resize((h.size() + kGroup - 1) / kGroup);
+    for (size_t b = 0; b < groups.size(); ++b) {
+      float least = none;
+      for (size_t k = std::max<size_t>(1, b * kGroup); k < std::min(h.size(), (b + 1) * kGroup);
+           ++k)
+        if (h[k] > h[k - 1]) least = std::min(least, h[k - 1]);
+      groups[b] = least;
+    }
+    for (size_t l = size_t(kGroupLevel) + 1; l < levels; ++l) {
       const std::vector<float>& finer = block_min[l - 1];
       std::vector<float>& coarser = block_min[l];
       coarser.assign((finer.size() + 1) / 2, none);
