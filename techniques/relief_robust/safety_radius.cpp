@@ -11,6 +11,7 @@
 #include "core/fast_floor.h"
 #include "core/parallel.h"
 #include "core/precompute_cache.h"
+#include "core/uninitialized.h"
 #include "core/wrap.h"
 
 namespace rl {
@@ -22,16 +23,13 @@ int SafetyRadii::zero_count() const {
 namespace {
 
 // Heights (= -depth) of the map padded by `pad` texels of wrapped copies on every side, so the
-// line sweep samples bilinearly without a modulo per sample; `transposed` swaps x and y, so
+// line sweep samples bilinearly without a modulo per sample; its transpose swaps x and y, so
 // that a sweep always runs along rows (contiguous memory) whatever its major axis.
 class PaddedHeights {
  public:
-  PaddedHeights(const ReliefMap& m, int pad, bool transposed)
-      : w_(transposed ? m.height : m.width),
-        h_(transposed ? m.width : m.height),
-        pad_(pad),
-        stride_(size_t(w_ + 2 * pad)) {
-    data_.resize(stride_ * size_t(h_ + 2 * pad));
+  PaddedHeights(const ReliefMap& m, int pad)
+      : w_(m.width), h_(m.height), pad_(pad), stride_(size_t(w_ + 2 * pad)) {
+    data_.resize(stride_ * size_t(h_ + 2 * pad));  // first touched by the fill, on every core
     std::vector<int> source_x(stride_);
     for (size_t i = 0; i < stride_; ++i) source_x[i] = wrap_index(long(i) - pad, w_);
     parallel_for(
@@ -40,16 +38,36 @@ class PaddedHeights {
           for (size_t row = begin; row < end; ++row) {
             const int sy = wrap_index(long(row) - pad, h_);
             float* out = &data_[row * stride_];
-            for (size_t i = 0; i < stride_; ++i) {
-              const int sx = source_x[i];
-              out[i] = -m.relief[transposed ? size_t(sx) * m.width + size_t(sy)
-                                            : size_t(sy) * m.width + size_t(sx)]
-                            .a;
-            }
+            for (size_t i = 0; i < stride_; ++i)
+              out[i] = -m.relief[size_t(sy) * m.width + size_t(source_x[i])].a;
           }
         },
         16);
   }
+
+  // The same heights with x and y swapped, copied in tiles (gathering the map's columns
+  // straight from its texels read a cache line per height: 22 ms at 1024^2 against 2 for rows).
+  PaddedHeights transposed() const {
+    PaddedHeights t;
+    t.w_ = h_;
+    t.h_ = w_;
+    t.pad_ = pad_;
+    t.stride_ = size_t(t.w_ + 2 * pad_);
+    const size_t rows = size_t(h_ + 2 * pad_), columns = stride_;  // of this grid
+    t.data_.resize(data_.size());
+    constexpr size_t kTile = 32;
+    parallel_for((columns + kTile - 1) / kTile,
+                 [&](size_t begin, size_t end) {
+                   for (size_t x0 = begin * kTile; x0 < std::min(columns, end * kTile); x0 += kTile)
+                     for (size_t y0 = 0; y0 < rows; y0 += kTile)
+                       for (size_t x = x0; x < std::min(columns, x0 + kTile); ++x)
+                         for (size_t y = y0; y < std::min(rows, y0 + kTile); ++y)
+                           t.data_[x * t.stride_ + y] = data_[y * stride_ + x];
+                 },
+                 1);
+    return t;
+  }
+
   int width() const { return w_; }
   int height() const { return h_; }
   // Bilinear height at texel-centre coordinates (x, y), both above -pad, in the arithmetic of
@@ -69,9 +87,10 @@ class PaddedHeights {
   }
 
  private:
-  int w_, h_, pad_;
-  size_t stride_;
-  std::vector<float> data_;
+  PaddedHeights() = default;
+  int w_ = 0, h_ = 0, pad_ = 0;
+  size_t stride_ = 0;
+  UninitializedVector<float> data_;
 };
 
 // The starts of one line that the criterion must answer: samples j_begin, j_begin + stride,
@@ -199,7 +218,7 @@ template <typename T, typename FirstViolations>
 SafetyRadii sweep_lines(const ReliefMap& map, const SafetyRadiusOptions& o, int cap, double reach,
                         FirstViolations&& first_violations) {
   const int W = map.width, H = map.height;
-  const PaddedHeights rows(map, cap + 4, false), columns(map, cap + 4, true);
+  const PaddedHeights rows(map, cap + 4), columns = rows.transposed();
   const size_t workers = parallel_workers();
   std::vector<GridRadii> radii(o.max_over_directions ? size_t(o.directions) : 2 * workers);
   std::vector<LineScratch<T>> scratch(workers);
