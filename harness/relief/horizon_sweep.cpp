@@ -343,11 +343,17 @@ void sweep_bundle(const TiledHeights& g, const LineFrame& f, const HorizonSweepO
 
 }  // namespace
 
-TiledHeights::TiledHeights(int width, int height, std::vector<float> heights)
-    : w_(width), h_(height), padded_(size_t(width + 1) * (height + 1)) {
-  for (int y = 0; y <= h_; ++y)
-    for (int x = 0; x <= w_; ++x)
-      padded_[size_t(y) * (w_ + 1) + size_t(x)] = heights[size_t(y % h_) * w_ + size_t(x % w_)];
+TiledHeights::TiledHeights(int width, int height, const float* heights) : w_(width), h_(height) {
+  padded_.resize(size_t(width + 1) * (height + 1));  // first touched by the fill, on every core
+  parallel_for(
+      size_t(h_ + 1),
+      [&](size_t begin, size_t end) {
+        for (int y = int(begin); y < int(end); ++y)
+          for (int x = 0; x <= w_; ++x)
+            padded_[size_t(y) * (w_ + 1) + size_t(x)] =
+                heights[size_t(y % h_) * w_ + size_t(x % w_)];
+      },
+      16);
 }
 
 void TiledHeights::step_back_wrapped(double& x, double& y, double dx, double dy) const {

@@ -18,12 +18,17 @@
 #include <memory>
 #include <vector>
 
+#include "core/uninitialized.h"
+
 namespace rl {
 
 // Heights in texel units (x, y and height alike), wrapping like GL_REPEAT.
 class TiledHeights {
  public:
-  TiledHeights(int width, int height, std::vector<float> heights);
+  // From the heights of the map's texels, row by row (width x height of them).
+  TiledHeights(int width, int height, const float* heights);
+  TiledHeights(int width, int height, const std::vector<float>& heights)
+      : TiledHeights(width, height, heights.data()) {}
   int width() const { return w_; }
   int height() const { return h_; }
   float at(int x, int y) const { return padded_[size_t(y) * (w_ + 1) + size_t(x)]; }
@@ -49,7 +54,7 @@ class TiledHeights {
 
  private:
   int w_, h_;
-  std::vector<float> padded_;  // (w + 1) x (h + 1): the first row and column repeated
+  UninitializedVector<float> padded_;  // (w + 1) x (h + 1): the first row and column repeated
 };
 
 struct HorizonSweepOptions {
