@@ -77,6 +77,7 @@ void BM_SafetyRadius(benchmark::State& state, std::string kind, bool ignore_bloc
   for (uint8_t v : r.radius) mean += v;
   state.counters["mean_radius"] = mean / r.radius.size();
   state.counters["zero_pct"] = 100.0 * r.zero_count() / r.radius.size();
+  state.counters["starts_alone"] = double(r.starts_answered_alone);
   state.counters["fingerprint"] = fingerprint(r.radius);
 }
 

@@ -10,6 +10,7 @@
 #include "../techniques/relief_robust/safety_radius.h"
 #include "gl/context.h"
 #include "relief/heightfield_reference.h"
+#include "relief/image_io.h"
 #include "relief/procedural.h"
 #include "support/test_support.h"
 #include "technique/gpu_scene.h"
@@ -125,6 +126,89 @@ TEST(SafetyRadius, ConservativeLineSweepMatchesThePerStartScan) {
   // The hand-worked bump: from its start the first violation is 1.5 texels (sample 3) ahead.
   first_conservative_violations({0, 0.05, 0.08, 0.05, 0, -0.1, -0.2, -0.3}, 0.5, 0, 1, stack, fast);
   EXPECT_EQ(fast[0], 3);
+}
+
+TEST(SafetyRadius, OneStartAloneAnswersAsItsWholeLine) {
+  // first_conservative_violation_before, the per-start answer the conservative radii use where
+  // only near answers can still lower a radius, against the line sweep for every start and
+  // every end it may be given: the line's answer where that lies before the end, else the end.
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1, 0);
+  std::vector<int> scratch, line;
+  long found = 0, beyond = 0;
+  for (int profile = 0; profile < 400; ++profile) {
+    std::vector<double> h(size_t(12 + profile % 60));
+    double v = u(rng);
+    const double tilt = (profile % 7 - 3) * 0.01;
+    for (size_t k = 0; k < h.size(); ++k) {
+      v = std::clamp(v + 0.3 * (u(rng) + 0.5), -1.0, 0.0);
+      switch (profile % 4) {
+        case 0:
+          h[k] = std::round(v * 255) / 255;  // 8-bit plateaus and exact ties
+          break;
+        case 1:
+          h[k] = std::round(v * 4) / 4 + tilt * double(k);
+          break;
+        case 2:
+          h[k] = v;
+          break;
+        default:
+          h[k] = -0.3 + (0.1 + tilt) * (double(k) * 0.37 - 2.1);  // a plane in double rounding
+          break;
+      }
+    }
+    const int n = int(h.size());
+    first_conservative_violations(h, 0.5, 0, 1, scratch, line);
+    for (int j = 0; j + 1 < n; ++j)
+      for (int end = j + 1; end <= n; ++end) {
+        const int expected = line[size_t(j)] < end ? line[size_t(j)] : end;
+        ASSERT_EQ(first_conservative_violation_before(h.data(), j, end, 0.5), expected)
+            << "profile " << profile << " start " << j << " end " << end;
+        (expected < end ? found : beyond) += 1;
+      }
+  }
+  EXPECT_GT(found, 10000);  // both outcomes well exercised
+  EXPECT_GT(beyond, 10000);
+  // The hand-worked bump: its first violation is sample 3, not seen before an end of 3.
+  const std::vector<double> bump = {0, 0.05, 0.08, 0.05, 0, -0.1, -0.2, -0.3};
+  EXPECT_EQ(first_conservative_violation_before(bump.data(), 0, 8, 0.5), 3);
+  EXPECT_EQ(first_conservative_violation_before(bump.data(), 0, 3, 0.5), 3);
+}
+
+TEST(SafetyRadius, StartsAnsweredAloneGiveTheSameRadii) {
+  // The conservative radii answer a start alone, only as far as it could still lower a radius,
+  // where its texels are already small, and share the radii of the first rounds of directions
+  // between the cores: the same radii, bit for bit, as every line answered whole. On maps whose
+  // radii are mostly 0 (the rock wall) or mostly large (the bricks' flat tops), and at another
+  // count of directions and starts.
+  ReliefImageSource rock;
+  rock.depth_path = RELIEFLAB_SOURCE_DIR "/assets/relief/rockwall/rockwall_height.bmp";
+  struct Case {
+    std::string name;
+    ReliefMap map;
+    int directions, starts;
+  };
+  std::vector<Case> cases = {{"rock", load_relief_images(rock, 10.0), 16, 3},
+                             {"sines", make_procedural("sines", 96, {}, 10.0, "test"), 16, 3},
+                             {"bricks", make_procedural("bricks", 96, {}, 10.0, "test"), 16, 3},
+                             {"domes", make_procedural("domes", 80, {}, 10.0, "test"), 12, 2}};
+  for (Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    quantize_8bit(c.map);
+    SafetyRadiusOptions o;
+    o.ignore_blocked = false;
+    o.directions = c.directions;
+    o.starts = c.starts;
+    const SafetyRadii fast = compute_safety_radii(c.map, o);
+    const SafetyRadii whole = compute_safety_radii_without_shortcuts(c.map, o);
+    ASSERT_EQ(fast.radius.size(), whole.radius.size());
+    for (size_t i = 0; i < fast.radius.size(); ++i)
+      ASSERT_EQ(int(fast.radius[i]), int(whole.radius[i])) << "texel " << i;
+    EXPECT_EQ(whole.starts_answered_alone, 0);
+    if (c.name != "bricks") {
+      EXPECT_GT(fast.starts_answered_alone, 1000);  // the shortcut ran
+    }
+  }
 }
 
 // The radii read a line past the map's edge only as far as its starts need (safety_radius.cpp):

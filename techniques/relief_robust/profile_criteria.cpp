@@ -45,7 +45,11 @@ double first_two_hit_distance(const std::vector<double>& h, double step, double 
 
 int first_two_hit_after(const std::vector<double>& h, int j, int limit, double step,
                         double error_allowed) {
-  const int n = int(h.size());
+  return first_two_hit_after(h.data(), int(h.size()), j, limit, step, error_allowed);
+}
+
+int first_two_hit_after(const double* h, int n, int j, int limit, double step,
+                        double error_allowed) {
   const int reach = std::min(limit, n - j);
   const int k = scan_profile([&](int i) { return h[size_t(j + i)]; }, reach, step, error_allowed);
   return k < reach ? j + k : n;
@@ -64,12 +68,10 @@ void UnblockedLineSweep::begin(double step, double error_allowed) {
   latest_horizon_ = -1;
 }
 
-bool UnblockedLineSweep::read(const std::vector<float>& heights, int last_start) {
-  const int n = int(heights.size());
+bool UnblockedLineSweep::read(const float* const h, const int n, int last_start) {
   // by_horizon[t]: the first sample whose horizon is sample t (none yet: the int maximum).
   by_horizon_.resize(size_t(n), std::numeric_limits<int>::max());
   int* const by_horizon = by_horizon_.data();
-  const float* const h = heights.data();
   hull_.resize(size_t(n) + 1);
   int* const hull = hull_.data();
   int top = top_;  // the hull is hull[0..top)
@@ -153,12 +155,15 @@ void first_conservative_violations(const std::vector<double>& heights, double st
                                 scratch, first_out);
 }
 
+namespace {
+constexpr double kTie = 1e-12;  // scan_profile's slope tolerance: double-rounding collinear
+}  // namespace
+
 void first_conservative_violations(const double* const h, const int n, double step, int first_start,
                                    int stride, std::vector<int>& scratch,
                                    std::vector<int>& first_out) {
   first_out.assign(size_t(n), n);
   if (n == 0) return;
-  constexpr double kTie = 1e-12;  // scan_profile's slope tolerance: double-rounding collinear
   scratch.resize(2 * size_t(n));
   int* const first = first_out.data();
   int* const descent = scratch.data();
@@ -211,6 +216,27 @@ void first_conservative_violations(const double* const h, const int n, double st
     if (first[j] >= m) first[j] = m < n ? descent[m] : n;
     stack[top++] = j;
   }
+}
+
+int first_conservative_violation_before(const double* const h, const int j, const int end,
+                                        double step) {
+  const double hj = h[j];
+  int k = j + 1;
+  // Before m, the first sample higher than h[j]: V(j), tested as the line sweep's stack tests it.
+  for (; k < end && h[k] <= hj; ++k) {
+    if (k < j + 2) continue;
+    const double before = h[k - 1], here = h[k];
+    const double near = k - 1 - j, far = k - j;
+    if ((before - hj) * far > (here - hj) * near + kTie * step * near * far) return k;
+  }
+  if (k >= end) return end;
+  // From m on: D(m), the first sample below the highest since m by more than the tie.
+  double highest = h[k];
+  for (++k; k < end; ++k) {
+    if (highest > h[k] + kTie) return k;
+    highest = std::max(highest, h[k]);
+  }
+  return end;
 }
 
 }  // namespace rl

@@ -22,7 +22,11 @@ class UnblockedLineSweep {
   // Takes in h[samples_read() .. h.size()) (h growing from call to call, its earlier samples
   // unchanged). True once some sample's horizon lies after last_start: every start up to it
   // then has its first violation among the samples read.
-  bool read(const std::vector<float>& h, int last_start);
+  bool read(const std::vector<float>& h, int last_start) {
+    return read(h.data(), int(h.size()), last_start);
+  }
+  // The same where the profile's first n samples are h[0..n).
+  bool read(const float* h, int n, int last_start);
   int samples_read() const { return read_; }
   // first[j], j < samples_read(): the first violation among the samples read, or their count.
   void answers(std::vector<int>& first) const;
@@ -41,6 +45,9 @@ double first_two_hit_distance(const std::vector<double>& h, double step, double 
 // of the first violation, or h.size(). O(distance) per start.
 int first_two_hit_after(const std::vector<double>& h, int j, int limit, double step,
                         double error_allowed);
+// The same over the n heights from h.
+int first_two_hit_after(const double* h, int n, int j, int limit, double step,
+                        double error_allowed);
 
 // first_two_hit_after(h, j, unlimited, step, 0) for the starts j = first_start, first_start +
 // stride, ... at once, in O(n): first[j] is the first violation's index or n (unspecified at
@@ -50,5 +57,11 @@ void first_conservative_violations(const std::vector<double>& h, double step, in
 // The same over the n heights from h.
 void first_conservative_violations(const double* h, int n, double step, int first_start, int stride,
                                    std::vector<int>& scratch, std::vector<int>& first);
+
+// first_conservative_violations' answer for the one start j, looked for among the samples
+// before `end` (j < end <= the heights read): its index, or `end` if it lies at or past it. In
+// the same arithmetic, so the same answer wherever it lies before `end`; O(answer - j), for
+// starts whose answer only matters when it is near.
+int first_conservative_violation_before(const double* h, int j, int end, double step);
 
 }  // namespace rl

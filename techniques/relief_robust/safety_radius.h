@@ -37,6 +37,9 @@ struct SafetyRadii {
   std::vector<uint8_t> radius;  // texels, row 0 at v = 0.5 / height
   double compute_ms = 0;
   bool from_cache = false;
+  // Conservative radii: the starts answered one at a time, only as far as their answer could
+  // still lower a radius, rather than with their whole line (0 from the cache).
+  long starts_answered_alone = 0;
   int zero_count() const;
 };
 
@@ -62,8 +65,16 @@ struct SafetyRadii {
 // Otherwise (conservative): every ray above the start counts, blocked or not. The same lines
 // are swept and every start of a line answered at once (first_conservative_violations; with
 // error_allowed > 0 each start scans ahead, first_two_hit_after); a texel takes the radii of
-// every line within one line spacing of it, so both lines bracketing a crossing bound it.
+// every line within one line spacing of it, so both lines bracketing a crossing bound it. Where
+// a line's texels are already small, each start is answered alone instead, only as far as its
+// answer could still lower one of them (first_conservative_violation_before): the same radii.
 SafetyRadii compute_safety_radii(const ReliefMap& map, const SafetyRadiusOptions& options);
+
+// compute_safety_radii with the conservative radii's shortcuts off: every line answered whole,
+// and no radii shared between the first rounds of directions. The same radii, slower: what the
+// tests hold the shortcuts to.
+SafetyRadii compute_safety_radii_without_shortcuts(const ReliefMap& map,
+                                                   const SafetyRadiusOptions& options);
 
 // compute_safety_radii through an on-disk cache keyed by the map's content and the options
 // (folder: $RELIEFLAB_CACHE_DIR, else $XDG_CACHE_HOME/relieflab, else ~/.cache/relieflab).
