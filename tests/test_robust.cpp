@@ -89,34 +89,42 @@ TEST(SafetyRadius, UnblockedLineCriterionMatchesBruteForce) {
   EXPECT_LT(first_two_hit_distance(ahead, 0.5, 0), 100);
 }
 
+// A random profile of `n` heights in [-1, 0] of one of four families, by `family` % 4: a random
+// walk on an 8-bit grid (plateaus and exact ties), a coarse staircase on a slope, a random
+// walk, and a plane sampled in double rounding.
+std::vector<double> random_profile(int family, size_t n, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1, 0);
+  std::vector<double> h(n);
+  double v = u(rng);
+  const double tilt = (family % 7 - 3) * 0.01;
+  for (size_t k = 0; k < n; ++k) {
+    v = std::clamp(v + 0.3 * (u(rng) + 0.5), -1.0, 0.0);
+    switch (family % 4) {
+      case 0:
+        h[k] = std::round(v * 255) / 255;
+        break;
+      case 1:
+        h[k] = std::round(v * 4) / 4 + tilt * double(k);
+        break;
+      case 2:
+        h[k] = v;
+        break;
+      default:
+        h[k] = -0.3 + (0.1 + tilt) * (double(k) * 0.37 - 2.1);
+        break;
+    }
+  }
+  return h;
+}
+
 TEST(SafetyRadius, ConservativeLineSweepMatchesThePerStartScan) {
   // Every start of a line at once (a stack of seen slopes, next-higher samples, descents)
   // against the per-start scan that defines the criterion, on random walks (some on an 8-bit
   // grid: plateaus and exact ties), bumpy slopes, and planes sampled in double rounding.
   std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-1, 0);
   std::vector<int> stack, fast;
   for (int profile = 0; profile < 600; ++profile) {
-    std::vector<double> h(size_t(20 + profile % 90));
-    double v = u(rng);
-    const double tilt = (profile % 7 - 3) * 0.01;
-    for (size_t k = 0; k < h.size(); ++k) {
-      v = std::clamp(v + 0.3 * (u(rng) + 0.5), -1.0, 0.0);
-      switch (profile % 4) {
-        case 0:
-          h[k] = std::round(v * 255) / 255;
-          break;
-        case 1:
-          h[k] = std::round(v * 4) / 4 + tilt * double(k);
-          break;
-        case 2:
-          h[k] = v;
-          break;
-        default:
-          h[k] = -0.3 + (0.1 + tilt) * (double(k) * 0.37 - 2.1);
-          break;  // a plane
-      }
-    }
+    const std::vector<double> h = random_profile(profile, size_t(20 + profile % 90), rng);
     const int stride = 1 + profile % 3, first_start = profile % 5 % stride;
     first_conservative_violations(h, 0.5, first_start, stride, stack, fast);
     for (int j = first_start; j < int(h.size()); j += stride)
@@ -133,30 +141,10 @@ TEST(SafetyRadius, OneStartAloneAnswersAsItsWholeLine) {
   // only near answers can still lower a radius, against the line sweep for every start and
   // every end it may be given: the line's answer where that lies before the end, else the end.
   std::mt19937 rng(17);
-  std::uniform_real_distribution<double> u(-1, 0);
   std::vector<int> scratch, line;
   long found = 0, beyond = 0;
   for (int profile = 0; profile < 400; ++profile) {
-    std::vector<double> h(size_t(12 + profile % 60));
-    double v = u(rng);
-    const double tilt = (profile % 7 - 3) * 0.01;
-    for (size_t k = 0; k < h.size(); ++k) {
-      v = std::clamp(v + 0.3 * (u(rng) + 0.5), -1.0, 0.0);
-      switch (profile % 4) {
-        case 0:
-          h[k] = std::round(v * 255) / 255;  // 8-bit plateaus and exact ties
-          break;
-        case 1:
-          h[k] = std::round(v * 4) / 4 + tilt * double(k);
-          break;
-        case 2:
-          h[k] = v;
-          break;
-        default:
-          h[k] = -0.3 + (0.1 + tilt) * (double(k) * 0.37 - 2.1);  // a plane in double rounding
-          break;
-      }
-    }
+    const std::vector<double> h = random_profile(profile, size_t(12 + profile % 60), rng);
     const int n = int(h.size());
     first_conservative_violations(h, 0.5, 0, 1, scratch, line);
     for (int j = 0; j + 1 < n; ++j)
