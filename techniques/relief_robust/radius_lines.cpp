@@ -79,7 +79,7 @@ std::vector<uint8_t> combined(const std::vector<GridRadii>& radii, int W, int H,
   return out;
 }
 
-void share_narrowest(std::vector<GridRadii>& radii, int W, int H, uint8_t cap) {
+double share_narrowest(std::vector<GridRadii>& radii, int W, int H, uint8_t cap) {
   const std::vector<uint8_t> known = combined(radii, W, H, false, cap);
   for (size_t k = 0; k < radii.size(); ++k) {
     GridRadii& g = radii[k];
@@ -89,6 +89,7 @@ void share_narrowest(std::vector<GridRadii>& radii, int W, int H, uint8_t cap) {
       g.radius[index_in(g, x, y, W, H)] = known[size_t(y) * W + size_t(x)];
     });
   }
+  return double(std::count(known.begin(), known.end(), uint8_t(0))) / double(known.size());
 }
 
 }  // namespace rl::radius_lines
