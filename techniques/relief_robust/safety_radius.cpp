@@ -71,12 +71,12 @@ class NearStarts {
   // Answers the starts of `line` one at a time and narrows their texels; returns the samples the
   // line after it would read so (narrow_by_answers' work) and counts the starts answered.
   long answer(const SweptLine line, LineProfile<double>& profile, long& answered) const {
-    long work = 0;
+    long work = 0, count = 0;  // counted here, not in `answered`, which a radius store may alias
     for (long i = 0; i < line.starts(); ++i) {
       uint8_t largest = 0;
       line.each_texel(i, [&](uint8_t at) { largest = std::max(largest, at); });
       if (largest == 0) continue;
-      ++answered;
+      ++count;
       const long j = line.start(i), end = std::min(line.length, j + span_[largest] + 1);
       // Most answers lie within a few samples: those read first, the rest only when needed.
       long first = end;
@@ -97,6 +97,7 @@ class NearStarts {
       }
       work += span_[narrowed];
     }
+    answered += count;
     return work;
   }
 
