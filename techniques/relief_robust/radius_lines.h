@@ -260,6 +260,9 @@ size_t index_in(const GridRadii& g, int x, int y, int W, int H);
 std::vector<uint8_t> combined(const std::vector<GridRadii>& radii, int W, int H, bool widest,
                               uint8_t cap);
 
+// A share_while_zeros for sweep_lines under which no round is shared.
+constexpr double kNoSharedRounds = 2;
+
 // Every array of `radii` (one per core and layout) set to the narrowest radii among them;
 // returns the share of texels at 0.
 double share_narrowest(std::vector<GridRadii>& radii, int W, int H, uint8_t cap);

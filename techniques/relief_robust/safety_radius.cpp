@@ -25,7 +25,7 @@ using namespace radius_lines;
 // of it (58% more than 8 centerlines), on the bricks, whose flat tops have large radii, 77%.
 SafetyRadii compute_unblocked(const ReliefMap& map, const SafetyRadiusOptions& o, int cap) {
   return sweep_lines<float>(
-      map, o, cap, 0.0, 2,
+      map, o, cap, 0.0, kNoSharedRounds,
       [&](const SweptLine& line, LineProfile<float>& profile, LineScratch<float>& scratch) {
         UnblockedLineSweep& sweep = scratch.unblocked;
         sweep.begin(o.step, o.error_allowed);
@@ -51,8 +51,9 @@ SafetyRadii compute_unblocked(const ReliefMap& map, const SafetyRadiusOptions& o
 // before it in its direction (1/3 texel away: its texels much the same). On the rock wall at
 // 1024^2, 4 was faster than 2, 8 and 16.
 constexpr double kNearWork = 4;
-// The radii are shared between the cores after every round of directions while at least this
-// share of the texels is at 0 (on the rock wall at 1024^2, 91% in the end).
+// The radii are shared between the cores after each of the first rounds of directions while at
+// least this share of the texels is at 0 (on the rock wall at 1024^2, 91% in the end; on the
+// bricks 4%, so they share only the first).
 constexpr double kShareWhileZeros = 0.25;
 
 class NearStarts {
@@ -145,7 +146,7 @@ SafetyRadii compute_conservative(const ReliefMap& map, const SafetyRadiusOptions
   };
   const NearStarts near(o.step, cap);
   const bool near_allowed = shortcuts && o.error_allowed == 0 && !o.max_over_directions;
-  const double share_while_zeros = near_allowed ? kShareWhileZeros : 2;
+  const double share_while_zeros = near_allowed ? kShareWhileZeros : kNoSharedRounds;
   return sweep_lines<double>(
       map, o, cap, 1.0 / o.starts, share_while_zeros,
       [&](const SweptLine& line, LineProfile<double>& profile, LineScratch<double>& scratch) {
