@@ -314,7 +314,7 @@ SafetyRadii sweep_lines(const ReliefMap& map, const SafetyRadiusOptions& o, int 
         },
         1);
   };
-  // Directions a quarter turn apart first (0, 4, 8, 12, 2, 6, ... of 16), so that each round
+  // Directions a quarter turn apart first (0, 4, 8, 12, 1, 5, ... of 16), so that each round
   // of one direction per core looks across different features.
   const size_t D = size_t(o.directions), quarter = std::max<size_t>(1, D / 4);
   for (size_t first = 0; first < quarter; ++first)
