@@ -1,5 +1,7 @@
 #include "radius_lines.h"
 
+#include <limits>
+
 #include "core/wrap.h"
 
 namespace rl::radius_lines {
@@ -44,21 +46,29 @@ PaddedHeights PaddedHeights::transposed() const {
 }
 
 long narrow_by_answers(const SweptLine line, const int* const first, long read, int cap,
-                       const long* span) {
-  long work = 0;
-  for (long i = 0; i < line.starts(); ++i) {
+                       const long* span, long work_limit) {
+  auto here = [&](long i) {
     const long j = line.start(i);
-    const int r =
-        first[size_t(j)] < read ? radius_before(first[size_t(j)], j, line.step, cap) : cap;
-    const uint8_t here = uint8_t(r);
+    return uint8_t(first[size_t(j)] < read ? radius_before(first[size_t(j)], j, line.step, cap)
+                                           : cap);
+  };
+  // Summing the spans while they stay within the limit, then narrowing alone: on the bricks,
+  // whose large radii pass any limit within a few starts, the sum cost 5% of the radii's time.
+  long work = 0, i = 0;
+  for (const long n = line.starts(); span && i < n && work <= work_limit; ++i) {
+    const uint8_t r = here(i);
     uint8_t largest = 0;
     line.each_texel(i, [&](uint8_t& at) {
-      at = std::min(at, here);
+      at = std::min(at, r);
       largest = std::max(largest, at);
     });
-    if (span) work += span[largest];
+    work += span[largest];
   }
-  return work;
+  for (const long n = line.starts(); i < n; ++i) {
+    const uint8_t r = here(i);
+    line.each_texel(i, [&](uint8_t& at) { at = std::min(at, r); });
+  }
+  return work <= work_limit ? work : std::numeric_limits<long>::max();
 }
 
 size_t index_in(const GridRadii& g, int x, int y, int W, int H) {

@@ -167,9 +167,10 @@ struct alignas(64) LineScratch {
 // Narrows the texels of every start of `line` by its answer: first[j] for the start at sample
 // j, an index into the profile, none among the `read` samples where it equals `read`. With
 // `span` (samples per radius), returns the sum over the starts of the span of the largest radius
-// they leave in their texels, else 0.
+// they leave in their texels, or the long maximum once that passes `work_limit` (summed no
+// further); else 0.
 long narrow_by_answers(SweptLine line, const int* first, long read, int cap,
-                       const long* span = nullptr);
+                       const long* span = nullptr, long work_limit = 0);
 
 // One direction of Section 3.5's sampling: lines 1/starts texel apart, each handed with its
 // profile to `answer_line(line, profile, scratch)`, which narrows the texels of its starts.

@@ -63,9 +63,10 @@ class NearStarts {
     span_[0] = 0;
     for (int r = 1; r < 256; ++r) span_[r] = long(std::floor((r + 1e-9) / step)) + 1;
   }
+  // The most samples a line's starts may read to go this way.
+  static long work_limit(const SweptLine& line) { return long(kNearWork * double(line.length)); }
   bool wanted(const SweptLine& line, const LineScratch<double>& scratch) const {
-    return scratch.near_work_last >= 0 &&
-           double(scratch.near_work_last) <= kNearWork * double(line.length);
+    return scratch.near_work_last >= 0 && scratch.near_work_last <= work_limit(line);
   }
   // Samples a start reads at most when the largest radius among its texels is r (0 for r = 0).
   const long* span() const { return span_; }
@@ -167,8 +168,9 @@ SafetyRadii compute_conservative(const ReliefMap& map, const SafetyRadiusOptions
           profile.read_to(profile.length());
           answer_from(line, profile, from, scratch);
         }
-        scratch.near_work_last = narrow_by_answers(line, scratch.first.data(), profile.prefix(),
-                                                   cap, near_allowed ? near.span() : nullptr);
+        scratch.near_work_last =
+            narrow_by_answers(line, scratch.first.data(), profile.prefix(), cap,
+                              near_allowed ? near.span() : nullptr, NearStarts::work_limit(line));
       });
 }
 
