@@ -96,6 +96,21 @@ struct SweptLine {
     const int tb_hi = std::min(B - 1, int(floor_fast(b + reach + 0.5)));
     for (int tb = tb_lo; tb <= tb_hi; ++tb) f(radius[size_t(tb) * A + size_t(ta)]);
   }
+  // The largest radius among the texels the i-th start narrows.
+  uint8_t largest(long i) const {
+    uint8_t most = 0;
+    each_texel(i, [&](uint8_t at) { most = std::max(most, at); });
+    return most;
+  }
+  // Narrows them to at most r; returns the largest radius left among them.
+  uint8_t narrow(long i, uint8_t r) const {
+    uint8_t most = 0;
+    each_texel(i, [&](uint8_t& at) {
+      at = std::min(at, r);
+      most = std::max(most, at);
+    });
+    return most;
+  }
 };
 
 // The radius a start at sample j allows when its first violation is sample `first`: the whole

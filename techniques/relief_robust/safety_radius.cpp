@@ -73,10 +73,11 @@ class NearStarts {
   // Answers the starts of `line` one at a time and narrows their texels; returns the samples the
   // line after it would read so (narrow_by_answers' work) and counts the starts answered.
   long answer(const SweptLine line, LineProfile<double>& profile, long& answered) const {
-    long work = 0, count = 0;  // counted here, not in `answered`, which a radius store may alias
+    // Counted here, not in `answered`: a radius store may alias it, and the cores' scratch may
+    // share a cache line.
+    long work = 0, count = 0;
     for (long i = 0; i < line.starts(); ++i) {
-      uint8_t largest = 0;
-      line.each_texel(i, [&](uint8_t at) { largest = std::max(largest, at); });
+      const uint8_t largest = line.largest(i);
       if (largest == 0) continue;
       ++count;
       const long j = line.start(i), end = std::min(line.length, j + span_[largest] + 1);
@@ -87,16 +88,8 @@ class NearStarts {
         first = first_conservative_violation_before(profile.data(), int(j), int(to), step_);
         if (first < to || to == end) break;
       }
-      uint8_t narrowed = 0;
-      if (first < end) {
-        const uint8_t here = uint8_t(radius_before(first, j, step_, cap_));
-        line.each_texel(i, [&](uint8_t& at) {
-          at = std::min(at, here);
-          narrowed = std::max(narrowed, at);
-        });
-      } else {
-        narrowed = largest;
-      }
+      const uint8_t narrowed =
+          first < end ? line.narrow(i, uint8_t(radius_before(first, j, step_, cap_))) : largest;
       work += span_[narrowed];
     }
     answered += count;
