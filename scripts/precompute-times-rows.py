@@ -8,7 +8,8 @@ other folder's (issue 32: each at 1024^2 in at most 1 s on 2 cores).
 
 One row per precompute, map and size: the fastest and slowest of the runs (this machine's wall
 times move by up to 25% between identical runs, so the fastest is the figure quoted), the map's
-fingerprint (the same bits in every run, or the script stops), the cores and the date. The
+fingerprint (the same bits in every run, or the script stops), the cores it may use (its affinity
+mask: `taskset -c 0,1` times 2 cores on a bigger machine) and the date. The
 per-texel march and its fragment-shader version are left out: they are the slow references
 (tens of seconds at 1024^2), timed by the benchmark itself.
 """
@@ -68,7 +69,7 @@ def main():
             "precompute": precompute, "map": map_name, "texture_res": size,
             "precompute_ms": f"{min(times):.1f}", "precompute_ms_slowest": f"{max(times):.1f}",
             "runs": len(times), "fingerprint": f"{int(fingerprints.pop()):d}",
-            "cores": os.cpu_count(), "measured": datetime.date.today().isoformat()})
+            "cores": len(os.sched_getaffinity(0)), "measured": datetime.date.today().isoformat()})
     rows.sort(key=lambda r: (r["precompute"], r["map"], r["texture_res"]))
     os.makedirs(FOLDER, exist_ok=True)
     path = os.path.join(FOLDER, "rows.csv")

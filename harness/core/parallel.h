@@ -4,15 +4,23 @@
 #include <algorithm>
 #include <atomic>
 #include <functional>
+#include <string>
 #include <thread>
 #include <vector>
 
 namespace rl {
 
-// The threads parallel_for runs on (at least 1).
-inline size_t parallel_workers() {
-  return std::max(1u, std::thread::hardware_concurrency());
-}
+// The threads parallel_for runs on: the cores this process may use, not every core of the
+// machine (std::thread::hardware_concurrency counts those, so a sweep bound to 2 of a node's 64
+// cores by taskset, Slurm or a container ran 64 threads on them). The least of the affinity
+// mask's cores (taskset, numactl, Slurm's task binding, a cpuset) and a cgroup v2 CPU quota
+// (`docker --cpus`), rounded up; at least 1. Fixed at the first call, so scratch sized per
+// worker by it covers every worker for the rest of the process.
+size_t parallel_workers();
+
+// How many cores a cgroup v2 `cpu.max` line ("<quota> <period>", or "max <period>" for none)
+// grants, rounded up; 0 for no quota or a line that is not one.
+size_t cores_of_cpu_max(const std::string& line);
 
 // `body(worker, begin, end)`: `worker` in [0, parallel_workers()) names the thread running the
 // chunk, so a loop can keep one scratch or accumulator per thread and combine them after.
