@@ -22,6 +22,66 @@ void require_heightfield(const ReliefSourceDesc& r, const Src& src, const toml::
                            "mesh or a multilayer pattern");
 }
 
+// Layer i of [[scene.meta_relief.layers]]: its relief (a heightfield), tiling and weights, and
+// their canonical description in `lc`.
+MetaLayerDesc parse_meta_layer(const toml::node& ln, size_t i, const Src& src,
+                               const std::string& base_dir, const std::string& scene,
+                               nlohmann::json& lc) {
+  const toml::table* lt = ln.as_table();
+  if (!lt) fail(src.at(ln), "each meta_relief layer must be a table with a 'relief'");
+  check_keys(*lt, {"relief", "tiling", "weight", "weight_normal", "weight_depth"}, src,
+             "meta_relief layer");
+  MetaLayerDesc layer;
+  if (!lt->contains("relief")) fail(src.at(ln), "a meta_relief layer needs a 'relief'");
+  layer.relief = parse_relief(*lt->get("relief"), src, base_dir, lc["relief"]);
+  require_heightfield(layer.relief, src, *lt->get("relief"),
+                      scene + "meta_relief layer " + std::to_string(i + 1));
+  if (auto* n = lt->get("tiling")) {
+    layer.tiling = number(*n, src, "tiling");
+    if (!(layer.tiling > 0) || layer.tiling > 1e3)
+      fail(src.at(*n),
+           "'tiling' is how often the layer repeats per base tile: it must be "
+           "above 0 and at most 1000, got " +
+               format_number(layer.tiling));
+  }
+  parse_weights(*lt, src, layer.weight_normal, layer.weight_depth);
+  lc["tiling"] = layer.tiling;
+  lc["weights"] = {layer.weight_normal, layer.weight_depth};
+  return layer;
+}
+
+// How the layers are combined: per fetch or baked, the bake's resolutions, and their AO maps.
+void parse_combination(const toml::table& m, const Src& src, const EffectSet& effects,
+                       const std::string& scene, MetaReliefDesc& meta) {
+  if (auto* n = m.get("combine")) {
+    const std::string how = string_of(*n, src, "combine");
+    if (how != "runtime" && how != "baked")
+      fail(src.at(*n),
+           "'combine' must be \"runtime\" (every layer sampled per fetch) or "
+           "\"baked\" (one map of the combination), got \"" +
+               how + "\"");
+    meta.combine =
+        how == "baked" ? MetaReliefDesc::Combine::Baked : MetaReliefDesc::Combine::Runtime;
+  }
+  if (auto* n = m.get("bake_resolution"))
+    meta.bake_resolution = positive_int(*n, src, "bake_resolution", 2, 8192);
+  if (auto* n = m.get("color_resolution"))
+    meta.color_resolution = positive_int(*n, src, "color_resolution", 2, 8192);
+  if (auto* n = m.get("ao_combine")) {
+    if (!effects.has(Effect::AmbientOcclusion))
+      fail(src.at(*n), scene + "'ao_combine' needs the ambient_occlusion effect");
+    const std::string how = string_of(*n, src, "ao_combine");
+    if (how != "product" && how != "min" && how != "bake")
+      fail(src.at(*n),
+           "'ao_combine' must be \"product\" or \"min\" (of the layers' AO maps, "
+           "Section IV-A) or \"bake\" (the AO map of the bake), got \"" +
+               how + "\"");
+    meta.ao_combine = how == "min"    ? MetaReliefDesc::AoCombine::Min
+                      : how == "bake" ? MetaReliefDesc::AoCombine::Bake
+                                      : MetaReliefDesc::AoCombine::Product;
+  }
+}
+
 }  // namespace
 
 void parse_meta_relief(const toml::table& t, const Src& src, const std::string& base_dir,
@@ -59,31 +119,9 @@ void parse_meta_relief(const toml::table& t, const Src& src, const std::string& 
                               std::to_string(list->size() + 1));
   double sum_normal = meta.weight_normal, sum_depth = meta.weight_depth;
   for (size_t i = 0; i < list->size(); ++i) {
-    const toml::node& ln = *list->get(i);
-    const toml::table* lt = ln.as_table();
-    if (!lt) fail(src.at(ln), "each meta_relief layer must be a table with a 'relief'");
-    check_keys(*lt, {"relief", "tiling", "weight", "weight_normal", "weight_depth"}, src,
-               "meta_relief layer");
-    MetaLayerDesc layer;
-    nlohmann::json& lc = c["layers"][i];
-    if (!lt->contains("relief")) fail(src.at(ln), "a meta_relief layer needs a 'relief'");
-    layer.relief = parse_relief(*lt->get("relief"), src, base_dir, lc["relief"]);
-    require_heightfield(layer.relief, src, *lt->get("relief"),
-                        scene + "meta_relief layer " + std::to_string(i + 1));
-    if (auto* n = lt->get("tiling")) {
-      layer.tiling = number(*n, src, "tiling");
-      if (!(layer.tiling > 0) || layer.tiling > 1e3)
-        fail(src.at(*n),
-             "'tiling' is how often the layer repeats per base tile: it must be "
-             "above 0 and at most 1000, got " +
-                 format_number(layer.tiling));
-    }
-    parse_weights(*lt, src, layer.weight_normal, layer.weight_depth);
-    sum_normal += layer.weight_normal;
-    sum_depth += layer.weight_depth;
-    lc["tiling"] = layer.tiling;
-    lc["weights"] = {layer.weight_normal, layer.weight_depth};
-    meta.layers.push_back(layer);
+    meta.layers.push_back(parse_meta_layer(*list->get(i), i, src, base_dir, scene, c["layers"][i]));
+    sum_normal += meta.layers.back().weight_normal;
+    sum_depth += meta.layers.back().weight_depth;
   }
   if (!(sum_normal > 0))
     fail(src.at(*node), scene +
@@ -93,33 +131,7 @@ void parse_meta_relief(const toml::table& t, const Src& src, const std::string& 
     fail(src.at(*node), scene +
                             "the meta-relief's depth weights (weight_depth) sum to zero; "
                             "Eq. 2 divides by their sum");
-  if (auto* n = m->get("combine")) {
-    const std::string how = string_of(*n, src, "combine");
-    if (how != "runtime" && how != "baked")
-      fail(src.at(*n),
-           "'combine' must be \"runtime\" (every layer sampled per fetch) or "
-           "\"baked\" (one map of the combination), got \"" +
-               how + "\"");
-    meta.combine =
-        how == "baked" ? MetaReliefDesc::Combine::Baked : MetaReliefDesc::Combine::Runtime;
-  }
-  if (auto* n = m->get("bake_resolution"))
-    meta.bake_resolution = positive_int(*n, src, "bake_resolution", 2, 8192);
-  if (auto* n = m->get("color_resolution"))
-    meta.color_resolution = positive_int(*n, src, "color_resolution", 2, 8192);
-  if (auto* n = m->get("ao_combine")) {
-    if (!s.effects.has(Effect::AmbientOcclusion))
-      fail(src.at(*n), scene + "'ao_combine' needs the ambient_occlusion effect");
-    const std::string how = string_of(*n, src, "ao_combine");
-    if (how != "product" && how != "min" && how != "bake")
-      fail(src.at(*n),
-           "'ao_combine' must be \"product\" or \"min\" (of the layers' AO maps, "
-           "Section IV-A) or \"bake\" (the AO map of the bake), got \"" +
-               how + "\"");
-    meta.ao_combine = how == "min"    ? MetaReliefDesc::AoCombine::Min
-                      : how == "bake" ? MetaReliefDesc::AoCombine::Bake
-                                      : MetaReliefDesc::AoCombine::Product;
-  }
+  parse_combination(*m, src, s.effects, scene, meta);
   c["weights"] = {meta.weight_normal, meta.weight_depth};
   c["combine"] = meta.combine == MetaReliefDesc::Combine::Baked ? "baked" : "runtime";
   c["bake_resolution"] = meta.bake_resolution;

@@ -215,51 +215,41 @@ void describe_scene(const SceneDesc& s, nlohmann::json& canon) {
                        m.specular.z, m.shininess, m.shadow_intensity};
 }
 
-}  // namespace
+// Every key a [[scene]] table may hold.
+const std::set<std::string> kSceneKeys = {
+    "name",
+    "relief",
+    "base",
+    "segments",
+    "objects",
+    "proxy",
+    "truth",
+    "floor",
+    "size",
+    "tile",
+    "depth",
+    "quantize",
+    "effects",
+    "light",
+    "fov",
+    "distance",
+    "shadow_bias",
+    "ambient",
+    "diffuse",
+    "specular",
+    "shininess",
+    "shadow_intensity",
+    "framing",
+    "ambient_occlusion",
+    "meta_relief",
+    "truth_resolution",
+    "color_resolution",
+    "truth_color_resolution",
+};
 
-ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string& base_dir,
-                        const toml::node& node) {
-  ParsedScene parsed;
-  json& canon = parsed.canon;
-  check_keys(t,
-             {"name",
-              "relief",
-              "base",
-              "segments",
-              "objects",
-              "proxy",
-              "truth",
-              "floor",
-              "size",
-              "tile",
-              "depth",
-              "quantize",
-              "effects",
-              "light",
-              "fov",
-              "distance",
-              "shadow_bias",
-              "ambient",
-              "diffuse",
-              "specular",
-              "shininess",
-              "shadow_intensity",
-              "framing",
-              "ambient_occlusion",
-              "meta_relief",
-              "truth_resolution",
-              "color_resolution",
-              "truth_color_resolution"},
-             src, "[[scene]]");
-  SceneDesc& s = parsed.scene;
-  parsed.sites.scene = src.at(node);
-  parsed.sites.relief = t.get("relief") ? src.at(*t.get("relief")) : parsed.sites.scene;
-  if (!t.contains("name")) fail(src.at(node), "[[scene]] needs a 'name'");
-  s.name = plain_name(*t.get("name"), src, "name");
-  if (!t.contains("relief")) fail(src.at(node), "scene '" + s.name + "' needs a 'relief'");
-  s.relief = parse_relief(*t.get("relief"), src, base_dir, canon["relief"]);
-  // Every number within a stated range (issue 15): a value outside it is a mistake, not a
-  // scene (size 1e-300, depth 1e30, fov 1e-30 all rendered nothing and were published).
+// The scene's numbers, each within a stated range (issue 15): a value outside it is a mistake,
+// not a scene (size 1e-300, depth 1e30, fov 1e-30 all rendered nothing and were published).
+void parse_numbers(const toml::table& t, const Src& src, SceneDesc& s) {
   auto in_range = [&](const char* key, double& out, double lo, double hi) {
     if (auto* n = t.get(key)) out = number_in(*n, src, key, lo, hi);
   };
@@ -285,7 +275,10 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
     s.quantize = n->value<bool>().value();
   }
   if (auto* n = t.get("light")) s.light_position = vec3_in(*n, src, "light", -1e3, 1e3);
-  parse_truth_level(t, src, s, canon);
+}
+
+// floor = "solid" | "empty" (default: empty for baked meshes); proxy = "base" | "box".
+void parse_floor_and_proxy(const toml::table& t, const Src& src, SceneDesc& s) {
   s.empty_floor = !s.relief.mesh_path.empty() || s.relief.pattern_mesh();
   if (auto* n = t.get("floor")) {
     const std::string f = string_of(*n, src, "floor");
@@ -302,6 +295,10 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
                p + "\"");
     s.proxy = p == "box" ? Proxy::Box : Proxy::Base;
   }
+}
+
+// The Phong material's colours and the effects the scene asks for.
+void parse_material_and_effects(const toml::table& t, const Src& src, SceneDesc& s) {
   if (auto* n = t.get("ambient")) s.material.ambient = vec3_in(*n, src, "ambient", 0, 1);
   if (auto* n = t.get("diffuse")) s.material.diffuse = vec3_in(*n, src, "diffuse", 0, 1);
   if (auto* n = t.get("specular")) s.material.specular = vec3_in(*n, src, "specular", 0, 1);
@@ -316,6 +313,26 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
       s.effects.add(*effect);
     }
   }
+}
+
+}  // namespace
+
+ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string& base_dir,
+                        const toml::node& node) {
+  ParsedScene parsed;
+  json& canon = parsed.canon;
+  check_keys(t, kSceneKeys, src, "[[scene]]");
+  SceneDesc& s = parsed.scene;
+  parsed.sites.scene = src.at(node);
+  parsed.sites.relief = t.get("relief") ? src.at(*t.get("relief")) : parsed.sites.scene;
+  if (!t.contains("name")) fail(src.at(node), "[[scene]] needs a 'name'");
+  s.name = plain_name(*t.get("name"), src, "name");
+  if (!t.contains("relief")) fail(src.at(node), "scene '" + s.name + "' needs a 'relief'");
+  s.relief = parse_relief(*t.get("relief"), src, base_dir, canon["relief"]);
+  parse_numbers(t, src, s);
+  parse_truth_level(t, src, s, canon);
+  parse_floor_and_proxy(t, src, s);
+  parse_material_and_effects(t, src, s);
   parse_base(t, src, base_dir, s, canon, parsed.sites);
   parse_objects(t, src, base_dir, s, canon);
   parse_effect_options(t, src, node, s, canon);
