@@ -61,12 +61,21 @@ HeightfieldTruth::HeightfieldTruth(const ReliefMap& map, double band_tolerance, 
   max_depth_ = map.max_depth();
   offset_ = glm::dvec2(0.5 / W, 0.5 / H);
 
-  // Per bilinear cell: its twist, and how far its tessellation may lie from it once float
-  // rounding of the vertices (worse on steep cells: a vertex rounded sideways) is counted.
+  // The subdivision that keeps the tessellation within band_tolerance of the most twisted
+  // cell, as far as max_vertices allows.
   const double twist = max_twist(map);
   const int max_k = std::max(1, static_cast<int>(std::sqrt(double(max_vertices)) / std::max(W, H)));
   const int needed = twist > 0 ? int(std::ceil(std::sqrt(twist / (4 * band_tolerance)))) : 1;
   subdivision_ = forced_subdivision > 0 ? forced_subdivision : std::clamp(needed, 1, max_k);
+  build_lifted_grid(bound_bands());
+  build_ms_ = ms_since(start);
+}
+
+// Per bilinear cell: its twist, and how far its tessellation may lie from it once float
+// rounding of the vertices (worse on steep cells: a vertex rounded sideways) is counted. Sets
+// band_ and band_max_; returns each cell's lift.
+std::vector<float> HeightfieldTruth::bound_bands() {
+  const int W = width_, H = height_;
   const int k = subdivision_;
   std::vector<float> deviation(size_t(W) * H), lift(size_t(W) * H);
   for (int j = 0; j < H; ++j)
@@ -96,6 +105,13 @@ HeightfieldTruth::HeightfieldTruth(const ReliefMap& map, double band_tolerance, 
       band_max_ = std::max(band_max_, double(band_[c]));
     }
 
+  return lift;
+}
+
+// The lifted tessellation: every cell's bilinear surface at k x k vertices, each lowered by the
+// largest lift of the cells it touches, as Embree grids.
+void HeightfieldTruth::build_lifted_grid(const std::vector<float>& lift) {
+  const int W = width_, H = height_, k = subdivision_;
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("cannot create an Embree device");
   rtcSetDeviceErrorFunction(device_, embree_error, nullptr);
@@ -157,7 +173,6 @@ HeightfieldTruth::HeightfieldTruth(const ReliefMap& map, double band_tolerance, 
       geom, RTC_BUFFER_TYPE_GRID, 0, RTC_FORMAT_GRID, sizeof(RTCGrid), grids.size()));
   std::copy(grids.begin(), grids.end(), grid_buffer);
   attach_and_commit(scene_, geom);
-  build_ms_ = ms_since(start);
 }
 
 HeightfieldTruth::~HeightfieldTruth() {

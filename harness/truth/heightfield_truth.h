@@ -80,6 +80,10 @@ class HeightfieldTruth final : public TruthSurface {
   // Is (u, v, depth) provably above the lifted tessellation (outside the band)?
   bool above_band(const glm::dvec3& p) const;
   double depth_at(long i, long j) const;  // texel (i, j), wrapped like GL_REPEAT
+  // Construction: each cell's band (band_, band_max_) at subdivision_, returning each cell's
+  // lift; then the lifted tessellation in Embree (device_, scene_).
+  std::vector<float> bound_bands();
+  void build_lifted_grid(const std::vector<float>& lift);
 
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
