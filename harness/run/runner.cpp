@@ -681,6 +681,47 @@ void write_cell_files(Row& row, const SweepConfig& config, const RunOptions& opt
   }
 }
 
+// ---- the loop's shared inputs ---------------------------------------------------------------
+
+// The asset and the truth of the cell being measured. measuring_order() puts the cells of one
+// asset, and of one truth, next to each other, so each asset is built and each truth traced
+// once; a scene's truths at its fixed truth resolution are kept across its texture resolutions.
+struct SharedInputs {
+  std::unique_ptr<Asset> asset;
+  TruthView truth;
+
+  void update(const SweepConfig& config, const RunOptions& options, const Cell& cell,
+              const Camera& camera, const CellFiles& files, Log& log, SweepSummary& summary) {
+    const SceneDesc& scene = config.scenes[cell.scene_index];
+    if (cell.asset_key != asset_key_) {
+      asset = build_asset(config, scene, cell, options.progress);
+      asset_key_ = cell.asset_key;
+      truth_key_.clear();
+      ++summary.asset_builds;
+      log_asset(log, scene, *asset);
+    }
+    if (cell.scene_index != memo_scene_) {
+      truth_memo_.clear();
+      memo_scene_ = cell.scene_index;
+    }
+    if (cell.truth_key == truth_key_) return;
+    truth_key_ = cell.truth_key;
+    if (auto memo = truth_memo_.find(cell.truth_key); memo != truth_memo_.end()) {
+      truth = memo->second;  // the same surface and view at another texture resolution
+      return;
+    }
+    truth = trace_truth(config, scene, *asset, cell, camera);
+    if (scene.truth_texture_res > 0) truth_memo_[cell.truth_key] = truth;
+    log_truth(log, scene, cell, truth, asset->metric_texel, ++summary.truth_traces);
+    write_truth_files(config, files, scene, cell, camera, truth.g, truth.footprint);
+  }
+
+ private:
+  std::string asset_key_, truth_key_;
+  std::map<std::string, TruthView> truth_memo_;  // this scene's, by truth key
+  size_t memo_scene_ = size_t(-1);
+};
+
 // ---- progress -------------------------------------------------------------------------------
 
 // Wall time per technique (its cells' measurement, truths and assets not included), for the
@@ -753,12 +794,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
 
   const size_t todo = cells.size() - summary.already_done;
   size_t finished = 0;
-  std::unique_ptr<Asset> asset;
-  std::string asset_key, truth_key;
-  TruthView truth;
-  // Truths of a scene's fixed truth resolution, kept across its texture resolutions.
-  std::map<std::string, TruthView> truth_memo;
-  size_t memo_scene = size_t(-1);
+  SharedInputs inputs;
   const auto work_start = Clock::now();
   TechniqueTimes technique_ms;
 
@@ -766,42 +802,23 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
     const Cell& cell = cells[index];
     if (done.count(cell.key)) continue;
     const SceneDesc& scene = config.scenes[cell.scene_index];
-    if (cell.asset_key != asset_key) {
-      asset = build_asset(config, scene, cell, options.progress);
-      asset_key = cell.asset_key;
-      truth_key.clear();
-      ++summary.asset_builds;
-      log_asset(log, scene, *asset);
-    }
     const Camera camera = make_camera(scene, cell.view, cell.width, cell.height);
     const CellFiles files = cell_files(options, scene);
-    if (cell.scene_index != memo_scene) {
-      truth_memo.clear();
-      memo_scene = cell.scene_index;
-    }
-    if (cell.truth_key != truth_key) {
-      if (auto memo = truth_memo.find(cell.truth_key); memo != truth_memo.end()) {
-        truth = memo->second;  // the same surface and view at another texture resolution
-      } else {
-        truth = trace_truth(config, scene, *asset, cell, camera);
-        if (scene.truth_texture_res > 0) truth_memo[cell.truth_key] = truth;
-        log_truth(log, scene, cell, truth, asset->metric_texel, ++summary.truth_traces);
-        write_truth_files(config, files, scene, cell, camera, truth.g, truth.footprint);
-      }
-      truth_key = cell.truth_key;
-    }
+    inputs.update(config, options, cell, camera, files, log, summary);
+    Asset& asset = *inputs.asset;
+    const TruthView& truth = inputs.truth;
 
     const auto cell_start = Clock::now();  // the technique's part of the cell, truth excluded
     const CellMeasure measured =
-        measure_cell(config, scene, *asset, cell, camera, truth.g, gl.is_software());
+        measure_cell(config, scene, asset, cell, camera, truth.g, gl.is_software());
     if (measured.m.empty())
       log.line("relieflab: warning: " + cell.technique + " " + describe_params(cell) + " on " +
                scene.name + " el=" + std::to_string(cell.view.elevation_deg) +
                ": neither the technique nor the truth covers a pixel; its error columns are "
                "empty (nothing was measured)");
-    Row row = cell_row(cell, scene, camera, *asset, measured, truth, gl.renderer());
+    Row row = cell_row(cell, scene, camera, asset, measured, truth, gl.renderer());
     write_cell_files(row, config, options, files, scene, cell, camera, measured.g, truth.g,
-                     asset->metric_texel);
+                     asset.metric_texel);
     store.insert(cell.key, row);
     ++summary.new_rows;
     ++finished;
