@@ -31,91 +31,119 @@ Polygon clip(const Polygon& poly, const glm::dvec2& a, const glm::dvec2& b, doub
   return out;
 }
 
+// The pattern tile's triangles binned on a grid of 1/32 tile over [-1, 2]^2 (a tile pokes a
+// little past [0, 1]^2).
+class PatternBins {
+ public:
+  static constexpr int kCells = 96;  // over [-1, 2]
+  static int cell_of(double x) {
+    return std::clamp(int(std::floor((x + 1.0) * 32.0)), 0, kCells - 1);
+  }
+  explicit PatternBins(const TriangleMesh& pattern) : bins_(size_t(kCells) * kCells) {
+    for (uint32_t t = 0; t < pattern.triangles.size(); ++t) {
+      glm::dvec2 lo(1e300), hi(-1e300);
+      for (int k = 0; k < 3; ++k) {
+        const glm::dvec2 p(pattern.positions[pattern.triangles[t][k]]);
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+      }
+      for (int j = cell_of(lo.y); j <= cell_of(hi.y); ++j)
+        for (int i = cell_of(lo.x); i <= cell_of(hi.x); ++i)
+          bins_[size_t(j) * kCells + i].push_back(t);
+    }
+  }
+  const std::vector<uint32_t>& at(int i, int j) const { return bins_[size_t(j) * kCells + i]; }
+
+ private:
+  std::vector<std::vector<uint32_t>> bins_;
+};
+
 }  // namespace
+
+// One base triangle and one tile of the pattern: a pattern point q (u, v in the tile, z =
+// -depth) lands where the base triangle's barycentrics of (u, v) put it, positions and normals
+// interpolated as drawn, and depth along the normal.
+struct PatternBaseTruth::TileOnTriangle {
+  const BaseMesh& base;
+  glm::uvec3 tri;
+  glm::dvec2 a, b, c;  // the triangle's uvs in the tile's frame
+  double area, side, depth;
+  glm::dvec2 shift;  // the tile's origin in uv
+
+  void map(const glm::dvec3& q, glm::dvec3& world, glm::dvec3& n) const {
+    const double w1 = ((q.x - a.x) * (c.y - a.y) - (q.y - a.y) * (c.x - a.x)) / area;
+    const double w2 = ((b.x - a.x) * (q.y - a.y) - (b.y - a.y) * (q.x - a.x)) / area;
+    const double w0 = 1 - w1 - w2;
+    const glm::dvec3 p =
+        w0 * base.position[tri.x] + w1 * base.position[tri.y] + w2 * base.position[tri.z];
+    n = w0 * base.normal[tri.x] + w1 * base.normal[tri.y] + w2 * base.normal[tri.z];
+    n = glm::length(n) > 0 ? glm::normalize(n) : base.normal[tri.x];
+    world = p + n * (q.z * depth);  // z = -depth: inward along the normal
+  }
+};
+
+// Pattern triangle t clipped to the base triangle and mapped onto it, as a fan of triangles.
+void PatternBaseTruth::add_clipped(const TriangleMesh& pattern, uint32_t t,
+                                   const TileOnTriangle& on) {
+  Polygon poly;
+  for (int k = 0; k < 3; ++k)
+    poly.push_back(glm::dvec3(pattern.positions[pattern.triangles[t][k]]));
+  poly = clip(poly, on.a, on.b, on.side);
+  if (poly.size() >= 3) poly = clip(poly, on.b, on.c, on.side);
+  if (poly.size() >= 3) poly = clip(poly, on.c, on.a, on.side);
+  if (poly.size() < 3) return;
+  const uint32_t first = uint32_t(positions_.size());
+  for (const glm::dvec3& q : poly) {
+    glm::dvec3 world, n;
+    on.map(q, world, n);
+    positions_.push_back(glm::vec3(world));
+    base_normals_.push_back(glm::vec3(n));
+    uvs_.push_back(glm::vec2(glm::dvec2(q) + on.shift));
+  }
+  for (uint32_t k = 1; k + 1 < poly.size(); ++k) {
+    triangles_.emplace_back(first, first + k, first + k + 1);
+    colors_.push_back(pattern.triangle_colors.empty() ? glm::vec3(0.78f, 0.74f, 0.70f)
+                                                      : pattern.triangle_colors[t]);
+  }
+}
 
 PatternBaseTruth::PatternBaseTruth(const TriangleMesh& tile_mesh, const BaseMesh& base,
                                    double depth) {
   const auto start = std::chrono::steady_clock::now();
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("cannot create an Embree device");
-  // One tile of the pattern (it pokes a little past [0, 1]^2), binned on a grid of 1/32 tile
-  // over [-1, 2]^2.
   const TriangleMesh& pattern = tile_mesh;
-  constexpr int kCells = 96;  // over [-1, 2]
-  auto cell_of = [](double x) {
-    return std::clamp(int(std::floor((x + 1.0) * 32.0)), 0, kCells - 1);
-  };
-  std::vector<std::vector<uint32_t>> bins(size_t(kCells) * kCells);
-  for (uint32_t t = 0; t < pattern.triangles.size(); ++t) {
-    glm::dvec2 lo(1e300), hi(-1e300);
-    for (int k = 0; k < 3; ++k) {
-      const glm::dvec2 p(pattern.positions[pattern.triangles[t][k]]);
-      lo = glm::min(lo, p);
-      hi = glm::max(hi, p);
-    }
-    for (int j = cell_of(lo.y); j <= cell_of(hi.y); ++j)
-      for (int i = cell_of(lo.x); i <= cell_of(hi.x); ++i)
-        bins[size_t(j) * kCells + i].push_back(t);
-  }
+  const PatternBins bins(pattern);
   std::vector<uint64_t> stamp(pattern.triangles.size(), 0);  // a triangle's last visit
   uint64_t visits = 0;                                       // one per (base triangle, tile)
   // Each base triangle takes the pattern over its own uv triangle, clipped to it and mapped by
-  // its barycentrics: positions and normals interpolated as drawn, depth along the normal.
-  // Neighbouring base triangles clip at their shared edge, so the mapped pattern has no cracks;
-  // a uv mapping that covers some uvs twice (a teapot's spout over its body) simply gets the
-  // pattern twice, once on each part of the surface.
+  // its barycentrics. Neighbouring base triangles clip at their shared edge, so the mapped
+  // pattern has no cracks; a uv mapping that covers some uvs twice (a teapot's spout over its
+  // body) simply gets the pattern twice, once on each part of the surface.
   for (uint32_t bt = 0; bt < base.triangles.size(); ++bt) {
     const glm::uvec3 tri = base.triangles[bt];
     const glm::dvec2 uv0 = base.uv[tri.x], uv1 = base.uv[tri.y], uv2 = base.uv[tri.z];
     const double area = (uv1.x - uv0.x) * (uv2.y - uv0.y) - (uv1.y - uv0.y) * (uv2.x - uv0.x);
     if (std::abs(area) < 1e-18) continue;  // collapsed in uv (a pole's row): nothing maps there
-    const double side = area > 0 ? 1.0 : -1.0;
     const glm::dvec2 lo = glm::min(uv0, glm::min(uv1, uv2)), hi = glm::max(uv0, glm::max(uv1, uv2));
     // Every tile whose pattern may reach into the triangle, each tile once.
     for (int ty = int(std::floor(lo.y)) - 1; ty <= int(std::floor(hi.y)) + 1; ++ty)
       for (int tx = int(std::floor(lo.x)) - 1; tx <= int(std::floor(hi.x)) + 1; ++tx) {
         const glm::dvec2 shift(tx, ty);
-        const glm::dvec2 a = uv0 - shift, b = uv1 - shift, c = uv2 - shift;
         const glm::dvec2 qlo = glm::max(lo - shift, glm::dvec2(-1.0)),
                          qhi = glm::min(hi - shift, glm::dvec2(2.0));
         if (qlo.x > qhi.x || qlo.y > qhi.y) continue;
-        auto map_point = [&](const glm::dvec3& q, glm::dvec3& world, glm::dvec3& n) {
-          const double w1 = ((q.x - a.x) * (c.y - a.y) - (q.y - a.y) * (c.x - a.x)) / area;
-          const double w2 = ((b.x - a.x) * (q.y - a.y) - (b.y - a.y) * (q.x - a.x)) / area;
-          const double w0 = 1 - w1 - w2;
-          const glm::dvec3 p =
-              w0 * base.position[tri.x] + w1 * base.position[tri.y] + w2 * base.position[tri.z];
-          n = w0 * base.normal[tri.x] + w1 * base.normal[tri.y] + w2 * base.normal[tri.z];
-          n = glm::length(n) > 0 ? glm::normalize(n) : base.normal[tri.x];
-          world = p + n * (q.z * depth);  // z = -depth: inward along the normal
-        };
+        const TileOnTriangle on{base,        tri,  uv0 - shift,           uv1 - shift,
+                                uv2 - shift, area, area > 0 ? 1.0 : -1.0, depth,
+                                shift};
         const uint64_t visit = ++visits;
-        for (int j = cell_of(qlo.y); j <= cell_of(qhi.y); ++j)
-          for (int i = cell_of(qlo.x); i <= cell_of(qhi.x); ++i)
-            for (uint32_t t : bins[size_t(j) * kCells + i]) {
-              if (stamp[t] == visit) continue;
-              stamp[t] = visit;
-              Polygon poly;
-              for (int k = 0; k < 3; ++k)
-                poly.push_back(glm::dvec3(pattern.positions[pattern.triangles[t][k]]));
-              poly = clip(poly, a, b, side);
-              if (poly.size() >= 3) poly = clip(poly, b, c, side);
-              if (poly.size() >= 3) poly = clip(poly, c, a, side);
-              if (poly.size() < 3) continue;
-              const uint32_t first = uint32_t(positions_.size());
-              for (const glm::dvec3& q : poly) {
-                glm::dvec3 world, n;
-                map_point(q, world, n);
-                positions_.push_back(glm::vec3(world));
-                base_normals_.push_back(glm::vec3(n));
-                uvs_.push_back(glm::vec2(glm::dvec2(q) + shift));
+        for (int j = PatternBins::cell_of(qlo.y); j <= PatternBins::cell_of(qhi.y); ++j)
+          for (int i = PatternBins::cell_of(qlo.x); i <= PatternBins::cell_of(qhi.x); ++i)
+            for (uint32_t t : bins.at(i, j))
+              if (stamp[t] != visit) {
+                stamp[t] = visit;
+                add_clipped(pattern, t, on);
               }
-              for (uint32_t k = 1; k + 1 < poly.size(); ++k) {
-                triangles_.emplace_back(first, first + k, first + k + 1);
-                colors_.push_back(pattern.triangle_colors.empty() ? glm::vec3(0.78f, 0.74f, 0.70f)
-                                                                  : pattern.triangle_colors[t]);
-              }
-            }
       }
   }
   if (triangles_.empty()) throw std::runtime_error("pattern truth: no pattern on the base");

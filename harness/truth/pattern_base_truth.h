@@ -42,6 +42,9 @@ class PatternBaseTruth {
   uint64_t shadow_rays() const { return shadow_rays_.load(); }
 
  private:
+  struct TileOnTriangle;
+  void add_clipped(const TriangleMesh& pattern, uint32_t t, const TileOnTriangle& on);
+
   std::vector<glm::vec3> positions_;
   std::vector<glm::vec2> uvs_;
   std::vector<glm::vec3> base_normals_;  // the base's normal under each vertex
