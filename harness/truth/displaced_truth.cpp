@@ -114,6 +114,58 @@ DisplacedTruth::~DisplacedTruth() {
   if (device_) rtcReleaseDevice(device_);
 }
 
+// One chart's displaced grid at grid lines u x v, two triangles a cell, appended to vertices_
+// and indices_ (the chart's base vertices start at first_base); returns how far the surface's
+// centre of a cell lies from the middle of the diagonal it is split along, at most.
+double DisplacedTruth::tessellate_chart(const BaseMesh& base, const SurfaceChart& c,
+                                        unsigned first_base, const std::vector<double>& u,
+                                        const std::vector<double>& v, const ReliefMap& map,
+                                        double depth) {
+  const size_t nu = u.size(), nv = v.size(), first = vertices_.size();
+  vertices_.resize(first + nu * nv);
+  std::vector<double> row_worst(nv, 0.0);
+  auto at = [&](const glm::dvec2& uv) {
+    glm::uvec3 tri;
+    double b1, b2;
+    locate_on_chart(c, first_base, uv, tri, b1, b2);
+    return mesh_point(base, tri, b1, b2);
+  };
+  parallel_for(
+      nv,
+      [&](size_t begin, size_t end) {
+        for (size_t j = begin; j < end; ++j)
+          for (size_t i = 0; i < nu; ++i) {
+            const MeshPoint p = at({u[i], v[j]});
+            Vertex& out = vertices_[first + j * nu + i];
+            displaced_vertex(p, map, depth, out.position, out.tangent, out.bitangent);
+            out.uv = glm::vec2(p.uv);
+            out.normal = glm::vec3(p.normal);
+          }
+      },
+      8);
+  // The split along each cell's diagonal a-e meets the surface's centre at (a + e) / 2.
+  parallel_for(
+      nv - 1,
+      [&](size_t begin, size_t end) {
+        for (size_t j = begin; j < end; ++j)
+          for (size_t i = 0; i + 1 < nu; ++i) {
+            const MeshPoint p = at({0.5 * (u[i] + u[i + 1]), 0.5 * (v[j] + v[j + 1])});
+            const glm::dvec3 mid =
+                0.5 * (glm::dvec3(vertices_[first + j * nu + i].position) +
+                       glm::dvec3(vertices_[first + (j + 1) * nu + i + 1].position));
+            row_worst[j] = std::max(
+                row_worst[j], glm::length(displaced(p.position, p.normal, p.uv, map, depth) - mid));
+          }
+      },
+      8);
+  for (size_t j = 0; j + 1 < nv; ++j)
+    for (size_t i = 0; i + 1 < nu; ++i) {
+      const unsigned a = unsigned(first + j * nu + i), b = a + 1, d = unsigned(a + nu), e = d + 1;
+      indices_.insert(indices_.end(), {a, b, e, a, e, d});
+    }
+  return row_worst.empty() ? 0.0 : *std::max_element(row_worst.begin(), row_worst.end());
+}
+
 void DisplacedTruth::build_from_charts(const BaseMesh& base, const ReliefMap& map, double depth,
                                        double tolerance, size_t max_triangles) {
   // Grid lines: texel-centre creases (k per texel) and the base's segment edges, so each cell
@@ -153,52 +205,7 @@ void DisplacedTruth::build_from_charts(const BaseMesh& base, const ReliefMap& ma
     unsigned first_base = 0;  // the chart's first vertex in the base mesh
     for (size_t ci = 0; ci < base.charts.size(); ++ci) {
       const SurfaceChart& c = base.charts[ci];
-      const std::vector<double>&u = us[ci], &v = vs[ci];
-      const size_t nu = u.size(), nv = v.size(), first = vertices_.size();
-      vertices_.resize(first + nu * nv);
-      std::vector<double> row_worst(nv, 0.0);
-      auto at = [&](const glm::dvec2& uv) {
-        glm::uvec3 tri;
-        double b1, b2;
-        locate_on_chart(c, first_base, uv, tri, b1, b2);
-        return mesh_point(base, tri, b1, b2);
-      };
-      parallel_for(
-          nv,
-          [&](size_t begin, size_t end) {
-            for (size_t j = begin; j < end; ++j)
-              for (size_t i = 0; i < nu; ++i) {
-                const MeshPoint p = at({u[i], v[j]});
-                Vertex& out = vertices_[first + j * nu + i];
-                displaced_vertex(p, map, depth, out.position, out.tangent, out.bitangent);
-                out.uv = glm::vec2(p.uv);
-                out.normal = glm::vec3(p.normal);
-              }
-          },
-          8);
-      // The split along each cell's diagonal a-e meets the surface's centre at (a + e) / 2.
-      parallel_for(
-          nv - 1,
-          [&](size_t begin, size_t end) {
-            for (size_t j = begin; j < end; ++j)
-              for (size_t i = 0; i + 1 < nu; ++i) {
-                const MeshPoint p = at({0.5 * (u[i] + u[i + 1]), 0.5 * (v[j] + v[j + 1])});
-                const glm::dvec3 mid =
-                    0.5 * (glm::dvec3(vertices_[first + j * nu + i].position) +
-                           glm::dvec3(vertices_[first + (j + 1) * nu + i + 1].position));
-                row_worst[j] =
-                    std::max(row_worst[j],
-                             glm::length(displaced(p.position, p.normal, p.uv, map, depth) - mid));
-              }
-          },
-          8);
-      for (double w : row_worst) worst = std::max(worst, w);
-      for (size_t j = 0; j + 1 < nv; ++j)
-        for (size_t i = 0; i + 1 < nu; ++i) {
-          const unsigned a = unsigned(first + j * nu + i), b = a + 1, d = unsigned(a + nu),
-                         e = d + 1;
-          indices_.insert(indices_.end(), {a, b, e, a, e, d});
-        }
+      worst = std::max(worst, tessellate_chart(base, c, first_base, us[ci], vs[ci], map, depth));
       first_base += unsigned(c.segments_u + 1) * unsigned(c.segments_v + 1);
     }
     subdivision_ = k;

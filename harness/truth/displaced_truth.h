@@ -73,6 +73,9 @@ class DisplacedTruth {
   };
   void build_from_charts(const BaseMesh& base, const ReliefMap& map, double depth, double tolerance,
                          size_t max_triangles);
+  double tessellate_chart(const BaseMesh& base, const SurfaceChart& chart, unsigned first_base,
+                          const std::vector<double>& u, const std::vector<double>& v,
+                          const ReliefMap& map, double depth);
   void build_from_triangles(const BaseMesh& base, const ReliefMap& map, double depth,
                             double tolerance, size_t max_triangles);
 
