@@ -54,10 +54,6 @@ void sweep_tube(TriangleMesh& mesh, const Thread& thread, int segments, int side
     }
 }
 
-double option(std::map<std::string, double>& options, const std::string& key) {
-  return options.at(key);
-}
-
 }  // namespace
 
 const std::vector<std::string>& pattern_mesh_kinds() {
@@ -81,88 +77,113 @@ std::map<std::string, double> pattern_mesh_defaults(const std::string& kind) {
   return {};
 }
 
-TriangleMesh make_pattern_mesh(const std::string& kind, std::map<std::string, double> options,
-                               const std::string& where) {
-  std::map<std::string, double> o = pattern_mesh_defaults(kind);
-  if (o.empty()) throw ConfigError(where + ": unknown pattern mesh '" + kind + "'");
-  for (const auto& [key, value] : options) {
-    if (!o.count(key))
-      throw ConfigError(where + ": pattern '" + kind + "' has no option '" + key + "'");
-    o[key] = value;
-  }
-  auto positive_int = [&](const std::string& key, int lo, int hi) {
-    const double v = o[key];
+namespace {
+
+// A pattern's options, defaults filled in, with the checks every kind makes.
+struct PatternOptions {
+  std::string kind, where;
+  std::map<std::string, double> values;
+  int segments = 0, sides = 0;
+
+  double value(const std::string& key) const { return values.at(key); }
+  int positive_int(const std::string& key, int lo, int hi) const {
+    const double v = values.at(key);
     if (v != std::floor(v) || v < lo || v > hi)
       throw ConfigError(where + ": " + kind + " option '" + key + "' must be an integer in [" +
                         std::to_string(lo) + ", " + std::to_string(hi) + "]");
     return int(v);
-  };
-  const int segments = positive_int("segments", 8, 4096), sides = positive_int("sides", 3, 256);
+  }
   // The bake and the truth trace every triangle (9 tiles' worth on the plane): keep a tile
   // within a few million.
-  auto check_budget = [&](int tubes) {
+  void check_budget(int tubes) const {
     const double triangles = 2.0 * tubes * segments * sides;
     if (triangles > 4e6)
       throw ConfigError(where + ": " + kind + " options give " + std::to_string(long(triangles)) +
                         " triangles per tile (at most 4,000,000); lower 'segments' or 'sides'");
-  };
-  TriangleMesh mesh;
-  mesh.name = kind;
-  const glm::vec3 warp(0.80f, 0.36f, 0.22f), weft(0.25f, 0.45f, 0.78f);
-  if (kind == "weave") {
-    const int threads = positive_int("threads", 2, 64);
-    if (threads % 2) throw ConfigError(where + ": weave option 'threads' must be even");
-    check_budget(2 * threads);
-    const double w = option(o, "width") / 2, th = option(o, "thickness") / 2,
-                 amp = option(o, "amplitude");
-    const double spacing = 1.0 / threads;
-    // Threads of one direction never touch (width < spacing); at a crossing the upper thread
-    // is 2 amp above the lower one at their centres and 2 amp cos(pi threads w) at the corners
-    // of the overlap, which must clear both tubes' thickness.
-    if (w <= 0 || th <= 0 || 2 * w >= spacing || amp * std::cos(kPi * threads * w) <= 1.05 * th ||
-        amp + th >= 0.5)
-      throw ConfigError(where +
-                        ": weave options make threads intersect or leave the depth range "
-                        "(need width < 1/threads, amplitude cos(pi threads width/2) > "
-                        "1.05 thickness/2, amplitude + thickness/2 < 0.5)");
-    for (int j = 0; j < threads; ++j) {
-      const double c = (j + 0.5) * spacing, phase = kPi * j;
-      // Along u, over thread i (at u = (i + 0.5) spacing) when i + j is even.
+  }
+};
+
+const glm::vec3 kWarp(0.80f, 0.36f, 0.22f), kWeft(0.25f, 0.45f, 0.78f);
+
+// Threads along u and along v, each over and under the ones it crosses.
+void add_weave(const PatternOptions& o, TriangleMesh& mesh) {
+  const int segments = o.segments, sides = o.sides;
+  const int threads = o.positive_int("threads", 2, 64);
+  if (threads % 2) throw ConfigError(o.where + ": weave option 'threads' must be even");
+  o.check_budget(2 * threads);
+  const double w = o.value("width") / 2, th = o.value("thickness") / 2, amp = o.value("amplitude");
+  const double spacing = 1.0 / threads;
+  // Threads of one direction never touch (width < spacing); at a crossing the upper thread
+  // is 2 amp above the lower one at their centres and 2 amp cos(pi threads w) at the corners
+  // of the overlap, which must clear both tubes' thickness.
+  if (w <= 0 || th <= 0 || 2 * w >= spacing || amp * std::cos(kPi * threads * w) <= 1.05 * th ||
+      amp + th >= 0.5)
+    throw ConfigError(o.where +
+                      ": weave options make threads intersect or leave the depth range "
+                      "(need width < 1/threads, amplitude cos(pi threads width/2) > "
+                      "1.05 thickness/2, amplitude + thickness/2 < 0.5)");
+  for (int j = 0; j < threads; ++j) {
+    const double c = (j + 0.5) * spacing, phase = kPi * j;
+    // Along u, over thread i (at u = (i + 0.5) spacing) when i + j is even.
+    sweep_tube(mesh,
+               {[=](double s) {
+                  return glm::dvec3(s, c, 0.5 - amp * std::sin(kPi * threads * s + phase));
+                },
+                w, th, kWarp},
+               segments, sides);
+    sweep_tube(mesh,
+               {[=](double s) {
+                  return glm::dvec3(c, s, 0.5 + amp * std::sin(kPi * threads * s + phase));
+                },
+                w, th, kWeft},
+               segments, sides);
+  }
+}
+
+// Helices along u, one or two strands each.
+void add_helices(const PatternOptions& o, TriangleMesh& mesh) {
+  const int segments = o.segments, sides = o.sides;
+  const int helices = o.positive_int("helices", 1, 64), strands = o.positive_int("strands", 1, 2);
+  const int turns = o.positive_int("turns", 1, 64);
+  o.check_budget(helices * strands);
+  const double r = o.value("radius"), th = o.value("thickness");
+  const double spacing = 1.0 / helices;
+  if (r <= 0 || th <= 0 || r + th >= 0.5 * spacing || (strands == 2 && th >= r) || r + th >= 0.5)
+    throw ConfigError(o.where +
+                      ": helix options make strands intersect or leave the tile "
+                      "(need radius + thickness < 1/(2 helices), thickness < radius)");
+  for (int j = 0; j < helices; ++j)
+    for (int k = 0; k < strands; ++k) {
+      const double c = (j + 0.5) * spacing, phase = kPi * k;
       sweep_tube(mesh,
                  {[=](double s) {
-                    return glm::dvec3(s, c, 0.5 - amp * std::sin(kPi * threads * s + phase));
+                    const double a = 2 * kPi * turns * s + phase;
+                    return glm::dvec3(s, c + r * std::cos(a), 0.5 + r * std::sin(a));
                   },
-                  w, th, warp},
-                 segments, sides);
-      sweep_tube(mesh,
-                 {[=](double s) {
-                    return glm::dvec3(c, s, 0.5 + amp * std::sin(kPi * threads * s + phase));
-                  },
-                  w, th, weft},
+                  th, th, k ? kWeft : kWarp},
                  segments, sides);
     }
-  } else {  // helix
-    const int helices = positive_int("helices", 1, 64), strands = positive_int("strands", 1, 2);
-    const int turns = positive_int("turns", 1, 64);
-    check_budget(helices * strands);
-    const double r = option(o, "radius"), th = option(o, "thickness");
-    const double spacing = 1.0 / helices;
-    if (r <= 0 || th <= 0 || r + th >= 0.5 * spacing || (strands == 2 && th >= r) || r + th >= 0.5)
-      throw ConfigError(where +
-                        ": helix options make strands intersect or leave the tile "
-                        "(need radius + thickness < 1/(2 helices), thickness < radius)");
-    for (int j = 0; j < helices; ++j)
-      for (int k = 0; k < strands; ++k) {
-        const double c = (j + 0.5) * spacing, phase = kPi * k;
-        sweep_tube(mesh,
-                   {[=](double s) {
-                      const double a = 2 * kPi * turns * s + phase;
-                      return glm::dvec3(s, c + r * std::cos(a), 0.5 + r * std::sin(a));
-                    },
-                    th, th, k ? weft : warp},
-                   segments, sides);
-      }
+}
+
+}  // namespace
+
+TriangleMesh make_pattern_mesh(const std::string& kind, std::map<std::string, double> options,
+                               const std::string& where) {
+  PatternOptions o{kind, where, pattern_mesh_defaults(kind)};
+  if (o.values.empty()) throw ConfigError(where + ": unknown pattern mesh '" + kind + "'");
+  for (const auto& [key, value] : options) {
+    if (!o.values.count(key))
+      throw ConfigError(where + ": pattern '" + kind + "' has no option '" + key + "'");
+    o.values[key] = value;
   }
+  o.segments = o.positive_int("segments", 8, 4096);
+  o.sides = o.positive_int("sides", 3, 256);
+  TriangleMesh mesh;
+  mesh.name = kind;
+  if (kind == "weave")
+    add_weave(o, mesh);
+  else
+    add_helices(o, mesh);
   mesh.lo = glm::dvec3(mesh.positions[0]);
   mesh.hi = mesh.lo;
   for (const glm::vec3& p : mesh.positions) {
