@@ -6,45 +6,29 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <optional>
 #include <set>
 
-#include <glm/glm.hpp>
 
 #include "core/data_paths.h"
 #include "core/elapsed.h"
 #include "core/error.h"
 #include "gl/context.h"
-#include "gl/frame_timer.h"
-#include "gl/render_target.h"
-#include "metrics/fragment_cost.h"
-#include "metrics/metrics.h"
-#include "output/gbuffer_export.h"
 #include "output/pareto.h"
 #include "output/report.h"
 #include "output/result_store.h"
 #include "output/run_folder.h"
 #include "output/tables.h"
 #include "relief/cell_complex.h"
-#include "relief/heightfield_faces.h"
-#include "relief/image_io.h"
-#include "relief/meta_relief.h"
 #include "run/asset_check.h"
 #include "run/cells.h"
 #include "run/memory_estimate.h"
-#include "scene/base_mesh.h"
-#include "scene/relief_asset.h"
-#include "technique/technique.h"
-#include "truth/ao_truth_cache.h"
-#include "truth/make_truth.h"
-#include "truth/truth_render.h"
+#include "run/sweep_stages.h"
 
 namespace rl {
 namespace {
@@ -61,47 +45,6 @@ std::string hms(double seconds) {
     std::snprintf(buf, sizeof buf, "%ld:%02ld", s / 60, s % 60);
   return buf;
 }
-
-std::vector<float> rgb_of(const GBuffer& g) {
-  std::vector<float> rgb(g.size() * 3);
-  for (size_t i = 0; i < g.size(); ++i)
-    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = g.color[i][c];
-  return rgb;
-}
-
-std::string describe_params(const Cell& c) {
-  std::string s;
-  for (const auto& [k, v] : c.params) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%s=%g", k.c_str(), v);
-    s += (s.empty() ? "" : " ") + std::string(buf);
-  }
-  return s;
-}
-
-// Everything built once per (scene, texture resolution).
-struct Asset {
-  ReliefMap map;
-  // The map the truth is built from where the scene asks for another resolution
-  // (truth_resolution) or another colour map (truth_color_resolution); null: `map` itself.
-  std::unique_ptr<ReliefMap> truth_map;
-  const ReliefMap& truth_source() const { return truth_map ? *truth_map : map; }
-  std::unique_ptr<GpuRelief> relief;
-  std::unique_ptr<GpuBase> base;
-  std::unique_ptr<ObjectPass> objects;
-  std::unique_ptr<SceneTruth> truth;
-  double build_ms = 0;
-  double texel_world = 0;  // world size of a texel on the base
-  // The texel errors are measured in: the truth's where it has its own resolution, so that
-  // every texture resolution of a scene is judged by one yardstick.
-  double metric_texel = 0;
-  // The base's fitted curvature against its closed form (sphere, torus): Figure 5.28.
-  std::optional<CurvatureFitError> curvature_fit;
-  double ao_ms = 0;  // the texture-space AO map's precompute (ambient_occlusion)
-  bool ao_from_cache = false;
-  // Prepared technique instances by (technique, parameters): prepare() runs once per asset.
-  std::map<std::string, std::pair<std::unique_ptr<Technique>, double>> prepared;
-};
 
 // The run's log, appended to. Opened without following a link (check_run_folder refused one
 // already; this closes the window between the check and the open).
@@ -172,92 +115,6 @@ std::string stored_row_problem(const ResultStore& store, const Cell& cell) {
   return problem;
 }
 
-// The run log's line for a built asset: its size, build time and what its truth is.
-std::string describe_asset(const SceneDesc& scene, const Asset& asset) {
-  char buf[320];
-  const char* unit = scene.base.curved() && (!has_charts(scene.base) || scene.meta.active())
-                         ? "base triangle"
-                         : "texel";
-  // A meta-relief's size is its layer 0's (its bake, `map`, may differ).
-  const MapSize layer0_size = asset.map.meta ? MapSize{asset.map.meta->layers()[0].map.width,
-                                                       asset.map.meta->layers()[0].map.height}
-                                             : MapSize{asset.map.width, asset.map.height};
-  if (const CellComplex* cc = asset.map.cells.get())
-    std::snprintf(buf, sizeof buf,
-                  "relieflab: asset %s: cell complex %d^3, %ld grey cells, %ld domain faces "
-                  "of %dx%d, classified in %.0f ms, sampled in %.0f ms (%.0f ms with the grid "
-                  "choice%s), %.1f%% occluded fragments (Embree truth of the mesh %.0f ms)",
-                  scene.name.c_str(), cc->grid(), cc->stats().grey_cells, cc->stats().domain_faces,
-                  cc->resolution(), cc->resolution(), cc->stats().classify_ms,
-                  cc->stats().sample_ms, cc->stats().construction_ms,
-                  cc->stats().from_cache ? "; read from the precompute cache" : "",
-                  100.0 * cc->stats().occluded_ratio(), asset.truth->build_ms());
-  else if (scene.meta.active() && !scene.base.curved())
-    std::snprintf(buf, sizeof buf,
-                  "relieflab: asset %s at %dx%d (bake %dx%d): built in %.0f ms (truth: the "
-                  "%zu-layer meta-relief traced exactly)",
-                  scene.name.c_str(), layer0_size.width, layer0_size.height, asset.map.width,
-                  asset.map.height, asset.build_ms, scene.meta.layers.size() + 1);
-  else if (asset.truth->tessellation_bound() == 0 && !scene.base.curved())
-    std::snprintf(buf, sizeof buf,
-                  "relieflab: asset %s at %dx%d: built in %.0f ms (truth %.0f ms, exact to "
-                  "rounding: each trace states its bound in texels)",
-                  scene.name.c_str(), layer0_size.width, layer0_size.height, asset.build_ms,
-                  asset.truth->build_ms());
-  else
-    std::snprintf(buf, sizeof buf,
-                  "relieflab: asset %s at %dx%d: built in %.0f ms (Embree truth %.0f ms, "
-                  "tessellation %dx%d per %s, deviation <= %.2g depth units)",
-                  scene.name.c_str(), layer0_size.width, layer0_size.height, asset.build_ms,
-                  asset.truth->build_ms(), asset.truth->subdivision(), asset.truth->subdivision(),
-                  unit, asset.truth->tessellation_bound());
-  return buf;
-}
-
-// The run log's statement of a truth trace's accuracy in the headline's units.
-std::string describe_truth_bound(const GBuffer& truth, double texel_world) {
-  const TruthBoundStats s = truth_bound_stats(truth, texel_world);
-  char buf[256];
-  std::snprintf(buf, sizeof buf,
-                "relieflab: truth bound at this view: <= %.3g texels on every hit; %ld of %ld "
-                "pixels (%.3g%%) above the %.2g-texel target",
-                s.largest_texels, s.uncertain, s.covered,
-                s.covered ? 100.0 * double(s.uncertain) / double(s.covered) : 0.0,
-                kTruthBoundTarget);
-  return buf;
-}
-
-// A cell complex's construction (Apaza & Andujar, Table 1) and ray throughput (Table 2):
-// intersections per second are the pixels the technique covers over the median frame time.
-void add_cell_columns(Row& row, const CellComplex& cc, const GBuffer& g, double frame_ms) {
-  const CellComplex::Stats& st = cc.stats();
-  row["cell_grid"] = cc.grid();
-  row["mesh_faces"] = double(st.mesh_triangles);
-  row["grey_cells"] = double(st.grey_cells);
-  row["domain_faces"] = double(st.domain_faces);
-  row["cell_bytes"] = double(cc.gpu_bytes());
-  row["cell_classify_ms"] = st.classify_ms;
-  row["cell_sample_ms"] = st.sample_ms;
-  row["cell_construction_ms"] = st.construction_ms;  // the build's, also when read from cache
-  row["cell_from_cache"] = st.from_cache;
-  row["cell_distance_bytes"] = double(cc.distance_bytes());
-  row["cell_ambiguous_regions"] = double(st.ambiguous_regions);
-  row["occluded_fragment_pct"] = 100.0 * st.occluded_ratio();
-  const double texels = double(st.domain_faces) * cc.resolution() * cc.resolution();
-  row["multi_crossing_pct"] = texels > 0 ? 100.0 * double(st.multi_crossing_texels) / texels : 0.0;
-  std::string trials;
-  for (const GridTrial& t : st.trials) {
-    char buf[48];
-    std::snprintf(buf, sizeof buf, "%s%d:%.3g", trials.empty() ? "" : " ", t.grid,
-                  100.0 * t.occluded_ratio);
-    trials += buf;
-  }
-  row["grid_trials"] = trials;  // N:occluded % of each step of an automatic choice
-  long covered = 0;
-  for (size_t i = 0; i < g.size(); ++i) covered += g.covered(i);
-  row["intersections_per_s"] = frame_ms > 0 ? double(covered) / (frame_ms * 1e-3) : 0.0;
-}
-
 // ---- plan -----------------------------------------------------------------------------------
 
 // Stored rows are checked before they are trusted: a corrupt one is dropped from the store and
@@ -317,67 +174,6 @@ std::vector<size_t> measuring_order(const std::vector<Cell>& cells) {
   return order;
 }
 
-// ---- assets ---------------------------------------------------------------------------------
-
-// The map (and the truth's own map where truth_resolution asks for one), the base, the truth,
-// the texel sizes, the AO map and the GPU textures of one (scene, texture resolution). With
-// `progress`, each stage is announced on stderr as it starts: a cell complex or an AO map can
-// take minutes, and the per-cell progress line says nothing until the first cell is done.
-std::unique_ptr<Asset> build_asset(const SweepConfig& config, const SceneDesc& scene,
-                                   const Cell& cell, bool progress) {
-  const auto t0 = Clock::now();
-  auto stage = [&](const char* what) {
-    if (progress)
-      std::fprintf(stderr, "relieflab: scene %s at texture_res %d: %s (%.1f s so far)\n",
-                   scene.name.c_str(), cell.texture_res, what, ms_since(t0) / 1000.0);
-  };
-  auto asset = std::make_unique<Asset>();
-  stage(scene.relief.cells.active ? "building the relief (a cubic cell complex)"
-                                  : "building the relief map");
-  asset->map = build_relief_asset(scene, cell.texture_res);
-  // The truth's own map where the scene gives it another depth resolution (truth_resolution)
-  // or another colour map (truth_color_resolution).
-  const int truth_res = scene.truth_texture_res > 0 ? scene.truth_texture_res : cell.texture_res;
-  const int truth_color =
-      scene.truth_color_texture_res > 0 ? scene.truth_color_texture_res : scene.color_texture_res;
-  if (scene.relief.size_at(truth_res) != scene.relief.size_at(cell.texture_res) ||
-      truth_color != scene.color_texture_res)
-    asset->truth_map =
-        std::make_unique<ReliefMap>(build_relief_asset(scene, truth_res, truth_color));
-  asset->objects = std::make_unique<ObjectPass>(scene.objects);
-  stage("building the truth's Embree scene");
-  if (scene.base.curved()) {
-    // One base mesh for the GPU, the truth and the texel size.
-    const BaseMesh mesh = make_base_mesh(scene.base, scene.size, scene.tile);
-    asset->curvature_fit = curvature_fit_error(scene.base, mesh);
-    asset->base = std::make_unique<GpuBase>(base_geometry(mesh));
-    asset->truth =
-        std::make_unique<SceneTruth>(scene, asset->truth_source(), config.truth_tolerance, &mesh);
-    // A meta-relief's texel is its layer 0's (its bake may be finer).
-    const ReliefMap& layer0 = asset->map.meta ? asset->map.meta->layers()[0].map : asset->map;
-    asset->texel_world = texel_world(mesh, MapSize{layer0.width, layer0.height});
-    const ReliefMap& truth0 = asset->truth_source().meta
-                                  ? asset->truth_source().meta->layers()[0].map
-                                  : asset->truth_source();
-    asset->metric_texel = texel_world(mesh, MapSize{truth0.width, truth0.height});
-  } else {
-    asset->base = std::make_unique<GpuBase>(make_base_geometry(scene));
-    asset->truth =
-        std::make_unique<SceneTruth>(scene, asset->truth_source(), config.truth_tolerance);
-    asset->texel_world = texel_world(scene, cell.texture_res);
-    asset->metric_texel = texel_world(
-        scene, scene.truth_texture_res > 0 ? scene.truth_texture_res : cell.texture_res);
-  }
-  if (scene.drawn_effects().has(Effect::AmbientOcclusion))
-    stage("computing the ambient occlusion map");
-  const AoMap ao = attach_ao_map(asset->map, scene, asset->texel_world);
-  asset->ao_ms = ao.compute_ms;
-  asset->ao_from_cache = ao.from_cache;
-  asset->relief = std::make_unique<GpuRelief>(asset->map, scene.meta.runtime());
-  asset->build_ms = ms_since(t0);
-  return asset;
-}
-
 void log_asset(Log& log, const SceneDesc& scene, const Asset& asset) {
   log.line(describe_asset(scene, asset));
   if (const CellComplex* cc = asset.map.cells.get(); cc && cc->stats().ambiguous_regions)
@@ -388,33 +184,6 @@ void log_asset(Log& log, const SceneDesc& scene, const Asset& asset) {
 }
 
 // ---- truth ----------------------------------------------------------------------------------
-
-struct TruthView {
-  GBuffer g;
-  TruthStats stats;
-  GBuffer footprint;  // colour averaged over each pixel (footprint_samples > 1), else empty
-};
-
-// The truth of one (asset, viewport, view). The reference AO is most of an AO scene's truth:
-// an earlier run's is reused where the hits are the same (truth/ao_truth_cache.h).
-TruthView trace_truth(const SweepConfig& config, const SceneDesc& scene, const Asset& asset,
-                      const Cell& cell, const Camera& camera) {
-  std::optional<AoTruthCache> ao_cache;
-  if (scene.effects.has(Effect::AmbientOcclusion))
-    ao_cache.emplace(cell.truth_key, truth_source_hash(asset.truth_source()), ao_sampling(scene),
-                     size_t(cell.width) * cell.height);
-  TruthView t;
-  t.g = asset.truth->render(asset.truth_source(), scene, camera, scene.effects, &t.stats,
-                            ao_cache ? &*ao_cache : nullptr);
-  if (ao_cache) ao_cache->save();
-  if (const int n = config.footprint_samples; n > 1) {
-    // The same view on a grid n times finer: n x n truth rays spread evenly over each pixel.
-    const Camera fine = make_camera(scene, cell.view, cell.width * n, cell.height * n);
-    t.footprint = footprint_color(
-        asset.truth->render(asset.truth_source(), scene, fine, scene.effects, nullptr, nullptr), n);
-  }
-  return t;
-}
 
 void log_truth(Log& log, const SceneDesc& scene, const Cell& cell, const TruthView& t,
                double metric_texel, size_t number) {
@@ -433,252 +202,6 @@ void log_truth(Log& log, const SceneDesc& scene, const Cell& cell, const TruthVi
   if (t.stats.unresolved)
     log.line("relieflab: warning: " + std::to_string(t.stats.unresolved) +
              " truth rays passed the floor by rounding and were placed on it");
-}
-
-// Where a cell's pictures and G-buffers go.
-struct CellFiles {
-  std::string image_dir, gbuffer_dir;
-};
-
-CellFiles cell_files(const RunOptions& options, const SceneDesc& scene) {
-  return {options.out_dir + "/images/" + scene.name, options.out_dir + "/gbuffers/" + scene.name};
-}
-
-void write_truth_files(const SweepConfig& config, const CellFiles& files, const SceneDesc& scene,
-                       const Cell& cell, const Camera& camera, const GBuffer& truth,
-                       const GBuffer& footprint) {
-  if (config.write_images)
-    write_png(files.image_dir + "/truth_" + cell.truth_key + ".png", truth.width, truth.height, 3,
-              rgb_of(truth));
-  if (config.write_images && !footprint.color.empty())
-    write_png(files.image_dir + "/truth_footprint_" + cell.truth_key + ".png", footprint.width,
-              footprint.height, 3, rgb_of(footprint));
-  if (config.write_gbuffers)
-    write_gbuffer_exr(files.gbuffer_dir + "/truth_" + cell.truth_key + ".exr", truth, scene, camera,
-                      {scene.name, "", "", cell.truth_key});
-}
-
-// ---- measure --------------------------------------------------------------------------------
-
-// What one cell's technique drew and cost.
-struct CellMeasure {
-  GBuffer g;
-  FragmentCost cost;
-  ImageMetrics m;
-  FrameTiming timing;
-  std::vector<std::pair<std::string, double>> frame_columns;
-  double precompute_ms = 0;
-  bool precompute_cached = false;
-  size_t technique_bytes = 0;
-};
-
-// The technique instance of a cell, prepared once per asset and parameter setting.
-std::pair<std::unique_ptr<Technique>, double>& prepared_technique(const SweepConfig& config,
-                                                                  const SceneDesc& scene,
-                                                                  Asset& asset, const Cell& cell) {
-  auto& slot = asset.prepared[cell.technique + "|" + describe_params(cell)];
-  if (!slot.first) {
-    slot.first = TechniqueRegistry::instance().create(cell.technique, cell.params, config.source);
-    const auto t0 = Clock::now();
-    slot.first->prepare_scene(scene, asset.map);
-    glFinish();
-    slot.second = ms_since(t0);
-  }
-  return slot;
-}
-
-CellMeasure measure_cell(const SweepConfig& config, const SceneDesc& scene, Asset& asset,
-                         const Cell& cell, const Camera& camera, const GBuffer& truth,
-                         bool software_gl) {
-  auto& [technique, prepare_ms] = prepared_technique(config, scene, asset, cell);
-  FrameInput frame{scene,
-                   asset.map,
-                   *asset.relief,
-                   *asset.base,
-                   camera,
-                   scene.drawn_effects(),
-                   asset.objects.get()};
-  CellMeasure out;
-  FragmentCounts counts;
-  {
-    RenderTarget target(cell.width, cell.height, RenderTarget::Kind::GBuffer);
-    target.bind_and_clear();
-    render_frame(*technique, frame, RenderTarget::Kind::GBuffer);
-    target.read_back(out.g);
-    target.read_back_costs(counts);
-  }
-  out.cost = fragment_cost(counts);
-  out.frame_columns = technique->frame_columns();
-  for (const auto& [name, value] : out.frame_columns) {
-    const auto& declared = technique->info().columns;
-    if (std::none_of(declared.begin(), declared.end(),
-                     [&](const ColumnSpec& c) { return c.name == name; }))
-      throw std::logic_error("technique '" + technique->info().name + "' wrote column '" + name +
-                             "', which its describe() does not declare in .columns");
-  }
-  out.m = compare_gbuffers(out.g, truth, scene.depth, asset.metric_texel,
-                           scene.effects.has(Effect::AmbientOcclusion));
-  RenderTarget timing_target(cell.width, cell.height, RenderTarget::Kind::ColorOnly);
-  out.timing = time_frames(
-      [&] {
-        timing_target.bind_and_clear();
-        render_frame(*technique, frame, RenderTarget::Kind::ColorOnly);
-      },
-      config.warmup, config.frames, software_gl);
-  out.precompute_ms = prepare_ms;
-  out.precompute_cached = technique->prepared_from_cache();
-  out.technique_bytes = technique->memory_bytes();
-  return out;
-}
-
-// ---- row ------------------------------------------------------------------------------------
-
-nlohmann::ordered_json number_or_empty(double value) {
-  return std::isnan(value) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(value);
-}
-
-// The spread of view elevations over the covered pixels (planar bases: against the quad's
-// plane), so a row's "elevation" is checked to mean one view angle.
-void add_elevation_columns(Row& row, const SceneDesc& scene, const Camera& camera, const GBuffer& g,
-                           const GBuffer& truth) {
-  double elev_min = 90, elev_max = -90;
-  if (!scene.base.curved())
-    for (int y = 0; y < g.height; ++y)
-      for (int x = 0; x < g.width; ++x) {
-        const size_t i = size_t(y) * g.width + x;
-        if (!g.covered(i) && !truth.covered(i)) continue;
-        glm::dvec3 o, d;
-        camera.pixel_ray(x, y, o, d);
-        const double el = glm::degrees(std::asin(std::clamp(-d.z, -1.0, 1.0)));
-        elev_min = std::min(elev_min, el);
-        elev_max = std::max(elev_max, el);
-      }
-  const bool have = elev_min <= elev_max;
-  row["elev_min_deg"] = have ? nlohmann::ordered_json(elev_min) : nlohmann::ordered_json();
-  row["elev_max_deg"] = have ? nlohmann::ordered_json(elev_max) : nlohmann::ordered_json();
-}
-
-void add_timing_columns(Row& row, const Cell& cell, const FrameTiming& timing) {
-  row["frame_ms"] = timing.median_ms;
-  // Speed as the papers count it: frames per second (Baboud & Decoret, Policarpo et al.), and
-  // viewport pixels x frames per second (Apaza & Andujar's "rays per second": every pixel of
-  // the viewport, whether or not the relief covers it).
-  row["fps"] = timing.median_ms > 0 ? 1e3 / timing.median_ms : 0.0;
-  row["rays_per_s"] =
-      timing.median_ms > 0 ? double(cell.width) * cell.height / (timing.median_ms * 1e-3) : 0.0;
-  row["frame_ms_min"] = timing.min_ms;
-  row["frame_ms_iqr"] = timing.iqr_ms;
-  row["frames_timed"] = timing.frames;
-  row["timing"] = timing.method;
-}
-
-// The representation's own columns: a multilayer bake (layers per texel, texels whose ray
-// crossed more surfaces than that, the most crossings), a cell complex, a face set.
-void add_representation_columns(Row& row, const Asset& asset, const CellMeasure& c) {
-  const LayerStack& layers = asset.map.layers;
-  const double texels = double(asset.map.width) * asset.map.height;
-  row["layers"] = layers.count;
-  row["layer_overflow_pct"] =
-      layers.empty() ? nlohmann::ordered_json()
-                     : nlohmann::ordered_json(100.0 * double(layers.overflow_texels) / texels);
-  row["layer_odd_pct"] = layers.empty()
-                             ? nlohmann::ordered_json()
-                             : nlohmann::ordered_json(100.0 * double(layers.odd_texels) / texels);
-  row["depth_complexity"] =
-      layers.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(layers.max_crossings);
-  if (!layers.empty() && asset.map.quantized) {
-    row["normal_storage_err_mean_deg"] = layers.normal_storage_err_mean_deg;
-    row["normal_storage_err_max_deg"] = layers.normal_storage_err_max_deg;
-  }
-  if (asset.map.cells) add_cell_columns(row, *asset.map.cells, c.g, c.timing.median_ms);
-  if (asset.map.faces) row["face_count"] = asset.map.faces->count();
-}
-
-// Throws std::logic_error naming a column of `row` that no producer declares (core/columns.h)
-// and that is not one of the cell's identity or parameter columns: tables, the report and the
-// README's column reference know only declared columns.
-void check_columns_declared(const Row& row, const Cell& cell) {
-  for (const auto& [name, value] : row.items())
-    if (!find_column(name) && !cell.identity.contains(name))
-      throw std::logic_error("the row of cell " + cell.key + " holds column '" + name +
-                             "', which no producer declares (core/columns.h)");
-}
-
-// Every measured column of a cell's row, beside its identity.
-Row cell_row(const Cell& cell, const SceneDesc& scene, const Camera& camera, const Asset& asset,
-             const CellMeasure& c, const TruthView& truth, const std::string& renderer) {
-  Row row = cell.identity;
-  // An error column that measures nothing (no pixel covered) is empty, never zero.
-  for (const auto& [name, value] : c.m.named()) row[name] = number_or_empty(value);
-  if (!truth.footprint.color.empty())
-    for (const auto& [name, value] : footprint_metrics(c.g, truth.footprint)) row[name] = value;
-  add_elevation_columns(row, scene, camera, c.g, truth.g);
-  add_timing_columns(row, cell, c.timing);
-  row["precompute_ms"] = c.precompute_ms;
-  row["precompute_cached"] = c.precompute_cached;
-  for (const auto& [name, value] : c.cost.named()) row[name] = number_or_empty(value);
-  for (const auto& [name, value] : c.frame_columns) row[name] = value;
-  row["memory_bytes"] = double(asset.relief->bytes() + c.technique_bytes);
-  row["truth_subdivision"] = asset.truth->subdivision();
-  row["truth_bound"] = asset.truth->tessellation_bound();
-  row["truth_flagged"] = c.m.truth_flagged();
-  row["truth_ms"] = truth.stats.trace_ms;
-  row["truth_unresolved_px"] = double(truth.stats.unresolved);
-  if (scene.effects.has(Effect::AmbientOcclusion)) {
-    row["ao_precompute_ms"] = asset.ao_ms;
-    row["ao_precompute_cached"] = asset.ao_from_cache;
-    row["ao_rescale"] = scene.ao.rescale(scene.depth);
-    row["ao_drawn"] = scene.ao.render;
-    row["truth_ao_rays"] = double(truth.stats.ao_rays);
-  }
-  if (asset.curvature_fit) {
-    row["curvature_fit_err_mean_pct"] = asset.curvature_fit->mean_pct;
-    row["curvature_fit_err_max_pct"] = asset.curvature_fit->max_pct;
-    row["curvature_sign_match_pct"] = asset.curvature_fit->sign_match_pct;
-  }
-  row["effects"] = join_effects(scene.effects);
-  row["texture_size"] = std::to_string(asset.map.width) + "x" + std::to_string(asset.map.height);
-  add_representation_columns(row, asset, c);
-  // "sampled@1024": the truth of the map at another resolution (truth_resolution); "color@512":
-  // with a colour map of its own (truth_color_resolution).
-  std::string truth_label = truth_level_name(scene.truth);
-  if (asset.truth_map && scene.truth_texture_res > 0)
-    truth_label += "@" + std::to_string(scene.truth_texture_res);
-  if (scene.truth_color_texture_res > 0)
-    truth_label += " color@" + std::to_string(scene.truth_color_texture_res);
-  row["truth"] = truth_label;
-  row["renderer"] = renderer;
-  row["key"] = cell.key;
-  check_columns_declared(row, cell);
-  return row;
-}
-
-// The cell's render and heat map (and raw G-buffer), and their paths in the row.
-void write_cell_files(Row& row, const SweepConfig& config, const RunOptions& options,
-                      const CellFiles& files, const SceneDesc& scene, const Cell& cell,
-                      const Camera& camera, const GBuffer& g, const GBuffer& truth,
-                      double metric_texel) {
-  if (config.write_images) {
-    const std::string render_png = files.image_dir + "/" + cell.key + "_render.png";
-    const std::string error_png = files.image_dir + "/" + cell.key + "_error.png";
-    write_png(render_png, g.width, g.height, 3, rgb_of(g));
-    write_png(error_png, g.width, g.height, 3,
-              error_heat_map(g, truth, metric_texel, config.heat_map_scale));
-    row["image_render"] = fs::relative(render_png, options.out_dir).string();
-    row["image_truth"] =
-        fs::relative(files.image_dir + "/truth_" + cell.truth_key + ".png", options.out_dir)
-            .string();
-    row["image_error"] = fs::relative(error_png, options.out_dir).string();
-  }
-  if (config.write_gbuffers) {
-    const std::string exr = files.gbuffer_dir + "/" + cell.key + ".exr";
-    write_gbuffer_exr(exr, g, scene, camera,
-                      {scene.name, cell.technique, describe_params(cell), cell.key});
-    row["gbuffer"] = fs::relative(exr, options.out_dir).string();
-    row["gbuffer_truth"] =
-        fs::relative(files.gbuffer_dir + "/truth_" + cell.truth_key + ".exr", options.out_dir)
-            .string();
-  }
 }
 
 // ---- the loop's shared inputs ---------------------------------------------------------------
