@@ -14,7 +14,6 @@
 #include <optional>
 #include <set>
 
-
 #include "core/data_paths.h"
 #include "core/elapsed.h"
 #include "core/error.h"
