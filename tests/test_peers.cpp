@@ -299,6 +299,55 @@ TEST(ConeMap, RelaxedConesMatchAPerTexelScanOfTheSameSamples) {
   }
 }
 
+// The relaxed scan steps over a block of segments when every apex from its position on fails
+// the segment test (relaxed_segment_left_only_before): the bound must hold for every depth pair,
+// 8-bit steps and float slopes down to 1e-9 alike, and lie within three samples of where the
+// test first passes, or it would step over nothing.
+TEST(ConeMap, RelaxedSegmentBoundHoldsEverywhere) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), exponent(-9.0f, 0.0f);
+  const size_t k = 100000;
+  size_t checked = 0, tight = 0;
+  for (int pair = 0; pair < 200000; ++pair) {
+    const float h_start = pair % 4 ? unit(rng) : float(int(unit(rng) * 255)) / 255;
+    const float rise = pair % 3 ? std::pow(10.0f, exponent(rng)) : float(1 + pair % 7) / 255;
+    const float h_end = std::min(1.0f, h_start + (pair % 5 ? rise : -rise));
+    const int32_t bound = relaxed_segment_left_only_before(h_start, h_end, k);
+    if (bound == std::numeric_limits<int32_t>::min()) {
+      for (float n : {1.0f, 2.0f, 10.0f, 1e3f, 1e5f})
+        ASSERT_FALSE(relaxed_segment_leaves(h_start, h_end, n)) << h_start << " " << h_end;
+      continue;
+    }
+    // The farthest apex the bound rules out, n samples before k; lines are never 2^22 long.
+    const int64_t last = std::min<int64_t>(int64_t(k) - bound, 1 << 22);
+    for (int64_t n = std::max<int64_t>(1, last - 300); n <= last; ++n, ++checked)
+      ASSERT_FALSE(relaxed_segment_leaves(h_start, h_end, float(n)))
+          << "h " << h_start << " -> " << h_end << ", n " << n << " (bound: n <= " << last << ")";
+    if (h_end - (h_start + kRelaxedTie) >= 1e-3f) {
+      EXPECT_TRUE(relaxed_segment_leaves(h_start, h_end, float(last + 3)))
+          << "h " << h_start << " -> " << h_end << ": the bound is loose";
+      ++tight;
+    }
+  }
+  // Pairs whose test sits on its threshold: h_end (n0 - 1) = d n0 to within a few ulps, where
+  // only the rounding of the two products decides it.
+  for (int n0 = 2; n0 < 20000; n0 += 3) {
+    const float h_start = unit(rng) * 0.9f, d = h_start + kRelaxedTie;
+    float h_end = float(double(d) * n0 / (n0 - 1));
+    for (int step = 0; step < 4; ++step) h_end = std::nextafter(h_end, 0.0f);
+    for (int ulp = -4; ulp <= 4; ++ulp, h_end = std::nextafter(h_end, 2.0f)) {
+      const int32_t bound = relaxed_segment_left_only_before(h_start, h_end, k);
+      if (bound == std::numeric_limits<int32_t>::min()) continue;
+      const int64_t last = std::min<int64_t>(int64_t(k) - bound, 1 << 22);
+      for (int64_t n = std::max<int64_t>(1, last - 3); n <= last; ++n, ++checked)
+        ASSERT_FALSE(relaxed_segment_leaves(h_start, h_end, float(n)))
+            << "h " << h_start << " -> " << h_end << ", n " << n << " (bound: n <= " << last << ")";
+    }
+  }
+  EXPECT_GT(checked, 1000000u);
+  EXPECT_GT(tight, 10000u);
+}
+
 // A direction's scan starts from the narrowest cone the directions before it found and steps
 // over what cannot narrow it further; where rounding let it step over a segment narrowing the
 // cone by an ulp, the map depended on the order the cores took the directions in (the rock wall

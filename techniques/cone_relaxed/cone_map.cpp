@@ -145,9 +145,6 @@ void conservative_along_line(const std::vector<float>& h, int sub, size_t apexes
   }
 }
 
-// Depth by which h / n must rise across a segment for the relaxed test to count it.
-constexpr float kRelaxedTie = 1e-6f;
-
 // How much wider than the cone found so far a block's bound must be before the scan steps over
 // it: rounding in the bound's arithmetic must never hide a segment that narrows the cone by an
 // ulp. Without it the map depended, at the last bit of a few texels, on the order the cores
@@ -162,6 +159,9 @@ constexpr float kSkipSlack = 1.0f + 1e-5f;
 // near end of those that descend along the line; only a descending segment can pass the test).
 struct RelaxedLineScan {
   std::vector<std::vector<float>> block_min;  // levels below kGroupLevel left empty
+  // Per block, the apex position from which on none of its segments is left, whatever the
+  // cone (the largest relaxed_segment_left_only_before of its segments).
+  std::vector<std::vector<int32_t>> block_exit;
 
   void build(const std::vector<float>& h) {
     const float none = std::numeric_limits<float>::infinity();
@@ -171,14 +171,22 @@ struct RelaxedLineScan {
     if (levels <= size_t(kGroupLevel)) return;  // the scan tests every segment
     // Blocks smaller than a group are never stepped over (narrow_group), so the first level
     // kept is the groups', taken from the samples themselves.
+    block_exit.resize(levels);
     std::vector<float>& groups = block_min[size_t(kGroupLevel)];
+    std::vector<int32_t>& group_exit = block_exit[size_t(kGroupLevel)];
     groups.resize((h.size() + kGroup - 1) / kGroup);
+    group_exit.resize(groups.size());
     for (size_t b = 0; b < groups.size(); ++b) {
       float least = none;
+      int32_t latest = kNeverLeft;
       for (size_t k = std::max<size_t>(1, b * kGroup); k < std::min(h.size(), (b + 1) * kGroup);
            ++k)
-        if (h[k] > h[k - 1]) least = std::min(least, h[k - 1]);
+        if (h[k] > h[k - 1]) {
+          least = std::min(least, h[k - 1]);
+          latest = std::max(latest, exit_from(h, k));
+        }
       groups[b] = least;
+      group_exit[b] = latest;
     }
     for (size_t l = size_t(kGroupLevel) + 1; l < levels; ++l) {
       const std::vector<float>& finer = block_min[l - 1];
@@ -187,7 +195,20 @@ struct RelaxedLineScan {
       for (size_t b = 0; b + 1 < finer.size(); b += 2)
         coarser[b / 2] = std::min(finer[b], finer[b + 1]);
       if (finer.size() % 2) coarser.back() = finer.back();
+      const std::vector<int32_t>& finer_exit = block_exit[l - 1];
+      std::vector<int32_t>& coarser_exit = block_exit[l];
+      coarser_exit.assign((finer_exit.size() + 1) / 2, kNeverLeft);
+      for (size_t b = 0; b + 1 < finer_exit.size(); b += 2)
+        coarser_exit[b / 2] = std::max(finer_exit[b], finer_exit[b + 1]);
+      if (finer_exit.size() % 2) coarser_exit.back() = finer_exit.back();
     }
+  }
+
+  static constexpr int32_t kNeverLeft = std::numeric_limits<int32_t>::min();  // no segment
+
+  // The position at and past which no apex is left across segment k.
+  static int32_t exit_from(const std::vector<float>& h, size_t k) {
+    return relaxed_segment_left_only_before(h[k - 1], h[k], k);
   }
 
   // The least samples across per unit of depth rise for the apex at sample i, from `widest`.
@@ -204,6 +225,7 @@ struct RelaxedLineScan {
       const float near = float(k - 1 - i);  // no candidate end in a block at k is nearer
       int l = std::min(top, __builtin_ctzll(k));
       for (; l >= kGroupLevel; --l) {
+        if (block_exit[size_t(l)][k >> l] <= int64_t(i)) break;  // no segment in it is left
         const float m = block_min[size_t(l)][k >> l];
         if (m >= apex || near >= best * (apex - m) * kSkipSlack) break;
       }
@@ -264,7 +286,7 @@ struct RelaxedLineScan {
                      size_t& narrowest) {
     const float hk = h[k], hp = h[k - 1];
     const float n = float(k - i);
-    if (!(hk * (n - 1) > (hp + kRelaxedTie) * n)) return;
+    if (!relaxed_segment_leaves(hp, hk, n)) return;
     const float at_end = hk < apex ? n / (apex - hk) : best;
     const float at_start = hp < apex ? (n - 1) / (apex - hp) : best;
     if (std::min(at_end, at_start) < best) {

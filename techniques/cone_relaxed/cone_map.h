@@ -21,6 +21,8 @@
 // cones scan ahead of each apex only until nothing farther could narrow the cone (distance /
 // apex depth >= the ratio found), stepping over blocks of segments that cannot.
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -63,6 +65,29 @@ ConeMap compute_cone_map(const ReliefMap& map, const ConeMapOptions& options);
 // they come free).
 ConeMap compute_cone_map_in_order(const ReliefMap& map, const ConeMapOptions& options,
                                   const std::vector<size_t>& order);
+
+// The relaxed test of one segment (samples k - 1 to k, depths h_start to h_end): the ray from
+// the top point above an apex n samples before k leaves the surface across it when h / n rises
+// by more than a tie, in float as the scan computes it (a surface along the ray is not left,
+// however floats round a blend).
+constexpr float kRelaxedTie = 1e-6f;
+inline bool relaxed_segment_leaves(float h_start, float h_end, float n) {
+  return h_end * (n - 1) > (h_start + kRelaxedTie) * n;
+}
+
+// Where along the line that test can last hold: for every apex at sample i >= the returned
+// value (n = k - i), relaxed_segment_leaves(h_start, h_end, n) is false; INT32_MIN when it is
+// false for every apex. The scan steps over a block whose segments all give i or less. With d
+// = h_start + kRelaxedTie as the test rounds it, h_end (n - 1) <= d n holds exactly for n <=
+// h_end / (h_end - d), and rounding each product to float keeps their order, so the test fails
+// there; one sample more covers the rounding of that quotient in double
+// (ConeMap.RelaxedSegmentBoundHoldsEverywhere).
+inline int32_t relaxed_segment_left_only_before(float h_start, float h_end, size_t k) {
+  const float d = h_start + kRelaxedTie;
+  if (!(h_end > d)) return std::numeric_limits<int32_t>::min();
+  const double lag = double(h_end) / (double(h_end) - double(d));
+  return int32_t(std::ceil(double(k) - lag)) + 1;
+}
 
 // The ratios the shader reads through GL_LINEAR: each texel's the least over its 3 x 3
 // neighbourhood (wrapping), so the ratio interpolated anywhere in a cell is no wider than the
