@@ -156,7 +156,8 @@ constexpr float kSkipSlack = 1.0f + 1e-5f;
 // when h / n rises across it, n the distance from the apex in samples. Scanned forward per apex
 // until nothing farther can narrow the cone, stepping over aligned blocks of segments whose
 // highest candidate end cannot (`block_min[l]`: per block of 2^l segments, the least depth of the
-// near end of those that descend along the line; only a descending segment can pass the test).
+// near end of those that descend along the line; only a descending segment can pass the test),
+// or none of which this apex's ray can leave yet (`block_exit[l]`).
 struct RelaxedLineScan {
   std::vector<std::vector<float>> block_min;  // levels below kGroupLevel left empty
   // Per block, the apex position from which on none of its segments is left, whatever the
