@@ -190,19 +190,19 @@ struct RelaxedLineScan {
       group_exit[b] = latest;
     }
     for (size_t l = size_t(kGroupLevel) + 1; l < levels; ++l) {
-      const std::vector<float>& finer = block_min[l - 1];
-      std::vector<float>& coarser = block_min[l];
-      coarser.assign((finer.size() + 1) / 2, none);
-      for (size_t b = 0; b + 1 < finer.size(); b += 2)
-        coarser[b / 2] = std::min(finer[b], finer[b + 1]);
-      if (finer.size() % 2) coarser.back() = finer.back();
-      const std::vector<int32_t>& finer_exit = block_exit[l - 1];
-      std::vector<int32_t>& coarser_exit = block_exit[l];
-      coarser_exit.assign((finer_exit.size() + 1) / 2, kNeverLeft);
-      for (size_t b = 0; b + 1 < finer_exit.size(); b += 2)
-        coarser_exit[b / 2] = std::max(finer_exit[b], finer_exit[b + 1]);
-      if (finer_exit.size() % 2) coarser_exit.back() = finer_exit.back();
+      coarsen(block_min[l - 1], block_min[l], [](float a, float b) { return std::min(a, b); });
+      coarsen(block_exit[l - 1], block_exit[l],
+              [](int32_t a, int32_t b) { return std::max(a, b); });
     }
+  }
+
+  // Each pair of blocks of `finer` combined into one of `coarser`; an odd last one kept.
+  template <class T, class Combine>
+  static void coarsen(const std::vector<T>& finer, std::vector<T>& coarser, Combine combine) {
+    coarser.resize((finer.size() + 1) / 2);
+    for (size_t b = 0; b + 1 < finer.size(); b += 2)
+      coarser[b / 2] = combine(finer[b], finer[b + 1]);
+    if (finer.size() % 2) coarser.back() = finer.back();
   }
 
   static constexpr int32_t kNeverLeft = std::numeric_limits<int32_t>::min();  // no segment
