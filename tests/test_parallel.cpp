@@ -18,7 +18,8 @@ TEST(Parallel, CpuMaxLinesGiveTheirCoresRoundedUp) {
   EXPECT_EQ(cores_of_cpu_max("150000 100000\n"), 2u);  // 1.5 cores: both may run
   EXPECT_EQ(cores_of_cpu_max("50000 100000"), 1u);
   EXPECT_EQ(cores_of_cpu_max("max 100000"), 0u);  // no quota
-  for (const char* broken : {"", "100000", "abc 100000", "100000 0", "-5 100000", "1e5x 100000"})
+  for (const char* broken :
+       {"", "100000", "abc 100000", "100000 0", "-5 100000", "1e5x 100000", "1e300 1"})
     EXPECT_EQ(cores_of_cpu_max(broken), 0u) << "'" << broken << "'";
 }
 

@@ -47,7 +47,7 @@ size_t cores_of_cpu_max(const std::string& line) {
   if (!(in >> quota >> period) || !(period > 0) || quota == "max") return 0;
   char* end = nullptr;
   const double q = std::strtod(quota.c_str(), &end);
-  if (end == quota.c_str() || *end != '\0' || !(q > 0)) return 0;
+  if (end == quota.c_str() || *end != '\0' || !(q > 0) || !(q / period < 1e6)) return 0;
   return size_t(std::ceil(q / period));
 }
 

@@ -1,6 +1,6 @@
 #pragma once
-// A minimal parallel loop over [0, n) in contiguous chunks on the machine's cores. Used for
-// per-pixel truth tracing and precomputation, where each index writes its own output.
+// A minimal parallel loop over [0, n) in contiguous chunks on the cores this process may use.
+// Used for per-pixel truth tracing and precomputation, where each index writes its own output.
 #include <algorithm>
 #include <atomic>
 #include <functional>
