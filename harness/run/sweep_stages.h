@@ -50,6 +50,7 @@ struct Asset {
   std::map<std::string, std::pair<std::unique_ptr<Technique>, double>> prepared;
 };
 
+// The truth of one (asset, viewport, view): its G-buffer and how it was traced.
 struct TruthView {
   GBuffer g;
   TruthStats stats;
