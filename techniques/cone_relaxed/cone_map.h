@@ -75,10 +75,10 @@ inline bool relaxed_segment_leaves(float h_start, float h_end, float n) {
   return h_end * (n - 1) > (h_start + kRelaxedTie) * n;
 }
 
-// Where along the line that test can last hold: for every apex at sample i >= the returned
-// value (n = k - i), relaxed_segment_leaves(h_start, h_end, n) is false; INT32_MIN when it is
-// false for every apex. The scan steps over a block whose segments all give i or less. With d
-// = h_start + kRelaxedTie as the test rounds it, h_end (n - 1) <= d n holds exactly for n <=
+// The apex position from which on segment k is never left: for every apex at sample i >= the
+// returned value (n = k - i), relaxed_segment_leaves(h_start, h_end, n) is false; INT32_MIN
+// when it is false for every apex. The scan steps over a block whose segments all give i or less.
+// With d = h_start + kRelaxedTie as the test rounds it, h_end (n - 1) <= d n holds exactly for n <=
 // h_end / (h_end - d), and rounding each product to float keeps their order, so the test fails
 // there; one sample more covers the rounding of that quotient in double
 // (ConeMap.RelaxedSegmentBoundHoldsEverywhere).
