@@ -9,7 +9,7 @@ other folder's (issue 32: each at 1024^2 in at most 1 s on 2 cores).
 One row per precompute, map and size: the fastest and slowest of the runs (this machine's wall
 times move by up to 25% between identical runs, so the fastest is the figure quoted), the map's
 fingerprint (the same bits in every run, or the script stops), the cores it may use (its affinity
-mask: `taskset -c 0,1` times 2 cores on a bigger machine) and the date. The
+mask: `taskset -c 0,1` times 2 cores on a bigger machine), the processor's name and the date. The
 per-texel march and its fragment-shader version are left out: they are the slow references
 (tens of seconds at 1024^2), timed by the benchmark itself.
 """
@@ -36,6 +36,19 @@ def describe(family, case):
     if family == "BM_AoMap":
         return "ao_map", case.removeprefix("ao_")
     raise SystemExit(f"precompute-times-rows: unknown benchmark family {family}")
+
+
+def cpu_model():
+    """The processor's name as the kernel gives it ("Intel(R) Xeon(R) Processor"): the verdicts
+    are about one machine, and rows from two machines differ by up to 40% (README)."""
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return "unknown"
 
 
 def main():
@@ -69,7 +82,8 @@ def main():
             "precompute": precompute, "map": map_name, "texture_res": size,
             "precompute_ms": f"{min(times):.1f}", "precompute_ms_slowest": f"{max(times):.1f}",
             "runs": len(times), "fingerprint": f"{int(fingerprints.pop()):d}",
-            "cores": len(os.sched_getaffinity(0)), "measured": datetime.date.today().isoformat()})
+            "cores": len(os.sched_getaffinity(0)), "cpu": cpu_model(),
+            "measured": datetime.date.today().isoformat()})
     rows.sort(key=lambda r: (r["precompute"], r["map"], r["texture_res"]))
     os.makedirs(FOLDER, exist_ok=True)
     path = os.path.join(FOLDER, "rows.csv")
