@@ -273,13 +273,7 @@ double HeightfieldTruth::first_hit(const glm::dvec3& o, const glm::dvec3& d, dou
 TruthHit HeightfieldTruth::intersect(const glm::dvec3& origin, const glm::dvec3& direction,
                                      double t_min, double t_max) const {
   ++primary_rays_;
-  TruthHit result;
-  const double t = first_hit(origin, direction, t_min, t_max);
-  if (std::isnan(t)) return result;
-  result.hit = true;
-  result.t = t;
-  result.point = origin + direction * t;
-  return result;
+  return hit_at(origin, direction, first_hit(origin, direction, t_min, t_max));
 }
 
 bool HeightfieldTruth::occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,

@@ -141,13 +141,7 @@ double MetaReliefTruth::first_hit(const glm::dvec3& o, const glm::dvec3& d, doub
 TruthHit MetaReliefTruth::intersect(const glm::dvec3& origin, const glm::dvec3& direction,
                                     double t_min, double t_max) const {
   ++primary_rays_;
-  TruthHit hit;
-  const double t = first_hit(origin, direction, t_min, t_max);
-  if (std::isnan(t)) return hit;
-  hit.hit = true;
-  hit.t = t;
-  hit.point = origin + direction * t;
-  return hit;
+  return hit_at(origin, direction, first_hit(origin, direction, t_min, t_max));
 }
 
 bool MetaReliefTruth::occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,

@@ -4,6 +4,7 @@
 // and "source" truth levels of DESIGN.md, so a table can split search error from
 // representation error.
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -52,6 +53,16 @@ class TruthSurface {
   uint64_t shadow_rays() const { return shadow_rays_.load(); }
 
  protected:
+  // The hit at ray parameter t, or none where t is NaN: the answer of a truth that solves for
+  // the first crossing's parameter alone (no normal or albedo of its own).
+  static TruthHit hit_at(const glm::dvec3& origin, const glm::dvec3& direction, double t) {
+    TruthHit hit;
+    if (std::isnan(t)) return hit;
+    hit.hit = true;
+    hit.t = t;
+    hit.point = origin + direction * t;
+    return hit;
+  }
   mutable ShardedCounter primary_rays_;
   mutable ShardedCounter shadow_rays_;
 };
