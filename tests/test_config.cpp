@@ -50,7 +50,9 @@ struct BadCase {
   std::vector<std::string> expected;  // substrings of the message
 };
 
-TEST(ConfigErrors, EachNamesTheProblemAndWritesNothing) {
+// Every bad input, a test each: `test_config --gtest_filter=BadConfig.unknown_key` runs one,
+// `ctest -R BadConfig` all of them.
+const std::vector<BadCase>& bad_cases() {
   // Normal mapping only shades the base; the scene draws its bounding box.
   const std::string normal_on_box_scene = replace(
       replace(replace(kGood, "name = \"relief\"", "name = \"normal\""), "linear_steps = [4]", ""),
@@ -59,7 +61,7 @@ TEST(ConfigErrors, EachNamesTheProblemAndWritesNothing) {
   const std::string parallax_on_shadowed_scene = replace(
       replace(replace(kGood, "name = \"relief\"", "name = \"parallax\""), "linear_steps = [4]", ""),
       "[[technique]]", "effects = [\"self_shadow\"]\n[[technique]]");
-  const std::vector<BadCase> cases = {
+  static const std::vector<BadCase> cases = {
       {"unknown_key",
        replace(kGood, "frames = 1", "frames = 1\nframez = 2"),
        {"sweep.toml:7", "unknown key 'framez'", "[sweep]"}},
@@ -263,19 +265,37 @@ TEST(ConfigErrors, EachNamesTheProblemAndWritesNothing) {
        replace(kGood, "frames = 1", "frames = = 1"),
        {"sweep.toml:6", "TOML syntax error"}},
   };
-  for (const BadCase& c : cases) {
-    SCOPED_TRACE(c.name);
-    const std::string dir = test::scratch_dir(c.name);
-    const std::string config = write_config(dir, c.text);
+  return cases;
+}
+
+// One bad input: the CLI exits 2 with a config error naming it, and writes nothing.
+class BadConfig : public ::testing::Test {
+ public:
+  explicit BadConfig(const BadCase& c) : c_(c) {}
+  void TestBody() override {
+    const std::string dir = test::scratch_dir(c_.name);
+    const std::string config = write_config(dir, c_.text);
     const std::string out = dir + "/out";
     std::string output;
     EXPECT_EQ(test::run_cli("run " + config + " --out " + out, output), 2) << output;
     EXPECT_NE(output.find("config error"), std::string::npos) << output;
-    for (const auto& e : c.expected)
+    for (const auto& e : c_.expected)
       EXPECT_NE(output.find(e), std::string::npos) << "expected '" << e << "' in: " << output;
     EXPECT_FALSE(fs::exists(out)) << "a failed config wrote " << out;
   }
-}
+
+ private:
+  const BadCase& c_;
+};
+
+// Registered by name rather than as a value-parameterised suite: CTest runs the suite as one
+// test in one process (cmake/GroupedGoogleTests.cmake), and gtest names each failing input.
+const bool kBadConfigsRegistered = [] {
+  for (const BadCase& c : bad_cases())
+    ::testing::RegisterTest("BadConfig", c.name, nullptr, nullptr, __FILE__, __LINE__,
+                            [&c]() -> BadConfig* { return new BadConfig(c); });
+  return true;
+}();
 
 TEST(ConfigErrors, EarlierResultsSurviveABadConfig) {
   const std::string dir = test::scratch_dir("keep");
@@ -349,7 +369,7 @@ TEST(ConfigErrors, BadAssetsInALaterSceneStopTheRunBeforeAnythingIsWritten) {
   write_png(files + "/grey_alpha.png", 8, 8, 2, std::vector<float>(8 * 8 * 2, 0.5f));
   std::ofstream(files + "/claims_huge.png", std::ios::binary) << png_header_only(100000, 100000);
   const std::string scene = "[[scene]]\nname = \"later\"\n";
-  const std::vector<BadCase> cases = {
+  static const std::vector<BadCase> cases = {
       {"no_alpha",
        with_second_scene(scene + "relief = { normal = \"" + files + "/rgb.png\" }"),
        {"scene 'later'", "rgb.png: a normal map holds RGB normals and depth in alpha"}},
