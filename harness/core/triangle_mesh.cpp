@@ -95,23 +95,13 @@ void check_ply_counts(const std::string& path) {
                       std::to_string((long long)size) + " (cut short, or a wrong count)");
 }
 
-}  // namespace
-
-TriangleMesh load_mesh(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (extension == ".ply") check_ply_counts(path);
-  Assimp::Importer importer;
-  const aiScene* scene =
-      importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                  aiProcess_PreTransformVertices);
-  if (!scene)
-    throw ConfigError("cannot read mesh " + path + ": " + one_line(importer.GetErrorString()));
+// Assimp's meshes, triangulated, in one list; texture coordinates only if every mesh has them.
+TriangleMesh mesh_from_scene(const aiScene& scene, const std::string& path) {
   TriangleMesh m;
   m.name = path;
   bool all_uvs = true;
-  for (unsigned mi = 0; mi < scene->mNumMeshes; ++mi) {
-    const aiMesh* am = scene->mMeshes[mi];
+  for (unsigned mi = 0; mi < scene.mNumMeshes; ++mi) {
+    const aiMesh* am = scene.mMeshes[mi];
     const unsigned base = unsigned(m.positions.size());
     const aiVector3D* uv = am->HasTextureCoords(0) ? am->mTextureCoords[0] : nullptr;
     all_uvs = all_uvs && uv;
@@ -127,7 +117,12 @@ TriangleMesh load_mesh(const std::string& path) {
   }
   if (m.triangles.empty()) throw ConfigError("mesh " + path + " holds no triangles");
   if (!all_uvs) m.uvs.clear();
-  // Input that would measure nothing, or measure garbage, is an error naming the file.
+  return m;
+}
+
+// Input that would measure nothing, or measure garbage, is an error naming the file: values
+// that are not finite or too large to render, and faces naming vertices the file lacks.
+void check_values(const TriangleMesh& m, const std::string& path) {
   constexpr double kLargest = 1e15;  // beyond this, float positions lose all precision in GL
   for (size_t i = 0; i < m.positions.size(); ++i) {
     const glm::vec3& p = m.positions[i];
@@ -146,11 +141,11 @@ TriangleMesh load_mesh(const std::string& path) {
   for (const auto& uv : m.uvs)
     if (!std::isfinite(uv.x) || !std::isfinite(uv.y))
       throw ConfigError("mesh " + path + ": a texture coordinate is not finite");
-  m.lo = m.hi = glm::dvec3(m.positions[0]);
-  for (const auto& p : m.positions) {
-    m.lo = glm::min(m.lo, glm::dvec3(p));
-    m.hi = glm::max(m.hi, glm::dvec3(p));
-  }
+}
+
+// A mesh whose triangles all have no area, or only slivers beside its extent (a stray vertex
+// far from the rest), is an error naming the file and the vertex.
+void check_not_degenerate(const TriangleMesh& m, const std::string& path) {
   const double extent = glm::length(m.hi - m.lo);
   double largest_area = 0;
   glm::dvec3 largest_centre(0);
@@ -161,22 +156,42 @@ TriangleMesh load_mesh(const std::string& path) {
   }
   if (!(extent > 0) || !(largest_area > 0))
     throw ConfigError("mesh " + path + " is degenerate: every triangle has zero area");
-  if (!(largest_area > 1e-12 * extent * extent)) {
-    // Triangles with area, dwarfed by the extent: a vertex far from the rest.
-    size_t far = 0;
-    for (size_t i = 1; i < m.positions.size(); ++i)
-      if (glm::length(glm::dvec3(m.positions[i]) - largest_centre) >
-          glm::length(glm::dvec3(m.positions[far]) - largest_centre))
-        far = i;
-    const glm::vec3 p = m.positions[far];
-    char text[256];
-    std::snprintf(text, sizeof text,
-                  ": its triangles are slivers beside its extent of %.3g (the largest has area "
-                  "%.3g): vertex %zu lies at (%.3g, %.3g, %.3g), far from the rest (a stray "
-                  "vertex?)",
-                  extent, largest_area, far, p.x, p.y, p.z);
-    throw ConfigError("mesh " + path + text);
+  if (largest_area > 1e-12 * extent * extent) return;
+  size_t far = 0;
+  for (size_t i = 1; i < m.positions.size(); ++i)
+    if (glm::length(glm::dvec3(m.positions[i]) - largest_centre) >
+        glm::length(glm::dvec3(m.positions[far]) - largest_centre))
+      far = i;
+  const glm::vec3 p = m.positions[far];
+  char text[256];
+  std::snprintf(text, sizeof text,
+                ": its triangles are slivers beside its extent of %.3g (the largest has area "
+                "%.3g): vertex %zu lies at (%.3g, %.3g, %.3g), far from the rest (a stray "
+                "vertex?)",
+                extent, largest_area, far, p.x, p.y, p.z);
+  throw ConfigError("mesh " + path + text);
+}
+
+}  // namespace
+
+TriangleMesh load_mesh(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (extension == ".ply") check_ply_counts(path);
+  Assimp::Importer importer;
+  const aiScene* scene =
+      importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                  aiProcess_PreTransformVertices);
+  if (!scene)
+    throw ConfigError("cannot read mesh " + path + ": " + one_line(importer.GetErrorString()));
+  TriangleMesh m = mesh_from_scene(*scene, path);
+  check_values(m, path);
+  m.lo = m.hi = glm::dvec3(m.positions[0]);
+  for (const auto& p : m.positions) {
+    m.lo = glm::min(m.lo, glm::dvec3(p));
+    m.hi = glm::max(m.hi, glm::dvec3(p));
   }
+  check_not_degenerate(m, path);
   return m;
 }
 
