@@ -1,6 +1,32 @@
 #include "config/config_effects.h"
 
 namespace rl {
+namespace {
+
+using MapMethod = AmbientOcclusionDesc::MapMethod;
+constexpr std::pair<MapMethod, const char*> kMapMethods[] = {
+    {MapMethod::LineSweep, "line_sweep"},
+    {MapMethod::March, "march"},
+    {MapMethod::FragmentShader, "fragment_shader"}};
+
+const char* ao_map_method_name(MapMethod m) {
+  for (const auto& [method, name] : kMapMethods)
+    if (method == m) return name;
+  return "line_sweep";
+}
+
+MapMethod ao_map_method_of(const toml::node& n, const Src& src) {
+  const std::string name = string_of(n, src, "map_method");
+  for (const auto& [method, known] : kMapMethods)
+    if (name == known) return method;
+  fail(src.at(n),
+       "'map_method' must be \"line_sweep\" (the CPU's line sweep, the default), \"march\" (the "
+       "paper's per-texel march on the CPU) or \"fragment_shader\" (that march on the GPU), got "
+       "\"" +
+           name + "\"");
+}
+
+}  // namespace
 
 void parse_effect_options(const toml::table& t, const Src& src, const toml::node& scene_node,
                           SceneDesc& s, nlohmann::json& canon) {
@@ -22,9 +48,10 @@ void parse_effect_options(const toml::table& t, const Src& src, const toml::node
     if (!o)
       fail(src.at(*options),
            "'ambient_occlusion' must be a table, e.g. { map_depth = 0.04, update = \"eq6\" }");
-    check_keys(
-        *o, {"directions", "filter", "map_depth", "update", "samples", "stderr_target", "render"},
-        src, "ambient_occlusion");
+    check_keys(*o,
+               {"directions", "filter", "map_depth", "map_method", "update", "samples",
+                "stderr_target", "render"},
+               src, "ambient_occlusion");
     if (auto* n = o->get("directions"))
       s.ao.directions = positive_int(*n, src, "directions", 8, 720);
     if (auto* n = o->get("filter")) s.ao.filter = boolean_of(*n, src, "filter");
@@ -43,6 +70,7 @@ void parse_effect_options(const toml::table& t, const Src& src, const toml::node
     if (auto* n = o->get("stderr_target"))
       s.ao.stderr_target = number_in(*n, src, "stderr_target", 0, 0.5);
     if (auto* n = o->get("render")) s.ao.render = boolean_of(*n, src, "render");
+    if (auto* n = o->get("map_method")) s.ao.map_method = ao_map_method_of(*n, src);
   }
   canon["ambient_occlusion"] = {
       {"directions", s.ao.directions},
@@ -53,6 +81,8 @@ void parse_effect_options(const toml::table& t, const Src& src, const toml::node
       {"stderr_target", s.ao.stderr_target}};
   // Only where set, so that every earlier AO scene keeps its key.
   if (!s.ao.render) canon["ambient_occlusion"]["render"] = false;
+  if (s.ao.map_method != AmbientOcclusionDesc::MapMethod::LineSweep)
+    canon["ambient_occlusion"]["map_method"] = ao_map_method_name(s.ao.map_method);
 }
 
 }  // namespace rl

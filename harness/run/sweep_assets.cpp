@@ -8,6 +8,7 @@
 #include "relief/cell_complex.h"
 #include "relief/meta_relief.h"
 #include "scene/relief_asset.h"
+#include "technique/gpu_ao_map.h"
 
 namespace rl {
 namespace {
@@ -67,7 +68,8 @@ std::unique_ptr<Asset> build_asset(const SweepConfig& config, const SceneDesc& s
   }
   if (scene.drawn_effects().has(Effect::AmbientOcclusion))
     stage("computing the ambient occlusion map");
-  const AoMap ao = attach_ao_map(asset->map, scene, asset->texel_world);
+  const AoMap ao =
+      attach_ao_map(asset->map, scene, asset->texel_world, ao_map_method(scene.ao.map_method));
   asset->ao_ms = ao.compute_ms;
   asset->ao_from_cache = ao.from_cache;
   asset->relief = std::make_unique<GpuRelief>(asset->map, scene.meta.runtime());

@@ -10,6 +10,18 @@
 
 namespace rl {
 
+AoMapMethod ao_map_method(AmbientOcclusionDesc::MapMethod method) {
+  switch (method) {
+    case AmbientOcclusionDesc::MapMethod::March:
+      return {"march", compute_ao_map_march};
+    case AmbientOcclusionDesc::MapMethod::FragmentShader:
+      return {"fragment_shader", compute_ao_map_gpu};
+    case AmbientOcclusionDesc::MapMethod::LineSweep:
+      break;
+  }
+  return {};
+}
+
 AoMap compute_ao_map_gpu(const ReliefMap& map, const AoMapOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   GlContext::shared();
