@@ -12,6 +12,7 @@
 
 #include "../techniques/cone_relaxed/cone_map.h"
 #include "../techniques/relief_robust/safety_radius.h"
+#include "gl/context.h"
 #include "relief/ao_map.h"
 #include "relief/image_io.h"
 #include "relief/procedural.h"
@@ -126,7 +127,10 @@ void BM_AoMap(benchmark::State& state, std::string kind, AoMethod method) {
   const ReliefMap map = bench_map(kind, size);
   AoMapOptions o;
   o.height_texels = 0.08 * size;
-  if (method == AoMethod::Shader) compute_ao_map_gpu(bench_map(kind, 16), o);  // compile first
+  if (method == AoMethod::Shader) {
+    compute_ao_map_gpu(bench_map(kind, 16), o);      // compile first
+    state.SetLabel(GlContext::shared().renderer());  // whose fragment shader it timed
+  }
   AoMap a;
   for (auto _ : state) {
     a = method == AoMethod::Sweep   ? compute_ao_map(map, o)
