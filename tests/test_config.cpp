@@ -369,7 +369,7 @@ TEST(ConfigErrors, BadAssetsInALaterSceneStopTheRunBeforeAnythingIsWritten) {
   write_png(files + "/grey_alpha.png", 8, 8, 2, std::vector<float>(8 * 8 * 2, 0.5f));
   std::ofstream(files + "/claims_huge.png", std::ios::binary) << png_header_only(100000, 100000);
   const std::string scene = "[[scene]]\nname = \"later\"\n";
-  static const std::vector<BadCase> cases = {
+  const std::vector<BadCase> cases = {
       {"no_alpha",
        with_second_scene(scene + "relief = { normal = \"" + files + "/rgb.png\" }"),
        {"scene 'later'", "rgb.png: a normal map holds RGB normals and depth in alpha"}},
