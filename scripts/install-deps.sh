@@ -8,6 +8,7 @@ packages=(
   python3                             # figure scripts read rows.csv (scripts/limberger-fig14-figures.sh)
   libembree-dev                       # truth: Embree 3 ray tracing
   libopenimageio-dev openimageio-tools # image files (the tools package is needed by OIIO's CMake config)
+  libstb-dev                          # the fallback image module the relocatable package carries
   libopencv-core-dev libopencv-imgproc-dev # PSNR, SSIM, heat-map colour maps
   libglm-dev                          # maths
   libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri # headless GL 4.5 via EGL

@@ -25,6 +25,7 @@ TEST(Layers, HarnessFoldersIncludeOnlyTheLayersBelowThem) {
       {"gl", {"core", "gl"}},
       {"relief", {"core", "relief"}},
       {"oiio", {"relief"}},  // the image module: relief/image_backend.h through OpenImageIO
+      {"stb", {"relief"}},   // its fallback through Debian's stb
       {"metrics", {"core", "metrics"}},
       {"scene", {"core", "relief", "scene"}},
       {"truth", {"core", "relief", "scene", "truth"}},

@@ -106,7 +106,7 @@ void resize(const float* pixels, int w, int h, int channels, float* out, int to_
   resized.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, out);
 }
 
-const ImageBackend kBackend{read_header, read_pixels, write, resize};
+const ImageBackend kBackend{read_header, read_pixels, write, resize, "OpenImageIO"};
 
 }  // namespace
 }  // namespace rl

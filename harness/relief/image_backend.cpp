@@ -16,40 +16,83 @@ namespace {
 
 constexpr const char* kEntry = "relieflab_image_backend";
 
-const ImageBackend* load_backend() {
+struct LoadedBackend {
+  const ImageBackend* backend = nullptr;
+  std::string description;
+};
+
+// Where a module named `file` may be: beside the libraries (the build folder, or <prefix>/lib
+// installed), the path the build wrote in, beside the running program.
+std::vector<std::string> module_candidates(const std::string& file, const char* built_path) {
   std::vector<std::string> candidates;
-  if (const char* env = std::getenv("RELIEFLAB_IMAGE_MODULE"); env && *env)
-    candidates.push_back(env);
-  // Beside the libraries: in the build folder, or <prefix>/lib when installed.
-  if (const std::string dir = library_dir(); !dir.empty())
-    candidates.push_back(dir + "/librelieflab_oiio.so");
-#ifdef RELIEFLAB_IMAGE_MODULE
-  candidates.push_back(RELIEFLAB_IMAGE_MODULE);
-#endif
+  if (const std::string dir = library_dir(); !dir.empty()) candidates.push_back(dir + "/" + file);
+  if (built_path && *built_path) candidates.push_back(built_path);
   std::error_code ec;
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) candidates.push_back((self.parent_path() / "librelieflab_oiio.so").string());
-  std::string tried;
+  if (!ec) candidates.push_back((self.parent_path() / file).string());
+  return candidates;
+}
+
+// The first of `candidates` that loads and has the entry point; `tried` collects why the
+// others did not.
+const ImageBackend* first_loading(const std::vector<std::string>& candidates, std::string& from,
+                                  std::string& tried) {
   for (const std::string& path : candidates) {
     if (void* module = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) {
       using Entry = const ImageBackend* (*)();
-      if (auto entry = reinterpret_cast<Entry>(dlsym(module, kEntry))) return entry();
+      if (auto entry = reinterpret_cast<Entry>(dlsym(module, kEntry))) {
+        from = path;
+        return entry();
+      }
       tried += "\n  " + path + ": no " + kEntry;
       continue;
     }
     const char* why = dlerror();
     tried += "\n  " + path + ": " + (why ? why : "cannot load");
   }
-  throw std::runtime_error("cannot load the image module (OpenImageIO); tried:" + tried);
+  return nullptr;
+}
+
+#ifndef RELIEFLAB_IMAGE_MODULE
+#define RELIEFLAB_IMAGE_MODULE ""
+#endif
+#ifndef RELIEFLAB_IMAGE_FALLBACK_MODULE
+#define RELIEFLAB_IMAGE_FALLBACK_MODULE ""
+#endif
+
+LoadedBackend load_backend() {
+  std::string from, tried;
+  if (const char* env = std::getenv("RELIEFLAB_IMAGE_MODULE"); env && *env) {
+    if (const ImageBackend* b = first_loading({env}, from, tried))
+      return {b, std::string(b->name) + " from " + from + " (RELIEFLAB_IMAGE_MODULE)"};
+    throw std::runtime_error("cannot load the image module RELIEFLAB_IMAGE_MODULE names:" + tried);
+  }
+  const auto oiio = module_candidates("librelieflab_oiio.so", RELIEFLAB_IMAGE_MODULE);
+  if (const ImageBackend* b = first_loading(oiio, from, tried)) return {b, std::string(b->name)};
+  const std::string oiio_failures = tried;
+  const auto stb = module_candidates("librelieflab_stb.so", RELIEFLAB_IMAGE_FALLBACK_MODULE);
+  if (const ImageBackend* b = first_loading(stb, from, tried))
+    return {b, std::string(b->name) + " from " + from +
+                   " (the fallback: OpenImageIO's module did not load:" + oiio_failures + ")"};
+  throw std::runtime_error(
+      "cannot load an image module (OpenImageIO, or the stb fallback); tried:" + tried);
+}
+
+const LoadedBackend& loaded() {
+  static std::once_flag once;
+  static LoadedBackend backend;
+  std::call_once(once, [] { backend = load_backend(); });
+  return backend;
 }
 
 }  // namespace
 
 const ImageBackend& image_backend() {
-  static std::once_flag once;
-  static const ImageBackend* backend = nullptr;
-  std::call_once(once, [] { backend = load_backend(); });
-  return *backend;
+  return *loaded().backend;
+}
+
+std::string image_backend_description() {
+  return loaded().description;
 }
 
 }  // namespace rl

@@ -48,11 +48,18 @@ struct ImageBackend {
   // Resamples a `channels`-channel float image from (w, h) to (to_w, to_h) with OpenImageIO's
   // default resize filter.
   void (*resize)(const float* pixels, int w, int h, int channels, float* out, int to_w, int to_h);
+  const char* name;  // what reads and writes the files, for the run's log
 };
 
-// The backend, loaded on first use: from $RELIEFLAB_IMAGE_MODULE, else beside the ReliefLab
-// libraries (the build folder, or <prefix>/lib installed), else the path the build wrote in,
-// else beside the running program. Throws std::runtime_error naming what it tried.
+// The backend, loaded on first use: from $RELIEFLAB_IMAGE_MODULE alone when it is set, else the
+// OpenImageIO module (librelieflab_oiio.so) beside the ReliefLab libraries (the build folder,
+// or <prefix>/lib installed), the path the build wrote in, or beside the running program; where
+// none of those loads, the stb fallback (librelieflab_stb.so) from the same places. Throws
+// std::runtime_error naming what it tried.
 const ImageBackend& image_backend();
+
+// Which module reads and writes images, from where, and why the fallback if it is one: a line
+// for the run's log. Loads the module if nothing has yet.
+std::string image_backend_description();
 
 }  // namespace rl

@@ -24,6 +24,7 @@
 #include "output/run_folder.h"
 #include "output/tables.h"
 #include "relief/cell_complex.h"
+#include "relief/image_backend.h"
 #include "run/asset_check.h"
 #include "run/cells.h"
 #include "run/memory_estimate.h"
@@ -152,6 +153,7 @@ void log_plan(Log& log, const SweepConfig& config, const RunOptions& options,
   log.line("relieflab: OpenGL " + gl.version() + " on " + gl.renderer() + " (" + gl.platform() +
            "), frames timed by " +
            (gl.is_software() ? "wall clock + glFinish" : "GL_TIME_ELAPSED"));
+  log.line("relieflab: image files through " + image_backend_description());
 }
 
 // Cells in order of (asset, truth), keeping the config's order otherwise: each asset is built

@@ -1,0 +1,123 @@
+// The fallback image module: relief/image_backend.h through Debian's stb (libstb), for a machine
+// that cannot load OpenImageIO's ~260 libraries, such as a GPU machine with only a driver and
+// the relocatable package (scripts/make-package.sh). Built as librelieflab_stb.so; the harness
+// loads it when the OpenImageIO module does not load, or when RELIEFLAB_IMAGE_MODULE names it.
+//
+// What it does differently: it reads PNG, BMP, TGA, JPEG, GIF, PSD, HDR and PNM and writes PNG,
+// BMP, TGA and JPEG, 8 bits a channel (no OpenEXR: G-buffer export needs OpenImageIO); it
+// resamples with stb_image_resize's default filters (Mitchell down, Catmull-Rom up) rather
+// than OpenImageIO's, so resampled maps differ from OpenImageIO's in the last bits.
+#include <stb/stb_image.h>
+#include <stb/stb_image_resize.h>
+#include <stb/stb_image_write.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <vector>
+
+#include "relief/image_backend.h"
+
+namespace rl {
+namespace {
+
+std::string stb_failure() {
+  const char* why = stbi_failure_reason();
+  return why ? why : "unknown error";
+}
+
+bool read_header(const std::string& path, ImageHeader& header, std::string& error) {
+  int w = 0, h = 0, n = 0;
+  if (!stbi_info(path.c_str(), &w, &h, &n)) {
+    error = "stb cannot read it: " + stb_failure();
+    return false;
+  }
+  header = {w, h, n, !stbi_is_16_bit(path.c_str()) && !stbi_is_hdr(path.c_str())};
+  return true;
+}
+
+// Samples scaled to [0, 1] as OpenImageIO reads 8- and 16-bit files; HDR as stored.
+template <typename Sample>
+bool read_scaled(Sample* (*load)(const char*, int*, int*, int*, int), const std::string& path,
+                 const ImageHeader& header, float scale, std::vector<float>& pixels,
+                 std::string& error) {
+  int w = 0, h = 0, n = 0;
+  Sample* data = load(path.c_str(), &w, &h, &n, 0);
+  if (!data || w != header.width || h != header.height || n != header.channels) {
+    error = data ? "it changed while being read" : "stb cannot read it: " + stb_failure();
+    stbi_image_free(data);
+    return false;
+  }
+  pixels.resize(size_t(w) * h * n);
+  for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = float(data[i]) * scale;
+  stbi_image_free(data);
+  return true;
+}
+
+bool read_pixels(const std::string& path, const ImageHeader& header, std::vector<float>& pixels,
+                 std::string& error) {
+  if (stbi_is_hdr(path.c_str()))
+    return read_scaled<float>(stbi_loadf, path, header, 1.0f, pixels, error);
+  if (stbi_is_16_bit(path.c_str()))
+    return read_scaled<stbi_us>(stbi_load_16, path, header, 1.0f / 65535.0f, pixels, error);
+  return read_scaled<stbi_uc>(stbi_load, path, header, 1.0f / 255.0f, pixels, error);
+}
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+bool encode(const std::string& path, const std::string& ext, const ImageWriteSpec& s,
+            const unsigned char* px) {
+  const char* p = path.c_str();
+  if (ext == ".png")
+    return stbi_write_png(p, s.width, s.height, s.channels, px, s.width * s.channels);
+  if (ext == ".bmp") return stbi_write_bmp(p, s.width, s.height, s.channels, px);
+  if (ext == ".tga") return stbi_write_tga(p, s.width, s.height, s.channels, px);
+  return stbi_write_jpg(p, s.width, s.height, s.channels, px, 95);
+}
+
+bool write(const std::string& path, const ImageWriteSpec& s, const void* pixels,
+           std::string& error) {
+  const std::string ext = lower_extension(path);
+  if (ext != ".png" && ext != ".bmp" && ext != ".tga" && ext != ".jpg" && ext != ".jpeg") {
+    error =
+        "the stb image module writes PNG, BMP, TGA and JPEG only (OpenImageIO's module, "
+        "which writes '" +
+        ext + "', could not be loaded)";
+    return false;
+  }
+  if (s.float_pixels || s.channels < 1 || s.channels > 4) {
+    error = "the stb image module writes 8-bit images of 1 to 4 channels only";
+    return false;
+  }
+  if (!encode(path, ext, s, static_cast<const unsigned char*>(pixels))) {
+    error = "stb could not write it";
+    return false;
+  }
+  // Read it back: a full disk can leave an empty or cut file that the writer called good.
+  int w = 0, h = 0, n = 0;
+  stbi_uc* back = stbi_load(path.c_str(), &w, &h, &n, 0);
+  const bool whole = back && w == s.width && h == s.height && n == s.channels;
+  stbi_image_free(back);
+  if (!whole) error = "it does not read back whole (disk full?): " + stb_failure();
+  return whole;
+}
+
+void resize(const float* pixels, int w, int h, int channels, float* out, int to_w, int to_h) {
+  stbir_resize_float(pixels, w, h, 0, out, to_w, to_h, 0, channels);
+}
+
+const ImageBackend kBackend{read_header, read_pixels, write, resize, "stb (libstb)"};
+
+}  // namespace
+}  // namespace rl
+
+extern "C" __attribute__((visibility("default"))) const rl::ImageBackend*
+relieflab_image_backend() {
+  return &rl::kBackend;
+}
