@@ -17,6 +17,11 @@ struct FrameTiming {
   std::string method;  // "gpu_timer" or "wall_clock_glfinish"
 };
 
+// On a GPU, after the `warmup` frames, frames are drawn untimed for this long (wall clock) so that
+// the GPU's clock has risen from idle before any frame is timed.
+inline constexpr double kGpuWarmupMs = 250;
+
+// Times `frames` draws after `warmup` untimed ones (and, on a GPU, kGpuWarmupMs of drawing).
 FrameTiming time_frames(const std::function<void()>& draw, int warmup, int frames, bool software);
 
 }  // namespace rl
