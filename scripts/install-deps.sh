@@ -13,6 +13,7 @@ packages=(
   libglm-dev                          # maths
   libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri # headless GL 4.5 via EGL
   libtomlplusplus-dev                 # sweep configs
+  glslang-dev spirv-tools libspirv-cross-c-shared-dev # op counts: GLSL to SPIR-V, counted, and back
   libcli11-dev                        # command line
   nlohmann-json3-dev                  # run manifests
   libsqlite3-dev                      # result store (atomic, resumable)

@@ -7,6 +7,8 @@
 #include "core/error.h"
 #include "gl/context.h"
 #include "gl/embedded_files.h"
+#include "gl/op_count_buffer.h"
+#include "gl/op_counting.h"
 
 namespace rl {
 namespace {
@@ -63,6 +65,52 @@ GLuint compile(GLenum stage, const ComposedSource& src, const std::string& owner
   return shader;
 }
 
+// The op-counting form of a fragment source whose fragments write their counts; a pass that
+// writes none (a plain object's, say) counts nothing, as in the G-buffer render's fetch counts.
+std::string counting_form(const std::string& text, const std::string& owner) {
+  if (text.find("rl_count_fragment") == std::string::npos) return text;
+  try {
+    return op_counting_glsl(text);
+  } catch (const std::runtime_error& e) {
+    throw GlError("technique '" + owner + "': " + e.what());
+  }
+}
+
+// While alive and `quiet`, the driver's compiler messages are not reported: the op-counting form
+// is GLSL that SPIRV-Cross wrote, and its warnings (locals it declares before assigning, say)
+// are not the technique's. Its errors still throw, from the compile log.
+struct QuietCompiler {
+  explicit QuietCompiler(bool quiet) : quiet(quiet) { set(GL_FALSE); }
+  ~QuietCompiler() { set(GL_TRUE); }
+  void set(GLboolean report) const {
+    if (quiet)
+      glDebugMessageControl(GL_DEBUG_SOURCE_SHADER_COMPILER, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr,
+                            report);
+  }
+  bool quiet;
+};
+
+GLuint link(GLuint v, GLuint f, const std::string& owner, const ComposedSource& fs) {
+  GLuint program = glCreateProgram();
+  glAttachShader(program, v);
+  glAttachShader(program, f);
+  glLinkProgram(program);
+  glDeleteShader(v);
+  glDeleteShader(f);
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    GLint len = 0;
+    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &len);
+    std::string log(static_cast<size_t>(std::max(len, 1)), '\0');
+    glGetProgramInfoLog(program, len, nullptr, log.data());
+    glDeleteProgram(program);
+    throw GlError("technique '" + owner + "': program " + fs.files.back() + " failed to link:\n" +
+                  map_glsl_log(log, fs.files));
+  }
+  return program;
+}
+
 std::string cache_key(const ProgramDesc& d) {
   std::string key = d.owner + "|" + d.vertex_file;
   for (const auto& f : d.fragment_files) key += "|" + f;
@@ -110,39 +158,27 @@ ShaderLibrary& ShaderLibrary::shared() {
   return library;
 }
 
-ShaderLibrary::Entry& ShaderLibrary::entry(const ProgramDesc& desc) {
+ShaderLibrary::Entry& ShaderLibrary::entry(const ProgramDesc& plain) {
+  ProgramDesc desc = plain;
+  if (OpCountingScope::active()) desc.defines["RL_COUNT_OPS"] = "1";
   const std::string key = cache_key(desc);
   auto it = programs_.find(key);
   if (it != programs_.end()) return it->second;
   ComposedSource vs = compose_glsl({desc.vertex_file}, desc.defines);
   ComposedSource fs = compose_glsl(desc.fragment_files, desc.defines);
+  const bool counting = desc.defines.count("RL_COUNT_OPS") > 0;
+  if (counting) fs.text = counting_form(fs.text, desc.owner);
   GLuint v = compile(GL_VERTEX_SHADER, vs, desc.owner);
   GLuint f = 0;
   try {
+    QuietCompiler quiet(counting);
     f = compile(GL_FRAGMENT_SHADER, fs, desc.owner);
   } catch (...) {
     glDeleteShader(v);
     throw;
   }
-  GLuint program = glCreateProgram();
-  glAttachShader(program, v);
-  glAttachShader(program, f);
-  glLinkProgram(program);
-  glDeleteShader(v);
-  glDeleteShader(f);
-  GLint ok = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    GLint len = 0;
-    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &len);
-    std::string log(static_cast<size_t>(std::max(len, 1)), '\0');
-    glGetProgramInfoLog(program, len, nullptr, log.data());
-    glDeleteProgram(program);
-    throw GlError("technique '" + desc.owner + "': program " + fs.files.back() +
-                  " failed to link:\n" + map_glsl_log(log, fs.files));
-  }
   Entry e;
-  e.program = program;
+  e.program = link(v, f, desc.owner, fs);
   e.fragment_source = fs.text;
   return programs_.emplace(key, std::move(e)).first->second;
 }

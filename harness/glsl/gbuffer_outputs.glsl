@@ -14,7 +14,8 @@ layout(location = 4) out vec4 o_aux;
 // fetch count, iteration sum, largest iteration count per pixel) -- kept or discarded, so a
 // missed ray costs what it walked. A technique's main ends with rl_count_fragment() and discards
 // with RL_DISCARD. The timing render (no RL_GBUFFER) counts nothing. Units 3-7: a GPU may offer
-// only 8 image units, and depth slicing's own passes use 0 and 1.
+// only 8 image units, and depth slicing's own passes use 0 and 1. The op-counting render
+// (RL_COUNT_OPS, no RL_GBUFFER) writes what each fragment executed instead.
 #include "harness/glsl/search_cost.glsl"
 #ifdef RL_GBUFFER
 layout(binding = 3, r32ui) uniform coherent uimage2D rl_cost_fragments;
@@ -29,6 +30,21 @@ void rl_count_fragment() {
   imageAtomicMax(rl_cost_fetch_max, px, uint(rl_fetches));
   imageAtomicAdd(rl_cost_iteration_sum, px, uint(rl_iterations));
   imageAtomicMax(rl_cost_iteration_max, px, uint(rl_iterations));
+}
+#elif defined(RL_COUNT_OPS)
+// The op-counting render (gl/op_count_buffer.h): per pixel, fragments and their ops by kind, in
+// a buffer whose first word is the frame's width.
+layout(std430, binding = 0) coherent buffer RlOpCounts { uint rl_op_counts[]; };
+void rl_count_fragment() {
+  uvec2 px = uvec2(gl_FragCoord.xy);
+  uint at = 8u + (px.y * rl_op_counts[0] + px.x) * 8u;
+  atomicAdd(rl_op_counts[at], 1u);
+  atomicAdd(rl_op_counts[at + 1u], rl_ops_fetch);
+  atomicAdd(rl_op_counts[at + 2u], rl_ops_float);
+  atomicAdd(rl_op_counts[at + 3u], rl_ops_special);
+  atomicAdd(rl_op_counts[at + 4u], rl_ops_int);
+  atomicAdd(rl_op_counts[at + 5u], rl_ops_branch);
+  atomicAdd(rl_op_counts[at + 6u], rl_ops_dynamic_index);
 }
 #else
 void rl_count_fragment() {}

@@ -8,3 +8,14 @@
 int rl_fetches = 0;
 int rl_iterations = 0;
 #define RL_ITERATE (rl_iterations++)
+#ifdef RL_COUNT_OPS
+// What the fragment executed, by kind: in the op-counting form of the shader (gl/op_counting.h)
+// every basic block adds its own ops to these where it begins (gl/spirv_op_counts.h), which
+// also starts them at zero; rl_count_fragment() writes them out.
+uint rl_ops_fetch;
+uint rl_ops_float;
+uint rl_ops_special;
+uint rl_ops_int;
+uint rl_ops_branch;
+uint rl_ops_dynamic_index;
+#endif

@@ -24,7 +24,7 @@ struct RlCellPoint {
   uint state;     // white, grey or black
   vec3 coord;     // grey: the array-texture coordinate of its face point
   float along;    // |q - P'| (cell units)
-  float length;   // the projection line's length L (cell units)
+  float line_length;  // the projection line's length L (cell units)
 };
 
 vec3 rl_axis(int a) { return a == 0 ? vec3(1, 0, 0) : (a == 1 ? vec3(0, 1, 0) : vec3(0, 0, 1)); }
@@ -95,7 +95,7 @@ RlCellPoint rl_cell_point(vec3 g) {
   p.state = RL_WHITE;
   p.coord = vec3(0.0);
   p.along = 0.0;
-  p.length = 0.0;
+  p.line_length = 0.0;
   float n = float(rl_cell_n);
   if (any(lessThan(g, vec3(0.0))) || any(greaterThan(g, vec3(n)))) return p;
   ivec3 cell = min(ivec3(floor(g)), ivec3(rl_cell_n - 1));
@@ -117,7 +117,7 @@ RlCellPoint rl_cell_point(vec3 g) {
   vec2 st = vec2(on_face[(a + 1) % 3], on_face[(a + 2) % 3]);
   p.coord = rl_face_coord(index, st);
   p.along = length(on_face - q);
-  p.length = length(on_face - inner);
+  p.line_length = length(on_face - inner);
   return p;
 }
 
@@ -129,7 +129,7 @@ int rl_cell_inside(vec3 g) {
   rl_fetches++;
   vec2 texel = textureLod(rl_cell_distance, p.coord, 0.0).rg;
   bool face_inside = texel.g > 0.5;
-  return (face_inside != (p.along > texel.r * p.length)) ? 1 : 0;
+  return (face_inside != (p.along > texel.r * p.line_length)) ? 1 : 0;
 }
 
 // Slab exit of the ray o + t d (grid units) from the grid [0, N]^3.

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "gl/context.h"
+#include "gl/op_count_buffer.h"
 #include "gl/render_target.h"
 #include "relief/cell_complex.h"
 #include "relief/heightfield_faces.h"
@@ -338,6 +339,21 @@ Frame draw(size_t index, const std::string& technique, const ParamValues& params
 }
 
 }  // namespace
+
+PixelOpCounts count_ops(size_t index, const std::string& technique, const ParamValues& params) {
+  CaseAssets& a = assets(index);
+  const RenderCase& c = render_cases()[index];
+  auto t = TechniqueRegistry::instance().create(technique, params, "contract");
+  t->prepare_scene(c.scene, a.map);
+  FrameInput input{c.scene, a.map, *a.relief, *a.base, a.camera, c.scene.effects, a.objects.get()};
+  OpCountBuffer ops(kFrameSize, kFrameSize);
+  RenderTarget target(kFrameSize, kFrameSize, RenderTarget::Kind::ColorOnly);
+  target.bind_and_clear();
+  ops.bind();
+  OpCountingScope counting;
+  render_frame(*t, input, RenderTarget::Kind::ColorOnly);
+  return ops.read_back();
+}
 
 // Several clauses read the same frame (its fetches, its finite outputs, its columns): each case,
 // technique and setting is drawn once per process. llvmpipe draws the same bytes every time, so

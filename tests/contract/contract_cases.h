@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/gbuffer.h"
+#include "core/op_kinds.h"
 #include "metrics/metrics.h"
 #include "relief/relief_map.h"
 #include "scene/scene.h"
@@ -113,6 +114,10 @@ struct Frame {
 // Renders case `index` (its asset and truth built once per process; each case, technique and
 // setting drawn once per process).
 Frame render(size_t index, const std::string& technique, const ParamValues& params);
+
+// What each pixel's fragments executed, by kind, in case `index`'s timed frame drawn once in
+// its op-counting form (gl/op_counting.h).
+PixelOpCounts count_ops(size_t index, const std::string& technique, const ParamValues& params);
 
 // The registry's names, for parameterising the contract's tests.
 std::vector<std::string> technique_names();

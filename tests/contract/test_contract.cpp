@@ -210,6 +210,27 @@ TEST_P(Contract, OutputsAreFinite) {
   }
 }
 
+// --- Op counts (the GPU cost model's input). ---
+
+TEST_P(Contract, EveryShadedFragmentCountsItsOps) {
+  const ParamValues params = settings(name());
+  for (size_t k : drawable_cases(info())) {
+    const Frame f = render(k, name(), params);
+    const PixelOpCounts ops = count_ops(k, name(), params);
+    // The same passes draw the same fragments: each must write its counts, so a pass that
+    // forgot would leave its pixels unpriced by the cost model.
+    size_t shaded = 0;
+    for (size_t i = 0; i < ops.fragments.size(); ++i) {
+      ASSERT_EQ(ops.fragments[i], f.counts.fragments[i])
+          << name() << " pixel " << i << " of " << render_cases()[k].name;
+      if (!ops.fragments[i]) continue;
+      ++shaded;
+      EXPECT_GT(ops.ops[int(OpKind::Float)][i], 0u) << name() << " pixel " << i;
+    }
+    EXPECT_GT(shaded, 0u) << render_cases()[k].name;
+  }
+}
+
 // --- Exact answers. ---
 
 TEST_P(ExactContract, ExactHitsMatchTheClosedForm) {

@@ -1,0 +1,61 @@
+#include "gl/op_count_buffer.h"
+
+#include <vector>
+
+namespace rl {
+namespace {
+
+// Words before the pixels (the first holds the width), and words per pixel: fragments, then
+// one per kind (harness/glsl/gbuffer_outputs.glsl).
+constexpr size_t kHeaderWords = 8, kWordsPerPixel = 8;
+static_assert(1 + kOpKinds <= kWordsPerPixel);
+
+int scopes = 0;
+
+}  // namespace
+
+OpCountBuffer::OpCountBuffer(int width, int height) : width_(width), height_(height) {
+  std::vector<uint32_t> zeros(kHeaderWords + size_t(width) * height * kWordsPerPixel, 0);
+  zeros[0] = uint32_t(width);
+  glCreateBuffers(1, &buffer_);
+  glNamedBufferData(buffer_, GLsizeiptr(zeros.size() * sizeof(uint32_t)), zeros.data(),
+                    GL_DYNAMIC_COPY);  // written by the GPU: a READ hint moves it to host memory
+}
+
+OpCountBuffer::~OpCountBuffer() {
+  glDeleteBuffers(1, &buffer_);
+}
+
+void OpCountBuffer::bind() const {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer_);
+}
+
+PixelOpCounts OpCountBuffer::read_back() const {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  const size_t pixels = size_t(width_) * height_;
+  std::vector<uint32_t> words(kHeaderWords + pixels * kWordsPerPixel);
+  glGetNamedBufferSubData(buffer_, 0, GLsizeiptr(words.size() * sizeof(uint32_t)), words.data());
+  PixelOpCounts out;
+  out.width = width_;
+  out.height = height_;
+  out.fragments.resize(pixels);
+  for (auto& kind : out.ops) kind.resize(pixels);
+  for (size_t i = 0; i < pixels; ++i) {
+    const uint32_t* px = words.data() + kHeaderWords + i * kWordsPerPixel;
+    out.fragments[i] = px[0];
+    for (int k = 0; k < kOpKinds; ++k) out.ops[k][i] = px[1 + k];
+  }
+  return out;
+}
+
+OpCountingScope::OpCountingScope() {
+  ++scopes;
+}
+OpCountingScope::~OpCountingScope() {
+  --scopes;
+}
+bool OpCountingScope::active() {
+  return scopes > 0;
+}
+
+}  // namespace rl

@@ -1,0 +1,72 @@
+#include "metrics/op_cost.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "core/columns.h"
+#include "metrics/fragment_cost.h"
+
+namespace rl {
+namespace {
+
+std::vector<ColumnSpec> op_cost_specs() {
+  std::vector<ColumnSpec> specs;
+  const char* meaning[kOpKinds] = {
+      "texture reads",
+      "float arithmetic, comparisons and cheap functions, per component",
+      "division, sqrt, exp, log, pow and trigonometry, per component",
+      "integer, bit and boolean arithmetic, per component",
+      "conditional branches, switches and discards",
+      "accesses into a local array at an index known only at run time"};
+  for (int k = 0; k < kOpKinds; ++k)
+    specs.push_back({warp_ops_column(k), "ops / px",
+                     std::string("lockstep cost of ") + meaning[k] +
+                         ": 8 x 4 tiles pay their slowest fragment's count, per pixel of the "
+                         "frame (the op-counting render, every pass)"});
+  specs.push_back({"op_counted_fragments", "fragments",
+                   "fragments that wrote their op counts in the op-counting render"});
+  return specs;
+}
+
+const ColumnDeclaration op_cost_columns("metrics (op cost)", op_cost_specs());
+
+}  // namespace
+
+std::string warp_ops_column(int kind) {
+  return std::string("warp_") + kOpKindNames[kind] + "_ops";
+}
+
+OpCost op_cost(const PixelOpCounts& c) {
+  OpCost out;
+  std::array<double, kOpKinds> total{};
+  for (int y0 = 0; y0 < c.height; y0 += kWarpTileHeight)
+    for (int x0 = 0; x0 < c.width; x0 += kWarpTileWidth) {
+      double fragments = 0;
+      std::array<double, kOpKinds> slowest{};
+      for (int y = y0; y < std::min(y0 + kWarpTileHeight, c.height); ++y)
+        for (int x = x0; x < std::min(x0 + kWarpTileWidth, c.width); ++x) {
+          const size_t i = size_t(y) * c.width + x;
+          if (!c.fragments[i]) continue;
+          fragments += c.fragments[i];
+          for (int k = 0; k < kOpKinds; ++k)
+            slowest[k] = std::max(slowest[k], double(c.ops[k][i]) / c.fragments[i]);
+        }
+      out.counted_fragments += fragments;
+      for (int k = 0; k < kOpKinds; ++k) total[k] += fragments * slowest[k];
+    }
+  const double pixels = double(c.width) * c.height;
+  for (int k = 0; k < kOpKinds; ++k)
+    out.warp_ops_per_px[k] = out.counted_fragments > 0 && pixels > 0
+                                 ? total[k] / pixels
+                                 : std::numeric_limits<double>::quiet_NaN();
+  return out;
+}
+
+std::vector<std::pair<std::string, double>> OpCost::named() const {
+  std::vector<std::pair<std::string, double>> out;
+  for (int k = 0; k < kOpKinds; ++k) out.emplace_back(warp_ops_column(k), warp_ops_per_px[k]);
+  out.emplace_back("op_counted_fragments", counted_fragments);
+  return out;
+}
+
+}  // namespace rl

@@ -1,0 +1,30 @@
+#pragma once
+// What a GPU pays for a frame's ops, from the op-counting render (gl/op_count_buffer.h): each
+// fragment's executed ops by kind (core/op_kinds.h), reduced the way a GPU runs fragments --
+// in 8 x 4 lockstep groups (kWarpTileWidth x kWarpTileHeight, metrics/fragment_cost.h) that take
+// as long as their slowest lane. Per kind, a tile pays its fragments times the largest
+// per-fragment count among its pixels; `warp_<kind>_ops` is the tiles' total over the frame's
+// pixels (every pixel of the viewport, shaded or not), so the total a frame pays is it times
+// width x height: what the GPU cost model (core/cost_model.h) weighs.
+#include <array>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/op_kinds.h"
+
+namespace rl {
+
+struct OpCost {
+  std::array<double, kOpKinds> warp_ops_per_px{};  // NaN when the render counted nothing
+  double counted_fragments = 0;                    // fragments that wrote their counts
+  // (name, value) in rows.csv's column order.
+  std::vector<std::pair<std::string, double>> named() const;
+};
+
+OpCost op_cost(const PixelOpCounts& counts);
+
+// The column of kind k's lockstep ops per pixel, e.g. "warp_float_ops".
+std::string warp_ops_column(int kind);
+
+}  // namespace rl
