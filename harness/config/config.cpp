@@ -12,6 +12,7 @@
 #include "config/config_scene.h"
 #include "config/config_technique.h"
 #include "config/config_toml.h"
+#include "config/cost_model_file.h"
 #include "config/scene_files.h"
 #include "core/data_paths.h"
 #include "core/error.h"
@@ -31,16 +32,17 @@ namespace {
 
 // [sweep]: the name, views, viewports, texture sizes, timing and outputs; the views are the
 // elevations x azimuths unless 'views' lists them.
-void parse_sweep_table(const toml::table& root, const Src& src, SweepConfig& c) {
+void parse_sweep_table(const toml::table& root, const Src& src, const std::string& base_dir,
+                       SweepConfig& c) {
   std::vector<double> elevations = {45}, azimuths = {0};
   if (auto* n = root.get("sweep")) {
     const toml::table* t = n->as_table();
     if (!t) fail(src.at(*n), "[sweep] must be a table");
-    check_keys(
-        *t,
-        {"name", "elevations", "azimuths", "views", "viewports", "texture_res", "frames", "warmup",
-         "heat_map_scale", "truth_tolerance", "footprint_samples", "images", "gbuffers"},
-        src, "[sweep]");
+    check_keys(*t,
+               {"name", "elevations", "azimuths", "views", "viewports", "texture_res", "frames",
+                "warmup", "heat_map_scale", "truth_tolerance", "footprint_samples", "images",
+                "gbuffers", "cost_model"},
+               src, "[sweep]");
     if (auto* v = t->get("name")) c.name = plain_name(*v, src, "name");
     if (auto* v = t->get("elevations")) elevations = number_list(*v, src, "elevations");
     if (auto* v = t->get("azimuths")) azimuths = number_list(*v, src, "azimuths");
@@ -104,6 +106,14 @@ void parse_sweep_table(const toml::table& root, const Src& src, SweepConfig& c) 
       c.footprint_samples = positive_int(*v, src, "footprint_samples", 1, 8);
     if (auto* v = t->get("images")) c.write_images = boolean_of(*v, src, "images");
     if (auto* v = t->get("gbuffers")) c.write_gbuffers = boolean_of(*v, src, "gbuffers");
+    if (auto* v = t->get("cost_model")) {
+      c.cost_model_name = string_of(*v, src, "cost_model");
+      c.cost_model = load_cost_model(c.cost_model_name, base_dir, src.at(*v));
+    }
+  }
+  if (c.cost_model_name.empty()) {
+    c.cost_model_name = kDefaultCostModel;
+    c.cost_model = load_cost_model(c.cost_model_name, base_dir, src.file);
   }
   if (c.views.empty())
     for (double e : elevations)
@@ -294,7 +304,7 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
   c.base_dir = base_dir;
   json canon;
 
-  parse_sweep_table(root, src, c);
+  parse_sweep_table(root, src, base_dir, c);
 
   // [[scene]]: parsed, then completed from its files (sizes, proportions, hashes).
   const toml::array* scenes = root.get("scene") ? root.get("scene")->as_array() : nullptr;
@@ -337,6 +347,8 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
                  "hemisphere rays; measure footprints on scenes without it");
     canon["footprint_samples"] = c.footprint_samples;  // absent at 1: older sweeps hash alike
   }
+  // A derived column: absent for the default model, so that choosing it keeps every key.
+  if (c.cost_model_name != kDefaultCostModel) canon["cost_model"] = c.cost_model_name;
   c.canonical = canon.dump();
   return c;
 }

@@ -5,9 +5,11 @@
 // effects a technique cannot simulate are ConfigErrors naming the file, line and key.
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/cost_model.h"
 #include "core/params.h"
 #include "scene/scene.h"
 
@@ -69,6 +71,10 @@ struct SweepConfig {
   int footprint_samples = 1;
   bool write_images = true;
   bool write_gbuffers = false;  // raw G-buffers as OpenEXR (output/gbuffer_export.h)
+  // The GPU whose frame time each row predicts (model_frame_ms): `[sweep] cost_model`, a model's
+  // name or file, "none" for no prediction (config/cost_model_file.h).
+  std::string cost_model_name;
+  std::optional<CostModel> cost_model;
   std::vector<TableSpec> tables;
   std::vector<PlotSpec> plots;                         // Pareto plots of error against cost
   std::map<std::string, std::string> scene_canonical;  // per scene: text of what defines it

@@ -3,9 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <limits>
+#include <set>
 #include <stdexcept>
 
 #include "core/elapsed.h"
+#include "core/error.h"
+#include "gl/op_count_buffer.h"
 #include "gl/render_target.h"
 
 namespace rl {
@@ -26,6 +30,44 @@ std::pair<std::unique_ptr<Technique>, double>& prepared_technique(const SweepCon
     slot.second = ms_since(t0);
   }
   return slot;
+}
+
+// What each fragment of the frame executes, by kind: the timed (colour-only) programs drawn once
+// in their op-counting form (gl/op_counting.h).
+// A shader the op-counting compilers cannot take (glslang reads GLSL more strictly than some
+// drivers) leaves the row's op columns and model_frame_ms empty, with a warning once per
+// technique, rather than failing the run: the contract holds the built-in techniques to it.
+OpCost count_ops(Technique& technique, const FrameInput& frame, int width, int height) {
+  OpCountBuffer ops(width, height);
+  RenderTarget target(width, height, RenderTarget::Kind::ColorOnly);
+  target.bind_and_clear();
+  ops.bind();
+  try {
+    OpCountingScope counting;
+    render_frame(technique, frame, RenderTarget::Kind::ColorOnly);
+  } catch (const GlError& e) {
+    static std::set<std::string> warned;
+    if (warned.insert(technique.info().name).second)
+      std::fprintf(stderr, "relieflab: warning: no op counts (and no model_frame_ms) for %s: %s\n",
+                   technique.info().name.c_str(), e.what());
+    OpCost none;
+    none.warp_ops_per_px.fill(std::numeric_limits<double>::quiet_NaN());
+    return none;
+  }
+  return op_cost(ops.read_back());
+}
+
+// The op counts of a cell's frame and its cost model's prediction. They feed the model only: a
+// sweep that asks for none (cost_model = "none") draws no op-counting frame.
+void add_model_cost(const SweepConfig& config, Technique& technique, const FrameInput& frame,
+                    const Cell& cell, CellMeasure& out) {
+  out.ops.warp_ops_per_px.fill(std::numeric_limits<double>::quiet_NaN());
+  if (!config.cost_model) return;
+  out.ops = count_ops(technique, frame, cell.width, cell.height);
+  out.model_frame_ms = predict_frame_ms(
+      *config.cost_model,
+      {double(cell.width) * cell.height, out.cost.fragments, out.ops.warp_ops_per_px});
+  out.model_gpu = config.cost_model->name;
 }
 
 }  // namespace
@@ -61,6 +103,7 @@ CellMeasure measure_cell(const SweepConfig& config, const SceneDesc& scene, Asse
     target.read_back_costs(counts);
   }
   out.cost = fragment_cost(counts);
+  add_model_cost(config, *technique, frame, cell, out);
   out.frame_columns = technique->frame_columns();
   for (const auto& [name, value] : out.frame_columns) {
     const auto& declared = technique->info().columns;

@@ -136,6 +136,9 @@ Row cell_row(const Cell& cell, const SceneDesc& scene, const Camera& camera, con
   row["precompute_ms"] = c.precompute_ms;
   row["precompute_cached"] = c.precompute_cached;
   for (const auto& [name, value] : c.cost.named()) row[name] = number_or_empty(value);
+  for (const auto& [name, value] : c.ops.named()) row[name] = number_or_empty(value);
+  row["model_frame_ms"] = number_or_empty(c.model_frame_ms);
+  row["model_gpu"] = c.model_gpu;
   for (const auto& [name, value] : c.frame_columns) row[name] = value;
   row["memory_bytes"] = double(asset.relief->bytes() + c.technique_bytes);
   row["truth_subdivision"] = asset.truth->subdivision();

@@ -3,6 +3,7 @@
 // of a (scene, texture resolution) are built once (sweep_assets.cpp), the truth of an (asset,
 // viewport, view) traced once (sweep_truth.cpp), each cell measured (sweep_measure.cpp) and
 // written as a row with its pictures (sweep_row.cpp); runner.cpp plans the cells and runs them.
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -14,6 +15,7 @@
 #include "gl/frame_timer.h"
 #include "metrics/fragment_cost.h"
 #include "metrics/metrics.h"
+#include "metrics/op_cost.h"
 #include "output/result_store.h"
 #include "output/row.h"
 #include "relief/relief_map.h"
@@ -61,6 +63,10 @@ struct TruthView {
 struct CellMeasure {
   GBuffer g;
   FragmentCost cost;
+  OpCost ops;
+  // The config's cost model's prediction of this frame (NaN without one) and the model's name.
+  double model_frame_ms = std::numeric_limits<double>::quiet_NaN();
+  std::string model_gpu;
   ImageMetrics m;
   FrameTiming timing;
   std::vector<std::pair<std::string, double>> frame_columns;
