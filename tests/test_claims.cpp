@@ -155,6 +155,46 @@ TEST(Claims, MalformedClaimsAreRefusedWithFileAndLine) {
   }
 }
 
+// Rows measured on a GPU beside the folder's (gpu-<name>/rows.csv): every claim's checks run on
+// them too; one that fails there must say so (not_on, not_on_why), and one that says so must
+// fail there. The README's section names the renderers and the exception.
+TEST(Claims, AVerdictThatHoldsOnOneRendererOnlySaysWhich) {
+  std::string gpu_rows = kRows;
+  gpu_rows.replace(gpu_rows.find("relief_exact,panel,45,10,"), 25, "relief_exact,panel,45,20,");
+  // No renderer column here: the folder's name stands for the renderer.
+  const std::string dir = folder_with("claims_renderers", kRows, kClaims,
+                                      std::string(kClaimsBegin) + "\n" + kClaimsEnd + "\n");
+  std::filesystem::create_directories(dir + "/gpu-x");
+  write(dir + "/gpu-x/rows.csv", gpu_rows);
+  std::string report;
+  EXPECT_EQ(verify_result_folder(dir, true, report), 1) << report;
+  EXPECT_NE(report.find("claim exact-cheaper: does not hold on gpu-x (gpu-x/rows.csv): check "
+                        "'ratio > 2' does not hold"),
+            std::string::npos)
+      << report;
+  std::string claims = kClaims;
+  claims.replace(claims.find("[claim.values]"), 14,
+                 "not_on = [\"gpu-x\"]\nnot_on_why = \"the GPU's exact search reads more.\"\n"
+                 "[claim.values]");
+  write(dir + "/claims.toml", claims);
+  report.clear();
+  EXPECT_EQ(verify_result_folder(dir, true, report), 0) << report;
+  std::ifstream in(dir + "/README.md");
+  const std::string readme((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(readme.find("On gpu-x (`gpu-x/rows.csv`) it does not hold: the GPU's exact search "
+                        "reads more."),
+            std::string::npos)
+      << readme;
+  EXPECT_NE(readme.find("also runs on the rows measured on gpu-x"), std::string::npos) << readme;
+  // Said, but it holds there after all: the exception is stale.
+  write(dir + "/gpu-x/rows.csv", kRows);
+  report.clear();
+  EXPECT_GE(verify_result_folder(dir, false, report), 1);
+  EXPECT_NE(report.find("holds on gpu-x (gpu-x/rows.csv) now: drop it from not_on"),
+            std::string::npos)
+      << report;
+}
+
 TEST(Claims, VerifyChecksTheReadmeSectionAndWriteRegeneratesIt) {
   const std::string readme = std::string("# Result\n\nIntro.\n\n") + kClaimsBegin + "\nstale\n" +
                              kClaimsEnd + "\n\nMore.\n";

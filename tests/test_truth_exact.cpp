@@ -415,11 +415,11 @@ TEST(TruthBound, FlaggedRowsAreMarkedInTheTables) {
 TEST(TruthBound, FlaggedSettingsAreNotRankedOnTheParetoFront) {
   std::vector<Row> rows(2);
   rows[0]["technique"] = "a";
-  rows[0]["warp_fetches_per_px"] = 5.0;  // the default plot's cost
+  rows[0]["gpu_frame_ms"] = 5.0;  // the default plot's cost
   rows[0]["wrong_pct"] = 0.5;
   rows[0]["truth_flagged"] = true;
   rows[1]["technique"] = "b";
-  rows[1]["warp_fetches_per_px"] = 10.0;
+  rows[1]["gpu_frame_ms"] = 10.0;
   rows[1]["wrong_pct"] = 1.5;
   rows[1]["truth_flagged"] = false;
   const std::vector<PlotGroup> groups = plot_groups(rows, PlotSpec{}, {});

@@ -92,12 +92,27 @@ void check_names(const Claim& c, const toml::node& n, const Src& src) {
   }
 }
 
+// not_on (the gpu-<name> folders whose rows the claim does not hold on) and not_on_why, which
+// it needs: a verdict that holds on one renderer and not another says which, and why.
+void parse_renderer_exceptions(const toml::table& t, const Src& src, Claim& c) {
+  if (const toml::node* n = t.get("not_on")) {
+    c.not_on = string_list(*n, src, "not_on");
+    for (const std::string& folder : c.not_on)
+      if (folder.rfind("gpu-", 0) != 0 || folder.find('/') != std::string::npos)
+        fail(src.at(*n), "claim '" + c.id + "': not_on '" + folder +
+                             "' is not a gpu-<name> folder beside rows.csv");
+  }
+  if (const toml::node* n = t.get("not_on_why")) c.not_on_why = string_of(*n, src, "not_on_why");
+  if (c.not_on.empty() != c.not_on_why.empty())
+    fail(src.at(t), "claim '" + c.id + "': 'not_on' and 'not_on_why' go together");
+}
+
 Claim parse_claim(const toml::node& n, const Src& src) {
   const toml::table* t = n.as_table();
   if (!t) fail(src.at(n), "each [[claim]] is a table");
   check_keys(*t,
              {"id", "judges", "verdict", "text", "values", "check", "pictures", "pictures_command",
-              "items", "partly"},
+              "items", "partly", "not_on", "not_on_why"},
              src, "[[claim]]");
   Claim c;
   c.where = src.at(n);
@@ -122,6 +137,7 @@ Claim parse_claim(const toml::node& n, const Src& src) {
           fail(src.at(*list), "claim '" + c.id + "': " + key + " '" + id +
                                   "' is not 'paper/item' (results/papers.toml names them)");
     }
+  parse_renderer_exceptions(*t, src, c);
   if (!kVerdicts.count(c.verdict))
     fail(src.at(*t->get("verdict")), "claim '" + c.id + "': verdict '" + c.verdict +
                                          "' is not one of confirmed, partly confirmed, not "

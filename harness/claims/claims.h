@@ -62,6 +62,11 @@ struct Claim {
   // The paper items it reproduces ("paper/item", as results/papers.toml names them) and those it
   // covers only in part: the coverage ledger's input (claims/ledger.h).
   std::vector<std::string> items, partly;
+  // Rows measured on another renderer beside the folder's own (gpu-<name>/rows.csv): the ones
+  // this claim's checks do not hold on, and why. verify checks every claim on every such file
+  // and fails where one does not hold unlisted, or holds listed (claims/claims_renderers.cpp).
+  std::vector<std::string> not_on;
+  std::string not_on_why;
   std::string where;  // "claims.toml:LINE", for messages
 };
 
@@ -93,12 +98,35 @@ struct ClaimResult {
   bool holds() const { return failures.empty(); }
 };
 std::vector<ClaimResult> check_claims(const ClaimsFile& file, const std::vector<CsvRow>& rows);
+// Why each of the claim's checks does not hold on `rows` (a value not found among them), empty
+// when they all hold.
+std::vector<std::string> check_failures(const Claim& c, const std::vector<CsvRow>& rows);
+
+// The rows of a folder measured on another renderer: gpu-<name>/rows.csv beside its rows.csv.
+struct RendererRows {
+  std::string folder;    // "gpu-h200"
+  std::string renderer;  // the rows' renderer column, e.g. "NVIDIA H200/PCIe/SSE2"
+  std::vector<CsvRow> rows;
+};
+std::vector<RendererRows> other_renderer_rows(const std::string& dir);
+// Each claim checked on each renderer's rows; one report line (and one failure counted) per
+// claim that does not hold on one and does not say so in not_on, or says so and holds, or
+// names a folder that is not there.
+int verify_other_renderers(const ClaimsFile& file, const std::vector<RendererRows>& others,
+                           std::string& report);
 
 inline constexpr const char* kClaimsBegin = "<!-- claims: generated from claims.toml -->";
 inline constexpr const char* kClaimsEnd = "<!-- claims: end -->";
 // The README's verdict section: one numbered item per claim, its pictures linked where the
 // folder commits them, else the command that makes them.
-std::string claims_markdown(const ClaimsFile& file, const std::vector<ClaimResult>& results);
+// " On NVIDIA H200/... (gpu-h200/rows.csv) it does not hold: <not_on_why>." for each of `others`
+// the claim lists in not_on; and the line naming the renderers a folder's claims ran on.
+std::string renderer_markdown(const Claim& c, const std::vector<RendererRows>& others);
+std::string renderers_checked_markdown(const std::vector<RendererRows>& others);
+// With `others`, each claim that does not hold on one says so, and a last line names every
+// renderer the checks ran on.
+std::string claims_markdown(const ClaimsFile& file, const std::vector<ClaimResult>& results,
+                            const std::vector<RendererRows>& others = {});
 
 // Checks each folder's claims.toml against its rows.csv and its README's generated section
 // (with `write`, rewrites that section instead of comparing it). Appends a line per failure to

@@ -187,23 +187,7 @@ ClaimResult check_claim(const Claim& c, const std::vector<CsvRow>& rows) {
   r.id = c.id;
   ClaimValues values(c, rows);
   std::string why;
-  for (const std::string& check : c.checks) {
-    const std::vector<std::string> w = claim_words(check);
-    double x[3] = {0, 0, 0};
-    bool ok = true;
-    for (size_t i = 0; i < w.size(); i += 2) ok = ok && values.get(w[i], x[i / 2], why);
-    if (!ok) {
-      r.failures.push_back(why);
-      continue;
-    }
-    const bool holds = w[1] == "between" ? x[0] >= x[1] && x[0] <= x[2] : compare(x[0], w[1], x[1]);
-    if (!holds) {
-      std::string measured;
-      for (size_t i = 0; i < w.size(); i += 2)
-        measured += (i ? ", " : "") + w[i] + " = " + format_claim_number(x[i / 2], 6);
-      r.failures.push_back("check '" + check + "' does not hold: " + measured);
-    }
-  }
+  r.failures = check_failures(c, rows);
   check_pictures(c, rows, r);
   r.sentence = c.text;
   for (size_t at = r.sentence.find('{'); at != std::string::npos; at = r.sentence.find('{', at)) {
@@ -224,6 +208,30 @@ ClaimResult check_claim(const Claim& c, const std::vector<CsvRow>& rows) {
 }
 
 }  // namespace
+
+std::vector<std::string> check_failures(const Claim& c, const std::vector<CsvRow>& rows) {
+  ClaimValues values(c, rows);
+  std::vector<std::string> failures;
+  std::string why;
+  for (const std::string& check : c.checks) {
+    const std::vector<std::string> w = claim_words(check);
+    double x[3] = {0, 0, 0};
+    bool ok = true;
+    for (size_t i = 0; i < w.size(); i += 2) ok = ok && values.get(w[i], x[i / 2], why);
+    if (!ok) {
+      failures.push_back(why);
+      continue;
+    }
+    const bool holds = w[1] == "between" ? x[0] >= x[1] && x[0] <= x[2] : compare(x[0], w[1], x[1]);
+    if (!holds) {
+      std::string measured;
+      for (size_t i = 0; i < w.size(); i += 2)
+        measured += (i ? ", " : "") + w[i] + " = " + format_claim_number(x[i / 2], 6);
+      failures.push_back("check '" + check + "' does not hold: " + measured);
+    }
+  }
+  return failures;
+}
 
 std::vector<ClaimResult> check_claims(const ClaimsFile& file, const std::vector<CsvRow>& rows) {
   std::vector<ClaimResult> out;
@@ -264,14 +272,16 @@ std::string items_markdown(const Claim& c) {
 
 }  // namespace
 
-std::string claims_markdown(const ClaimsFile& file, const std::vector<ClaimResult>& results) {
+std::string claims_markdown(const ClaimsFile& file, const std::vector<ClaimResult>& results,
+                            const std::vector<RendererRows>& others) {
   std::string md = std::string(kClaimsBegin) + "\n";
   for (size_t i = 0; i < file.claims.size(); ++i) {
     const Claim& c = file.claims[i];
     md += std::to_string(i + 1) + ". **" + c.judges + "** — *" + c.verdict + "*. " +
-          results[i].sentence + pictures_markdown(c, results[i]) + items_markdown(c) + "\n";
+          results[i].sentence + pictures_markdown(c, results[i]) + items_markdown(c) +
+          renderer_markdown(c, others) + "\n";
   }
-  return md + kClaimsEnd;
+  return md + renderers_checked_markdown(others) + kClaimsEnd;
 }
 
 namespace {
@@ -400,7 +410,9 @@ int verify_result_folder(const std::string& dir, bool write, std::string& report
     if (!results[i].pictures.empty())
       panel.back()["pictures"] = panel_pictures(file.claims[i], results[i]);
   }
-  failures += verify_readme(dir, claims_markdown(file, results), file, write, report);
+  const std::vector<RendererRows> others = other_renderer_rows(dir);
+  failures += verify_other_renderers(file, others, report);
+  failures += verify_readme(dir, claims_markdown(file, results, others), file, write, report);
   return failures + verify_report_panel(dir, panel, write, report);
 }
 

@@ -252,7 +252,8 @@ void parse_tables(const toml::table& root, const Src& src, const std::set<std::s
         if (std::find(t.rows.begin(), t.rows.end(), p) == t.rows.end()) t.rows.push_back(p);
     }
     t.values = {"wrong_pct",    "pos_err_rmse",      "artifact_pct",        "psnr_db",
-                "fetches_mean", "frag_fetches_mean", "warp_fetches_per_px", "frame_ms"};
+                "fetches_mean", "frag_fetches_mean", "warp_fetches_per_px", "gpu_frame_ms",
+                "frame_ms"};
     c.tables.push_back(t);
   }
 }

@@ -18,10 +18,11 @@ namespace rl {
 // A [[plot]] of a config: error against cost per group of rows, with the Pareto front
 // (output/pareto.h draws it).
 struct PlotSpec {
-  // Cost (lower is better): by default the lockstep cost of every shaded fragment per pixel
-  // drawn (metrics/fragment_cost.h), what a GPU would pay, every pass of a multi-pass technique
-  // included; any row column may be chosen.
-  std::string x = "warp_fetches_per_px";
+  // Cost (lower is better): by default time on a GPU -- measured where the row ran on one,
+  // else the cost model's prediction from the run's op counts (gpu_frame_ms, core/cost_model.h),
+  // every pass of a multi-pass technique included; any row column may be chosen (the counts,
+  // warp_fetches_per_px, stay selectable).
+  std::string x = "gpu_frame_ms";
   std::string y = "wrong_pct";  // error (lower is better): the headline error
   std::vector<std::string> group = {"scene", "elevation_deg"};
   bool log_y = true;

@@ -11,6 +11,11 @@ const ColumnDeclaration cost_model_columns(
       "the frame time the model_gpu's cost model predicts at this viewport, from the pixels, "
       "fragments and lockstep ops counted in this run (core/cost_model.h)"},
      {"model_gpu", "", "the cost model that predicted model_frame_ms (configs/gpu-models/)",
+      ColumnKind::Text},
+     {"gpu_frame_ms", "ms",
+      "time on a GPU: frame_ms_min where the row was timed on one (timing gpu_timer), else "
+      "model_frame_ms; the default cost of the Pareto fronts"},
+     {"gpu_frame_ms_source", "", "what gpu_frame_ms is: \"measured\" or \"model <model_gpu>\"",
       ColumnKind::Text}});
 
 }  // namespace

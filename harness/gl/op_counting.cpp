@@ -8,6 +8,8 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "core/hash.h"
+#include "core/precompute_cache.h"
 #include "gl/spirv_op_counts.h"
 
 namespace rl {
@@ -107,7 +109,24 @@ std::vector<uint32_t> fragment_spirv(const std::string& fragment_source) {
 }
 
 std::string op_counting_glsl(const std::string& fragment_source) {
-  return glsl_of(without_assigned_locations(add_op_counters(fragment_spirv(fragment_source))));
+  // Translating takes about 0.1 s a program, once per process: the result is kept in the
+  // precompute cache, keyed by the source and this form's version (bump it when the pass or
+  // its classification changes).
+  const std::string folder = precompute_cache_dir();
+  const std::string version = "op-counting-form 1";
+  const uint64_t key = fnv1a64(fragment_source);
+  uint64_t length = 0;
+  if (read_precompute_cache(folder, version + " length", key, &length, sizeof length) &&
+      length < (64u << 20)) {
+    std::string text(length, '\0');
+    if (read_precompute_cache(folder, version + " text", key, text.data(), length)) return text;
+  }
+  const std::string text =
+      glsl_of(without_assigned_locations(add_op_counters(fragment_spirv(fragment_source))));
+  length = text.size();
+  write_precompute_cache(folder, version + " text", key, text.data(), length);
+  write_precompute_cache(folder, version + " length", key, &length, sizeof length);
+  return text;
 }
 
 }  // namespace rl

@@ -45,6 +45,16 @@ void expand(const std::string& path, const std::string& from, ComposedSource& ou
   }
 }
 
+// The info log of a shader (glGetShaderiv, glGetShaderInfoLog) or a program (the Program pair).
+std::string info_log(GLuint object, void (*get_iv)(GLuint, GLenum, GLint*),
+                     void (*get_log)(GLuint, GLsizei, GLsizei*, GLchar*)) {
+  GLint len = 0;
+  get_iv(object, GL_INFO_LOG_LENGTH, &len);
+  std::string log(static_cast<size_t>(std::max(len, 1)), '\0');
+  get_log(object, len, nullptr, log.data());
+  return log;
+}
+
 GLuint compile(GLenum stage, const ComposedSource& src, const std::string& owner) {
   GLuint shader = glCreateShader(stage);
   const char* text = src.text.c_str();
@@ -53,10 +63,7 @@ GLuint compile(GLenum stage, const ComposedSource& src, const std::string& owner
   GLint ok = 0;
   glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
   if (!ok) {
-    GLint len = 0;
-    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &len);
-    std::string log(static_cast<size_t>(std::max(len, 1)), '\0');
-    glGetShaderInfoLog(shader, len, nullptr, log.data());
+    const std::string log = info_log(shader, glGetShaderiv, glGetShaderInfoLog);
     glDeleteShader(shader);
     throw GlError("technique '" + owner +
                   "': " + (stage == GL_VERTEX_SHADER ? "vertex" : "fragment") +
@@ -100,10 +107,7 @@ GLuint link(GLuint v, GLuint f, const std::string& owner, const ComposedSource& 
   GLint ok = 0;
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
   if (!ok) {
-    GLint len = 0;
-    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &len);
-    std::string log(static_cast<size_t>(std::max(len, 1)), '\0');
-    glGetProgramInfoLog(program, len, nullptr, log.data());
+    const std::string log = info_log(program, glGetProgramiv, glGetProgramInfoLog);
     glDeleteProgram(program);
     throw GlError("technique '" + owner + "': program " + fs.files.back() + " failed to link:\n" +
                   map_glsl_log(log, fs.files));

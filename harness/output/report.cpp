@@ -110,6 +110,7 @@ nlohmann::json report_data(const SweepConfig& config, const std::vector<Row>& ro
                            "frag_fetches_mean",
                            "warp_fetches_mean",
                            "warp_fetches_per_px",
+                           "gpu_frame_ms",
                            "iterations_mean",
                            "frame_ms",
                            "memory_bytes",

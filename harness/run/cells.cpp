@@ -78,7 +78,10 @@ namespace {
 // 2: the exact heightfield truth and its bounds; 3: the bound along the surface's own normal;
 // 4: the cost of every shaded fragment (metrics/fragment_cost.h), cone maps safe under
 // filtering, depth slicing without slack on float maps; 6: warp_fetches_per_px, the default
-// Pareto cost (a stored row without it would drop out of the fronts).
+// Pareto cost (a stored row without it would drop out of the fronts). The op counts,
+// model_frame_ms and gpu_frame_ms (the default Pareto cost since) did not bump it: that would
+// re-key every committed reproduction; a run folder stored before them resumes without them,
+// and its rows stay out of the fronts in time until it is run afresh.
 constexpr int kMeasurementVersion = 6;
 
 }  // namespace

@@ -139,6 +139,11 @@ Row cell_row(const Cell& cell, const SceneDesc& scene, const Camera& camera, con
   for (const auto& [name, value] : c.ops.named()) row[name] = number_or_empty(value);
   row["model_frame_ms"] = number_or_empty(c.model_frame_ms);
   row["model_gpu"] = c.model_gpu;
+  // Time on a GPU: measured where the row ran on one, else the cost model's.
+  const bool on_gpu = c.timing.method == "gpu_timer";
+  row["gpu_frame_ms"] = number_or_empty(on_gpu ? c.timing.min_ms : c.model_frame_ms);
+  row["gpu_frame_ms_source"] =
+      on_gpu ? "measured" : (c.model_gpu.empty() ? "" : "model " + c.model_gpu);
   for (const auto& [name, value] : c.frame_columns) row[name] = value;
   row["memory_bytes"] = double(asset.relief->bytes() + c.technique_bytes);
   row["truth_subdivision"] = asset.truth->subdivision();
