@@ -30,10 +30,18 @@ int resolve_texture_res(const SceneDesc& scene, int texture_res) {
 
 namespace {
 
+// [sweep] cost_model: the GPU cost model the rows' model_frame_ms comes from, the default one
+// unless the config names another (config/cost_model_file.h).
+void parse_cost_model(const toml::table* sweep, const Src& src, const std::string& base_dir,
+                      SweepConfig& c) {
+  const toml::node* v = sweep ? sweep->get("cost_model") : nullptr;
+  c.cost_model_name = v ? string_of(*v, src, "cost_model") : kDefaultCostModel;
+  c.cost_model = load_cost_model(c.cost_model_name, base_dir, v ? src.at(*v) : src.file);
+}
+
 // [sweep]: the name, views, viewports, texture sizes, timing and outputs; the views are the
 // elevations x azimuths unless 'views' lists them.
-void parse_sweep_table(const toml::table& root, const Src& src, const std::string& base_dir,
-                       SweepConfig& c) {
+void parse_sweep_table(const toml::table& root, const Src& src, SweepConfig& c) {
   std::vector<double> elevations = {45}, azimuths = {0};
   if (auto* n = root.get("sweep")) {
     const toml::table* t = n->as_table();
@@ -106,14 +114,6 @@ void parse_sweep_table(const toml::table& root, const Src& src, const std::strin
       c.footprint_samples = positive_int(*v, src, "footprint_samples", 1, 8);
     if (auto* v = t->get("images")) c.write_images = boolean_of(*v, src, "images");
     if (auto* v = t->get("gbuffers")) c.write_gbuffers = boolean_of(*v, src, "gbuffers");
-    if (auto* v = t->get("cost_model")) {
-      c.cost_model_name = string_of(*v, src, "cost_model");
-      c.cost_model = load_cost_model(c.cost_model_name, base_dir, src.at(*v));
-    }
-  }
-  if (c.cost_model_name.empty()) {
-    c.cost_model_name = kDefaultCostModel;
-    c.cost_model = load_cost_model(c.cost_model_name, base_dir, src.file);
   }
   if (c.views.empty())
     for (double e : elevations)
@@ -305,7 +305,8 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
   c.base_dir = base_dir;
   json canon;
 
-  parse_sweep_table(root, src, base_dir, c);
+  parse_sweep_table(root, src, c);
+  parse_cost_model(root.get("sweep") ? root.get("sweep")->as_table() : nullptr, src, base_dir, c);
 
   // [[scene]]: parsed, then completed from its files (sizes, proportions, hashes).
   const toml::array* scenes = root.get("scene") ? root.get("scene")->as_array() : nullptr;
