@@ -5,8 +5,8 @@
 namespace rl {
 namespace {
 
-// Words before the pixels (the first holds the width), and words per pixel: fragments, then
-// one per kind (harness/glsl/gbuffer_outputs.glsl).
+// Words before the pixels (the first two hold the width and height), and words per pixel:
+// fragments, then one per kind (harness/glsl/gbuffer_outputs.glsl).
 constexpr size_t kHeaderWords = 8, kWordsPerPixel = 8;
 static_assert(1 + kOpKinds <= kWordsPerPixel);
 
@@ -17,6 +17,7 @@ int scopes = 0;
 OpCountBuffer::OpCountBuffer(int width, int height) : width_(width), height_(height) {
   std::vector<uint32_t> zeros(kHeaderWords + size_t(width) * height * kWordsPerPixel, 0);
   zeros[0] = uint32_t(width);
+  zeros[1] = uint32_t(height);
   glCreateBuffers(1, &buffer_);
   glNamedBufferData(buffer_, GLsizeiptr(zeros.size() * sizeof(uint32_t)), zeros.data(),
                     GL_DYNAMIC_COPY);  // written by the GPU: a READ hint moves it to host memory

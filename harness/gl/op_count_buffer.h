@@ -10,7 +10,7 @@ namespace rl {
 
 class OpCountBuffer {
  public:
-  OpCountBuffer(int width, int height);  // zeroed, the width in its first word
+  OpCountBuffer(int width, int height);  // zeroed, the width and height in its first words
   ~OpCountBuffer();
   OpCountBuffer(const OpCountBuffer&) = delete;
   OpCountBuffer& operator=(const OpCountBuffer&) = delete;

@@ -33,10 +33,12 @@ void rl_count_fragment() {
 }
 #elif defined(RL_COUNT_OPS)
 // The op-counting render (gl/op_count_buffer.h): per pixel, fragments and their ops by kind, in
-// a buffer whose first word is the frame's width.
+// a buffer whose first two words are the frame's width and height (a pass drawn into a larger
+// target of its own counts nothing outside the frame).
 layout(std430, binding = 0) coherent buffer RlOpCounts { uint rl_op_counts[]; };
 void rl_count_fragment() {
   uvec2 px = uvec2(gl_FragCoord.xy);
+  if (px.x >= rl_op_counts[0] || px.y >= rl_op_counts[1]) return;
   uint at = 8u + (px.y * rl_op_counts[0] + px.x) * 8u;
   atomicAdd(rl_op_counts[at], 1u);
   atomicAdd(rl_op_counts[at + 1u], rl_ops_fetch);
