@@ -323,9 +323,10 @@ def renderer_check(spec):
             if b > 0:
                 worst[k] = max(worst[k], abs(a - b) / b)
     lines = ["", "## The counts are the shader's, not the renderer's", "",
-             "The %d cells of `%s` were counted on the %s itself (a package of this code) and on" %
+             "The %d cells of `%s` were counted on the %s itself and on llvmpipe" %
              (len(gpu_rows), short(gpu_path), pairs[0][0]["renderer"]),
-             "llvmpipe (`%s`). The largest difference in any cell, by kind:" % short(llvmpipe_path), "",
+             "(`%s`) by one build of the counting code, the package's. The largest" % short(llvmpipe_path),
+             "difference in any cell, by kind:", "",
              "| kind | largest relative difference |", "| --- | ---: |"]
     lines += ["| %s | %s%% |" % (k, fmt(100 * worst[k], 2)) for k in KINDS]
     lines += ["", "They differ where the two runs' rays differ: the GPU run resampled the maps through the",

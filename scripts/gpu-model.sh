@@ -40,5 +40,5 @@ fi
 python3 scripts/fit-cost-model.py --gpu "NVIDIA H200" \
   --fit results/gpu-cost/rows.csv:results/gpu-model/counts/gpu-cost.csv \
   --fit results/gpu-cost-heldout/rows.csv:results/gpu-model/counts/gpu-cost-heldout.csv \
-  --renderer-check results/gpu-model/renderer-check/gpu-warmup-h200.csv:results/gpu-model/counts/gpu-cost.csv \
+  --renderer-check results/gpu-model/renderer-check/gpu-warmup-h200.csv:results/gpu-model/renderer-check/gpu-warmup-llvmpipe.csv \
   --model configs/gpu-models/nvidia-h200.toml --report results/gpu-model/README.md "${check[@]}"
