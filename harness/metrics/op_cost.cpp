@@ -62,6 +62,13 @@ OpCost op_cost(const PixelOpCounts& c) {
   return out;
 }
 
+OpCost OpCost::none() {
+  OpCost out;
+  out.warp_ops_per_px.fill(std::numeric_limits<double>::quiet_NaN());
+  out.counted_fragments = std::numeric_limits<double>::quiet_NaN();
+  return out;
+}
+
 std::vector<std::pair<std::string, double>> OpCost::named() const {
   std::vector<std::pair<std::string, double>> out;
   for (int k = 0; k < kOpKinds; ++k) out.emplace_back(warp_ops_column(k), warp_ops_per_px[k]);

@@ -18,6 +18,8 @@ namespace rl {
 struct OpCost {
   std::array<double, kOpKinds> warp_ops_per_px{};  // NaN when the render counted nothing
   double counted_fragments = 0;                    // fragments that wrote their counts
+  // Nothing counted (no op-counting frame drawn): every column NaN, so rows leave them empty.
+  static OpCost none();
   // (name, value) in rows.csv's column order.
   std::vector<std::pair<std::string, double>> named() const;
 };

@@ -50,9 +50,7 @@ OpCost count_ops(Technique& technique, const FrameInput& frame, int width, int h
     if (warned.insert(technique.info().name).second)
       std::fprintf(stderr, "relieflab: warning: no op counts (and no model_frame_ms) for %s: %s\n",
                    technique.info().name.c_str(), e.what());
-    OpCost none;
-    none.warp_ops_per_px.fill(std::numeric_limits<double>::quiet_NaN());
-    return none;
+    return OpCost::none();
   }
   return op_cost(ops.read_back());
 }
@@ -61,7 +59,7 @@ OpCost count_ops(Technique& technique, const FrameInput& frame, int width, int h
 // sweep that asks for none (cost_model = "none") draws no op-counting frame.
 void add_model_cost(const SweepConfig& config, Technique& technique, const FrameInput& frame,
                     const Cell& cell, CellMeasure& out) {
-  out.ops.warp_ops_per_px.fill(std::numeric_limits<double>::quiet_NaN());
+  out.ops = OpCost::none();
   if (!config.cost_model) return;
   out.ops = count_ops(technique, frame, cell.width, cell.height);
   out.model_frame_ms = predict_frame_ms(
