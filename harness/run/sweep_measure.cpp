@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <set>
@@ -65,7 +66,7 @@ void add_model_cost(const SweepConfig& config, Technique& technique, const Frame
   out.model_frame_ms = predict_frame_ms(
       *config.cost_model,
       {double(cell.width) * cell.height, out.cost.fragments, out.ops.warp_ops_per_px});
-  out.model_gpu = config.cost_model->name;
+  if (std::isfinite(out.model_frame_ms)) out.model_gpu = config.cost_model->name;
 }
 
 }  // namespace
