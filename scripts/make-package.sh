@@ -68,7 +68,9 @@ LD_LIBRARY_PATH="$stage/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
 # glvnd's loader, for a machine whose driver came without it (an NVIDIA container's, say).
 mkdir -p "$stage/lib/glvnd"
 for name in libEGL.so.1 libOpenGL.so.0 libGL.so.1 libGLX.so.0 libGLdispatch.so.0; do
-  path=$(ldconfig -p | awk -v n="$name" '$1 == n && /x86-64/ { print $NF; exit }')
+  # awk reads to the end: leaving early would kill ldconfig with SIGPIPE, which pipefail and
+  # set -e turn into a silent exit of this script.
+  path=$(ldconfig -p | awk -v n="$name" '$1 == n && /x86-64/ && !found { print $NF; found = 1 }')
   [ -n "$path" ] && cp -L "$path" "$stage/lib/glvnd/$name"
 done
 
