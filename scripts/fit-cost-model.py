@@ -24,7 +24,6 @@ report differs from what it would write: the report cannot drift from its rows.
 import argparse
 import csv
 import math
-import os
 import sys
 from collections import defaultdict
 

@@ -18,6 +18,7 @@ mkdir -p "$result"
 shift 2
 root=$(pwd)
 work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
 tar -C "$work" -xJf "$package" || { echo "gpu-rows: cannot unpack $package" >&2; exit 2; }
 runs="$work/runs"
 mkdir -p "$runs"
