@@ -1,6 +1,6 @@
 #include "config/cost_model_file.h"
 
-#include <cmath>
+#include <cctype>
 #include <filesystem>
 #include <set>
 
