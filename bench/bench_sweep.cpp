@@ -1,4 +1,6 @@
-// The whole default sweep (configs/default.toml, built in) from an empty output folder.
+// The whole default sweep (configs/default.toml, built in) from an empty output folder, with its
+// op counts and cost model (the default) and without them (cost_model = "none"): the two times'
+// ratio is what the op-counting frames add to a sweep.
 #include <filesystem>
 
 #include <benchmark/benchmark.h>
@@ -10,7 +12,11 @@ namespace rl {
 namespace {
 
 void BM_DefaultSweep(benchmark::State& state) {
-  const SweepConfig config = default_sweep_config();
+  SweepConfig config = default_sweep_config();
+  if (state.range(0) == 0) {
+    config.cost_model.reset();
+    config.cost_model_name = "none";
+  }
   const std::string out =
       (std::filesystem::temp_directory_path() / "relieflab-bench-sweep").string();
   for (auto _ : state) {
@@ -24,7 +30,13 @@ void BM_DefaultSweep(benchmark::State& state) {
   }
 }
 
-BENCHMARK(BM_DefaultSweep)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+BENCHMARK(BM_DefaultSweep)
+    ->ArgName("cost_model")
+    ->Arg(1)
+    ->Arg(0)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace rl

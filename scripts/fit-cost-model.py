@@ -304,7 +304,11 @@ def report_text(args, weights, fit_sets, judge_sets):
         lines += baseline_rows(pairs, "`%s`" % short(spec))
     for spec in args.renderer_check:
         lines += renderer_check(spec)
-    return "\n".join(lines) + "\n" + LIMITS
+    unweighted = [k for k, w in zip(WEIGHTS, weights) if k in KINDS and w == 0]
+    return "\n".join(lines) + "\n" + LIMITS.format(
+        unweighted="The fit gives %s no weight of its own: on these rows their cost is carried by "
+        "the kinds around them." % ", ".join("`%s`" % k for k in unweighted)
+        if unweighted else "Every kind has a weight of its own.")
 
 
 def renderer_check(spec):
@@ -338,12 +342,12 @@ LIMITS = """
 
 - One GPU: the weights are the H200's, whose graphics run on a few of its TPCs; another GPU
   needs its own rows (`scripts/gpu-rows.sh` with the package) and its own fit.
-- Op counts are glslang's SPIR-V before any optimiser, classified by kind; the driver's
+- Op counts are glslang's SPIR-V before any optimiser, classified by kind (the harness's own
+  fetch and iteration counters, which the timed program never reads, left out); the driver's
   compiler removes, fuses and schedules. The fit absorbs a constant ratio per kind, not what
   differs between shaders.
 - Memory is not modelled beyond texture reads as ops: cache behaviour (a dependent read, a
-  scattered quadtree node) is priced like any read. The fit gives `fetch` no weight of its own:
-  on these rows the reads' cost is carried by the arithmetic around them.
+  scattered quadtree node) is priced like any read. {unweighted}
 - A lockstep group is an 8 x 4 tile paying, per kind, its slowest lane's count: a divergent
   group that runs both sides of a branch pays more than that on a GPU.
 """

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/op_kinds.h"
 #include "gl/context.h"
 #include "gl/op_count_buffer.h"
 #include "gl/op_counting.h"
@@ -21,12 +22,13 @@ constexpr int kWidth = 16, kHeight = 8;
 
 struct LoopCase {
   int steps = 5, extra = 0, discard_below = 0;
+  int group_stride = 1;
 };
 
 // The counts of one draw of tests/glsl/op_count_loop.glsl over a kWidth x kHeight frame.
 PixelOpCounts draw_counted(const LoopCase& c) {
   GlContext::shared();
-  OpCountingScope counting;
+  OpCountingScope counting(c.group_stride);
   ProgramDesc d;
   d.owner = "op_count_test";
   d.vertex_file = "harness/glsl/fullscreen.vert";
@@ -52,6 +54,7 @@ PixelOpCounts draw_counted(const LoopCase& c) {
   ops.bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
   PixelOpCounts out = ops.read_back();
+  out.group_stride = c.group_stride;
   glDeleteVertexArrays(1, &vao);
   glDeleteTextures(1, &texture);
   return out;
@@ -99,6 +102,43 @@ TEST(OpCounts, DiscardedFragmentsCountWhatTheyRan) {
   }
 }
 
+TEST(OpCounts, AStrideCountsOnlyItsGroupsAndEachExactly) {
+  // Rows 0-3 and columns 0-7 make group (0, 0), the only one of the four a stride of 2 counts.
+  const PixelOpCounts all = draw_counted({5, 8, 0, 1});
+  const PixelOpCounts sampled = draw_counted({5, 8, 0, 2});
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      SCOPED_TRACE("pixel " + std::to_string(x) + "," + std::to_string(y));
+      const size_t i = size_t(y) * kWidth + x;
+      const bool counted = x < kWarpTileWidth && y < kWarpTileHeight;
+      EXPECT_EQ(sampled.fragments[i], counted ? 1u : 0u);
+      // The gate's own work is not counted: a counted pixel's counts are the ungated ones.
+      for (int k = 0; k < kOpKinds; ++k)
+        EXPECT_EQ(sampled.ops[k][i], counted ? all.ops[k][i] : 0u) << kOpKindNames[k];
+    }
+  // The sample's mean stands for the frame: every group here pays the same.
+  const OpCost whole = op_cost(all), sample = op_cost(sampled);
+  for (int k = 0; k < kOpKinds; ++k)
+    EXPECT_DOUBLE_EQ(sample.warp_ops_per_px[k], whole.warp_ops_per_px[k]) << kOpKindNames[k];
+  EXPECT_DOUBLE_EQ(sample.counted_fragments, double(kWarpTileWidth * kWarpTileHeight));
+}
+
+TEST(OpCounts, AStridedCostIsTheMeanOfTheGroupsItCounted) {
+  // 16 x 8 pixels with a stride of 2: groups (0, 0) counted, (1, 0), (0, 1), (1, 1) not.
+  PixelOpCounts c;
+  c.width = kWidth;
+  c.height = kHeight;
+  c.group_stride = 2;
+  c.fragments.assign(size_t(kWidth) * kHeight, 1);
+  for (auto& kind : c.ops) kind.assign(size_t(kWidth) * kHeight, 0);
+  auto fetches = [&](int x, int y) -> uint32_t& { return c.ops[0][size_t(y) * kWidth + x]; };
+  fetches(2, 1) = 10;   // the slowest lane of the counted group
+  fetches(12, 6) = 99;  // in a group the stride leaves out: ignored
+  const OpCost cost = op_cost(c);
+  EXPECT_DOUBLE_EQ(cost.warp_ops_per_px[0], 10.0);
+  EXPECT_DOUBLE_EQ(cost.counted_fragments, 32.0);
+}
+
 TEST(OpCounts, InstructionsAreClassifiedByKindAndWidth) {
   const std::string source = R"(#version 450 core
 layout(location = 0) out vec4 o_color;
@@ -122,6 +162,28 @@ void main() {
   EXPECT_EQ(total[int(OpKind::Int)], 4u);
   EXPECT_EQ(total[int(OpKind::Branch)], 0u);
   EXPECT_EQ(total[int(OpKind::DynamicIndex)], 1u);
+}
+
+TEST(OpCounts, TheHarnessesOwnCountersAreNotCounted) {
+  // rl_fetches and rl_iterations feed the G-buffer's cost columns; in the timed program nothing
+  // reads them and a GPU compiler drops their increments. The loop's own counter still counts.
+  const std::string source = R"(#version 450 core
+layout(location = 0) out vec4 o_color;
+int rl_fetches = 0;
+int rl_iterations = 0;
+uniform int n;
+void main() {
+  for (int i = 0; i < n; i++) {  // int 2: the compare and the increment
+    rl_iterations++;
+    rl_fetches += 2;
+  }
+  o_color = vec4(float(rl_fetches));  // float 1: the conversion of a value that is read
+})";
+  OpCounts total{};
+  for (const OpCounts& block : block_op_counts(fragment_spirv(source)))
+    for (int k = 0; k < kOpKinds; ++k) total[k] += block[k];
+  EXPECT_EQ(total[int(OpKind::Int)], 2u);
+  EXPECT_EQ(total[int(OpKind::Float)], 1u);
 }
 
 TEST(OpCounts, AShaderWithoutCountersIsRefusedByName) {

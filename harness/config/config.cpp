@@ -49,7 +49,7 @@ void parse_sweep_table(const toml::table& root, const Src& src, SweepConfig& c) 
     check_keys(*t,
                {"name", "elevations", "azimuths", "views", "viewports", "texture_res", "frames",
                 "warmup", "heat_map_scale", "truth_tolerance", "footprint_samples", "images",
-                "gbuffers", "cost_model"},
+                "gbuffers", "cost_model", "op_count_stride"},
                src, "[sweep]");
     if (auto* v = t->get("name")) c.name = plain_name(*v, src, "name");
     if (auto* v = t->get("elevations")) elevations = number_list(*v, src, "elevations");
@@ -114,6 +114,8 @@ void parse_sweep_table(const toml::table& root, const Src& src, SweepConfig& c) 
       c.footprint_samples = positive_int(*v, src, "footprint_samples", 1, 8);
     if (auto* v = t->get("images")) c.write_images = boolean_of(*v, src, "images");
     if (auto* v = t->get("gbuffers")) c.write_gbuffers = boolean_of(*v, src, "gbuffers");
+    if (auto* v = t->get("op_count_stride"))
+      c.op_count_stride = positive_int(*v, src, "op_count_stride", 1, 16);
   }
   if (c.views.empty())
     for (double e : elevations)
@@ -351,6 +353,8 @@ SweepConfig parse_sweep_config(const std::string& text, const std::string& sourc
   }
   // A derived column: absent for the default model, so that choosing it keeps every key.
   if (c.cost_model_name != kDefaultCostModel) canon["cost_model"] = c.cost_model_name;
+  if (c.op_count_stride != SweepConfig{}.op_count_stride)
+    canon["op_count_stride"] = c.op_count_stride;
   c.canonical = canon.dump();
   return c;
 }

@@ -76,6 +76,10 @@ struct SweepConfig {
   // name or file, "none" for no prediction (config/cost_model_file.h).
   std::string cost_model_name;
   std::optional<CostModel> cost_model;
+  // `[sweep] op_count_stride`: the op-counting render counts one 8 x 4 lockstep group in
+  // stride^2 (gl/op_counting.h), a stratified sample that costs the sweep about that much less
+  // time; 1 counts every group exactly.
+  int op_count_stride = 2;
   std::vector<TableSpec> tables;
   std::vector<PlotSpec> plots;                         // Pareto plots of error against cost
   std::map<std::string, std::string> scene_canonical;  // per scene: text of what defines it

@@ -1,5 +1,6 @@
 #include "gl/op_count_buffer.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace rl {
@@ -10,7 +11,7 @@ namespace {
 constexpr size_t kHeaderWords = 8, kWordsPerPixel = 8;
 static_assert(1 + kOpKinds <= kWordsPerPixel);
 
-int scopes = 0;
+std::vector<int> scope_strides;  // of the live scopes, innermost last
 
 }  // namespace
 
@@ -49,14 +50,17 @@ PixelOpCounts OpCountBuffer::read_back() const {
   return out;
 }
 
-OpCountingScope::OpCountingScope() {
-  ++scopes;
+OpCountingScope::OpCountingScope(int group_stride) {
+  scope_strides.push_back(std::max(group_stride, 1));
 }
 OpCountingScope::~OpCountingScope() {
-  --scopes;
+  scope_strides.pop_back();
 }
 bool OpCountingScope::active() {
-  return scopes > 0;
+  return !scope_strides.empty();
+}
+int OpCountingScope::group_stride() {
+  return scope_strides.empty() ? 1 : scope_strides.back();
 }
 
 }  // namespace rl

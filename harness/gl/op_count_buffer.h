@@ -15,6 +15,7 @@ class OpCountBuffer {
   OpCountBuffer(const OpCountBuffer&) = delete;
   OpCountBuffer& operator=(const OpCountBuffer&) = delete;
   void bind() const;
+  // The counts; the caller sets their group_stride, the one its OpCountingScope drew them with.
   PixelOpCounts read_back() const;
 
  private:
@@ -22,14 +23,16 @@ class OpCountBuffer {
   GLuint buffer_ = 0;
 };
 
-// While one is alive, ShaderLibrary builds every program in its op-counting form.
+// While one is alive, ShaderLibrary builds every program in its op-counting form, counting one
+// lockstep group in group_stride^2 (gl/op_counting.h).
 class OpCountingScope {
  public:
-  OpCountingScope();
+  explicit OpCountingScope(int group_stride = 1);
   ~OpCountingScope();
   OpCountingScope(const OpCountingScope&) = delete;
   OpCountingScope& operator=(const OpCountingScope&) = delete;
   static bool active();
+  static int group_stride();  // of the innermost live scope; 1 when none
 };
 
 }  // namespace rl

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "core/hash.h"
+#include "core/op_kinds.h"
 #include "core/precompute_cache.h"
 #include "gl/spirv_op_counts.h"
 
@@ -84,6 +85,33 @@ std::string glsl_of(const std::vector<uint32_t>& spirv) {
   return text;
 }
 
+// `source` whose main() runs only in the lockstep groups counted: the pass's own main renamed,
+// and a new one that first lets the gate discard the other groups. The gate is named
+// rl_uncounted_*, so its work is not counted (gl/spirv_op_counts.h); main's own block only
+// calls. Groups are quad-aligned, so no derivative reads a discarded neighbour.
+std::string with_group_gate(const std::string& source, int group_stride) {
+  if (group_stride <= 1) return source;
+  const size_t after_version = source.find('\n');
+  if (source.rfind("#version", 0) != 0 || after_version == std::string::npos)
+    throw std::runtime_error("op counting: the shader does not begin with #version");
+  const std::string stride = std::to_string(group_stride) + "u";
+  return source.substr(0, after_version + 1) + "#define main rl_counted_main\n" +
+         source.substr(after_version + 1) +
+         "\n#undef main\n"
+         "void rl_uncounted_group_gate() {\n"
+         "  uvec2 group = uvec2(gl_FragCoord.xy) / uvec2(" +
+         std::to_string(kWarpTileWidth) + "u, " + std::to_string(kWarpTileHeight) +
+         "u);\n"
+         "  if (group.x % " +
+         stride + " != 0u || group.y % " + stride +
+         " != 0u) discard;\n"
+         "}\n"
+         "void main() {\n"
+         "  rl_uncounted_group_gate();\n"
+         "  rl_counted_main();\n"
+         "}\n";
+}
+
 }  // namespace
 
 std::vector<uint32_t> fragment_spirv(const std::string& fragment_source) {
@@ -108,12 +136,13 @@ std::vector<uint32_t> fragment_spirv(const std::string& fragment_source) {
   return words;
 }
 
-std::string op_counting_glsl(const std::string& fragment_source) {
+std::string op_counting_glsl(const std::string& original_source, int group_stride) {
+  const std::string fragment_source = with_group_gate(original_source, group_stride);
   // Translating takes about 0.1 s a program, once per process: the result is kept in the
   // precompute cache, keyed by the source and this form's version (bump it when the pass or
   // its classification changes).
   const std::string folder = precompute_cache_dir();
-  const std::string version = "op-counting-form 1";
+  const std::string version = "op-counting-form 3";
   const uint64_t key = fnv1a64(fragment_source);
   uint64_t length = 0;
   if (read_precompute_cache(folder, version + " length", key, &length, sizeof length) &&

@@ -11,9 +11,12 @@
 
 namespace rl {
 
-// The instrumented GLSL of `fragment_source` (a composed source, #version first). Throws
+// The instrumented GLSL of `fragment_source` (a composed source, #version first). With
+// `group_stride` > 1 only one 8 x 4 lockstep group in group_stride^2 runs the pass -- those whose
+// column and row of groups are multiples of it; the others discard before anything else, so a
+// frame costs about that much less to count (metrics/op_cost.h scales the total back). Throws
 // std::runtime_error with glslang's or SPIRV-Cross's log when a stage fails.
-std::string op_counting_glsl(const std::string& fragment_source);
+std::string op_counting_glsl(const std::string& fragment_source, int group_stride = 1);
 
 // The SPIR-V glslang makes of `fragment_source` for OpenGL (locations and bindings assigned);
 // for tests and for reading a shader's static op mix. Throws like op_counting_glsl.

@@ -74,10 +74,10 @@ GLuint compile(GLenum stage, const ComposedSource& src, const std::string& owner
 
 // The op-counting form of a fragment source whose fragments write their counts; a pass that
 // writes none (a plain object's, say) counts nothing, as in the G-buffer render's fetch counts.
-std::string counting_form(const std::string& text, const std::string& owner) {
+std::string counting_form(const std::string& text, const std::string& owner, int group_stride) {
   if (text.find("rl_count_fragment") == std::string::npos) return text;
   try {
-    return op_counting_glsl(text);
+    return op_counting_glsl(text, group_stride);
   } catch (const std::runtime_error& e) {
     throw GlError("technique '" + owner + "': " + e.what());
   }
@@ -164,14 +164,16 @@ ShaderLibrary& ShaderLibrary::shared() {
 
 ShaderLibrary::Entry& ShaderLibrary::entry(const ProgramDesc& plain) {
   ProgramDesc desc = plain;
-  if (OpCountingScope::active()) desc.defines["RL_COUNT_OPS"] = "1";
+  // The stride is part of the key: a program gated for one stride is not another's.
+  if (OpCountingScope::active())
+    desc.defines["RL_COUNT_OPS"] = std::to_string(OpCountingScope::group_stride());
   const std::string key = cache_key(desc);
   auto it = programs_.find(key);
   if (it != programs_.end()) return it->second;
   ComposedSource vs = compose_glsl({desc.vertex_file}, desc.defines);
   ComposedSource fs = compose_glsl(desc.fragment_files, desc.defines);
   const bool counting = desc.defines.count("RL_COUNT_OPS") > 0;
-  if (counting) fs.text = counting_form(fs.text, desc.owner);
+  if (counting) fs.text = counting_form(fs.text, desc.owner, OpCountingScope::group_stride());
   GLuint v = compile(GL_VERTEX_SHADER, vs, desc.owner);
   GLuint f = 0;
   try {

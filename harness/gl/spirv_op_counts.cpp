@@ -39,7 +39,11 @@ struct ModuleFacts {
   std::set<uint32_t> float_types, constants;
   std::unordered_map<uint32_t, uint32_t> pointer_storage;  // pointer type id -> storage class
   std::map<std::string, uint32_t> names;                   // OpName, first of each
-  uint32_t glsl_std = 0;                                   // GLSL.std.450's import id
+  std::set<uint32_t> uncounted;  // functions named rl_uncounted_*: the harness's, not the pass's
+  // Increments of the harness's own fetch and iteration counters (search_cost.glsl): nothing in
+  // the timed program reads them, so a GPU's compiler removes them.
+  std::set<uint32_t> bookkeeping;
+  uint32_t glsl_std = 0;  // GLSL.std.450's import id
 };
 
 std::string literal_string(const std::vector<uint32_t>& w, size_t from) {
@@ -77,6 +81,26 @@ void record_type(const Instruction& in, ModuleFacts& f) {
   }
 }
 
+// The results of `rl_fetches++`, `rl_iterations += n` and the like: an integer add or subtract
+// of a value loaded from one of those counters whose result is stored back into it.
+std::set<uint32_t> bookkeeping_of(const std::vector<Instruction>& module, const ModuleFacts& f) {
+  std::set<uint32_t> counters, loaded, stored;
+  for (const char* name : {"rl_fetches", "rl_iterations"}) {
+    const auto it = f.names.find(name);
+    if (it != f.names.end()) counters.insert(it->second);
+  }
+  for (const Instruction& in : module) {
+    if (in.op == SpvOpLoad && counters.count(in.words[3])) loaded.insert(in.words[2]);
+    if (in.op == SpvOpStore && counters.count(in.words[1])) stored.insert(in.words[2]);
+  }
+  std::set<uint32_t> out;
+  for (const Instruction& in : module)
+    if ((in.op == SpvOpIAdd || in.op == SpvOpISub) && stored.count(in.words[2]) &&
+        (loaded.count(in.words[3]) || loaded.count(in.words[4])))
+      out.insert(in.words[2]);
+  return out;
+}
+
 ModuleFacts facts_of(const std::vector<Instruction>& module) {
   ModuleFacts f;
   for (const Instruction& in : module) {
@@ -84,11 +108,16 @@ ModuleFacts facts_of(const std::vector<Instruction>& module) {
     SpvHasResultAndType(in.op, &has_result, &has_type);
     if (has_result && has_type) f.type_of[in.words[2]] = in.words[1];
     record_type(in, f);
-    if (in.op == SpvOpName) f.names.emplace(literal_string(in.words, 2), in.words[1]);
+    if (in.op == SpvOpName) {
+      const std::string name = literal_string(in.words, 2);
+      f.names.emplace(name, in.words[1]);
+      if (name.rfind(kUncountedPrefix, 0) == 0) f.uncounted.insert(in.words[1]);
+    }
     if (in.op == SpvOpExtInstImport && literal_string(in.words, 2) == "GLSL.std.450")
       f.glsl_std = in.words[1];
     if (in.op >= SpvOpConstantTrue && in.op <= SpvOpSpecConstantOp) f.constants.insert(in.words[2]);
   }
+  f.bookkeeping = bookkeeping_of(module, f);
   return f;
 }
 
@@ -148,6 +177,7 @@ bool is_dynamic_local_access(const Instruction& in, const ModuleFacts& f) {
 // Adds what `in` executes to `c`.
 void count(const Instruction& in, const ModuleFacts& f, OpCounts& c) {
   const SpvOp op = in.op;
+  if ((op == SpvOpIAdd || op == SpvOpISub) && f.bookkeeping.count(in.words[2])) return;
   if (op >= SpvOpImageSampleImplicitLod && op <= SpvOpImageRead) {
     c[int(OpKind::Fetch)] += 1;
   } else if (op == SpvOpFDiv || op == SpvOpFRem || op == SpvOpFMod) {
@@ -213,9 +243,11 @@ std::vector<OpCounts> block_op_counts(const std::vector<uint32_t>& spirv) {
   const std::vector<Instruction> module = parse(spirv);
   const ModuleFacts facts = facts_of(module);
   std::vector<OpCounts> blocks;
+  bool counted = true;
   for (const Instruction& in : module) {
+    if (in.op == SpvOpFunction) counted = !facts.uncounted.count(in.words[2]);
     if (in.op == SpvOpLabel) blocks.push_back({});
-    if (!blocks.empty()) count(in, facts, blocks.back());
+    if (!blocks.empty() && counted) count(in, facts, blocks.back());
   }
   return blocks;
 }
@@ -260,8 +292,9 @@ std::vector<uint32_t> add_op_counters(const std::vector<uint32_t>& spirv) {
     out.insert(out.begin() + long(block_start), adds.begin(), adds.end());
     block = {};
   };
-  bool in_block = false;
+  bool in_block = false, counted = true;
   for (const Instruction& in : module) {
+    if (in.op == SpvOpFunction) counted = !facts.uncounted.count(in.words[2]);
     Instruction copy = in;
     // The counters start at zero: glslang would zero them in main's first block, which counts
     // itself before anything runs.
@@ -273,7 +306,7 @@ std::vector<uint32_t> add_op_counters(const std::vector<uint32_t>& spirv) {
     const bool block_head =
         in.op == SpvOpPhi || in.op == SpvOpVariable || in.op == SpvOpLine || in.op == SpvOpNoLine;
     if (in_block && out.size() == block_start && block_head) ++block_start;
-    if (in_block) count(in, facts, block);
+    if (in_block && counted) count(in, facts, block);
     out.push_back(copy);
     if (in.op == SpvOpLabel) {
       in_block = true;

@@ -21,6 +21,11 @@
 //   at run time (an array a GPU may have to keep in memory rather than registers).
 // Loads, stores, copies, composites, calls and returns are left out: a GPU compiler keeps
 // locals in registers and inlines calls, so glslang's unoptimised SPIR-V overstates them.
+// The harness's own bookkeeping is not counted either: increments of rl_fetches and
+// rl_iterations (search_cost.glsl), which the timed program never reads, so that a GPU's
+// compiler removes them. Functions named rl_uncounted_* count nothing: the harness's own code in
+// the counting form (the gate that picks which lockstep groups are counted, gl/op_counting.h), not
+// the pass's.
 #include <array>
 #include <cstdint>
 #include <string>
@@ -34,6 +39,8 @@ namespace rl {
 inline const std::array<const char*, kOpKinds> kOpCounterNames = {
     "rl_ops_fetch", "rl_ops_float",  "rl_ops_special",
     "rl_ops_int",   "rl_ops_branch", "rl_ops_dynamic_index"};
+
+inline constexpr const char* kUncountedPrefix = "rl_uncounted_";
 
 // What each basic block of `spirv` executes, by kind, in the order the blocks appear (for tests
 // and for reading a shader's static mix).

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "core/fragment_counts.h"
+#include "core/op_kinds.h"  // kWarpTileWidth, kWarpTileHeight
 
 namespace rl {
 
@@ -40,8 +41,6 @@ struct FragmentCost {
   // (name, value) in rows.csv's column order; means NaN when no fragment was shaded.
   std::vector<std::pair<std::string, double>> named() const;
 };
-
-inline constexpr int kWarpTileWidth = 8, kWarpTileHeight = 4;
 
 // The lockstep cost of `counts` in tiles of tile_w x tile_h pixels: each tile's fragments times
 // its largest fetch count, summed over the tiles, with the fragments and the pixels shaded.

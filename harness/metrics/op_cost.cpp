@@ -21,10 +21,13 @@ std::vector<ColumnSpec> op_cost_specs() {
   for (int k = 0; k < kOpKinds; ++k)
     specs.push_back({warp_ops_column(k), "ops / px",
                      std::string("lockstep cost of ") + meaning[k] +
-                         ": 8 x 4 tiles pay their slowest fragment's count, per pixel of the "
-                         "frame (the op-counting render, every pass)"});
-  specs.push_back({"op_counted_fragments", "fragments",
-                   "fragments that wrote their op counts in the op-counting render"});
+                         ": 8 x 4 tiles pay their slowest fragment's count, per pixel (the "
+                         "op-counting render, every pass; over the tiles it counted, "
+                         "[sweep] op_count_stride)"});
+  specs.push_back(
+      {"op_counted_fragments", "fragments",
+       "fragments that wrote their op counts in the op-counting render (in the tiles it "
+       "counted)"});
   return specs;
 }
 
@@ -39,12 +42,17 @@ std::string warp_ops_column(int kind) {
 OpCost op_cost(const PixelOpCounts& c) {
   OpCost out;
   std::array<double, kOpKinds> total{};
-  for (int y0 = 0; y0 < c.height; y0 += kWarpTileHeight)
-    for (int x0 = 0; x0 < c.width; x0 += kWarpTileWidth) {
+  double pixels = 0;  // of the groups counted
+  const int stride = std::max(c.group_stride, 1);
+  for (int y0 = 0; y0 < c.height; y0 += kWarpTileHeight * stride)
+    for (int x0 = 0; x0 < c.width; x0 += kWarpTileWidth * stride) {
+      const int x1 = std::min(x0 + kWarpTileWidth, c.width);
+      const int y1 = std::min(y0 + kWarpTileHeight, c.height);
+      pixels += double(x1 - x0) * (y1 - y0);
       double fragments = 0;
       std::array<double, kOpKinds> slowest{};
-      for (int y = y0; y < std::min(y0 + kWarpTileHeight, c.height); ++y)
-        for (int x = x0; x < std::min(x0 + kWarpTileWidth, c.width); ++x) {
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
           const size_t i = size_t(y) * c.width + x;
           if (!c.fragments[i]) continue;
           fragments += c.fragments[i];
@@ -54,7 +62,6 @@ OpCost op_cost(const PixelOpCounts& c) {
       out.counted_fragments += fragments;
       for (int k = 0; k < kOpKinds; ++k) total[k] += fragments * slowest[k];
     }
-  const double pixels = double(c.width) * c.height;
   for (int k = 0; k < kOpKinds; ++k)
     out.warp_ops_per_px[k] = out.counted_fragments > 0 && pixels > 0
                                  ? total[k] / pixels

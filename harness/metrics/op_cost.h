@@ -3,9 +3,11 @@
 // fragment's executed ops by kind (core/op_kinds.h), reduced the way a GPU runs fragments --
 // in 8 x 4 lockstep groups (kWarpTileWidth x kWarpTileHeight, metrics/fragment_cost.h) that take
 // as long as their slowest lane. Per kind, a tile pays its fragments times the largest
-// per-fragment count among its pixels; `warp_<kind>_ops` is the tiles' total over the frame's
-// pixels (every pixel of the viewport, shaded or not), so the total a frame pays is it times
-// width x height: what the GPU cost model (core/cost_model.h) weighs.
+// per-fragment count among its pixels; `warp_<kind>_ops` is the tiles' total over their pixels
+// (every pixel of the viewport, shaded or not), so the total a frame pays is it times
+// width x height: what the GPU cost model (core/cost_model.h) weighs. Where the render counted
+// one tile in group_stride^2 (PixelOpCounts), the total and the pixels are those tiles': a
+// stratified sample of the frame whose mean estimates the whole.
 #include <array>
 #include <string>
 #include <utility>

@@ -37,13 +37,14 @@ std::pair<std::unique_ptr<Technique>, double>& prepared_technique(const SweepCon
 // A shader the op-counting compilers cannot take (glslang reads GLSL more strictly than some
 // drivers) leaves the row's op columns and model_frame_ms empty, with a warning once per
 // technique, rather than failing the run: the contract holds the built-in techniques to it.
-OpCost count_ops(Technique& technique, const FrameInput& frame, int width, int height) {
+OpCost count_ops(Technique& technique, const FrameInput& frame, int width, int height,
+                 int group_stride) {
   OpCountBuffer ops(width, height);
   RenderTarget target(width, height, RenderTarget::Kind::ColorOnly);
   target.bind_and_clear();
   ops.bind();
   try {
-    OpCountingScope counting;
+    OpCountingScope counting(group_stride);
     render_frame(technique, frame, RenderTarget::Kind::ColorOnly);
   } catch (const GlError& e) {
     static std::set<std::string> warned;
@@ -52,7 +53,9 @@ OpCost count_ops(Technique& technique, const FrameInput& frame, int width, int h
                    technique.info().name.c_str(), e.what());
     return OpCost::none();
   }
-  return op_cost(ops.read_back());
+  PixelOpCounts counts = ops.read_back();
+  counts.group_stride = group_stride;
+  return op_cost(counts);
 }
 
 // The op counts of a cell's frame and its cost model's prediction. They feed the model only: a
@@ -61,7 +64,7 @@ void add_model_cost(const SweepConfig& config, Technique& technique, const Frame
                     const Cell& cell, CellMeasure& out) {
   out.ops = OpCost::none();
   if (!config.cost_model) return;
-  out.ops = count_ops(technique, frame, cell.width, cell.height);
+  out.ops = count_ops(technique, frame, cell.width, cell.height, config.op_count_stride);
   out.model_frame_ms = predict_frame_ms(
       *config.cost_model,
       {double(cell.width) * cell.height, out.cost.fragments, out.ops.warp_ops_per_px});
