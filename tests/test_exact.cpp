@@ -4,7 +4,9 @@
 #include <random>
 
 #include <gtest/gtest.h>
+
 #include <glm/gtc/constants.hpp>
+#include "relief/window_pyramid.h"
 
 #include "relief/heightfield_reference.h"
 #include "relief/procedural.h"
@@ -83,7 +85,8 @@ Comparison compare(const std::string& technique, const ReliefMap& map,
 
 // The techniques that solve every cell they reach exactly: each must find the reference's
 // first crossing on every ray.
-const char* const kExactBilinear[] = {"relief_exact_bilinear", "relief_hierarchical_exact"};
+const char* const kExactBilinear[] = {"relief_exact_bilinear", "relief_hierarchical_exact",
+                                      "relief_window_exact"};
 
 TEST(ExactBilinear, MatchesTheReferenceAtFloatLevelOnAdversarialSaddles) {
   for (const char* technique : kExactBilinear)
@@ -112,6 +115,29 @@ TEST(ExactBilinear, MatchesTheReferenceOnRandomAndProceduralMaps) {
       EXPECT_EQ(c.missed, 0);
       EXPECT_LE(c.max_residual, c.max_residual_bound);
     }
+}
+
+// Every value of the window pyramid bounds, from above, every cell a step of at most b texels
+// from any point of its block can reach: brute force over the points' possible cells.
+TEST(WindowPyramid, EveryValueBoundsTheCellsAStepCanReach) {
+  const int W = 32, H = 16;
+  std::vector<float> cells(size_t(W) * H);
+  uint32_t state = 12345;
+  for (float& c : cells) c = float((state = state * 1664525u + 1013904223u) >> 8) / 16777216.0f;
+  for (int b : {1, 2, 4, 8}) {
+    SCOPED_TRACE(b);
+    const std::vector<float> level = window_level(cells, W, H, b);
+    ASSERT_EQ(level.size(), size_t(W / b) * (H / b));
+    for (int J = 0; J < H / b; ++J)
+      for (int I = 0; I < W / b; ++I) {
+        // X = u W - 0.5 over the block, +- b: cells floor(X) from I b - 1 - b to (I + 1) b - 1 + b.
+        float least = 2.0f;
+        for (int y = J * b - 1 - b; y <= (J + 1) * b - 1 + b; ++y)
+          for (int x = I * b - 1 - b; x <= (I + 1) * b - 1 + b; ++x)
+            least = std::min(least, cells[size_t((y % H + H) % H) * W + size_t((x % W + W) % W)]);
+        EXPECT_LE(level[size_t(J) * (W / b) + I], least) << I << "," << J;
+      }
+  }
 }
 
 TEST(Exact, MissesSaddlesThatTheBilinearWalkFinds) {

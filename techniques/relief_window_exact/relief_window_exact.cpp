@@ -1,0 +1,100 @@
+// Window-pyramid exact search: float-only empty-space skipping, exact ray-patch solve per cell.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "relief/min_depth_pyramid.h"
+#include "relief/window_pyramid.h"
+#include "technique/shader_technique.h"
+
+namespace rl {
+namespace {
+
+// What the stored bounds are lowered by: a GPU's own conversion of 8-bit depths must never put
+// a corner above its bound (as relief_hierarchical_exact's quadtree does).
+constexpr float kMargin = 1e-6f;
+
+}  // namespace
+
+class ReliefWindowExact final : public Described<ReliefWindowExact, ShaderTechnique> {
+ public:
+  using Described::Described;
+  static TechniqueInfo describe() {
+    return {
+        .name = "relief_window_exact",
+        .title =
+            "Window-pyramid exact search (float-only empty-space skipping, exact ray-patch "
+            "solve per cell)",
+        .citation =
+            "Beyond the published work: the empty-space skipping of Tevs, Ihrke & "
+            "Seidel 2008's maximum mipmaps without node alignment, over the bilinear "
+            "cells, with relief_exact_bilinear's exact solve",
+        .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
+        .params = {{.name = "start_level",
+                    .kind = ParamKind::Int,
+                    .default_value = 2,
+                    .min_value = 0,
+                    .max_value = 16,
+                    .doc = "level of the first step (2^level texels along the ray's faster "
+                           "axis), at most the pyramid's coarsest"}},
+        .box_proxy = true,
+        .contract = {.answer = Answer::Exact,
+                     .max_fetches = [](const RayQuery& q) { return window_steps(q) + 2; },
+                     .max_fetches_formula = "5 x (texels crossed along the faster axis + 2) + "
+                                            "start_level (a window read per step, a gather per "
+                                            "cell solved), + 2 to shade",
+                     .accuracy = "the first hit on the bilinear surface, up to float rounding"}};
+  }
+  ~ReliefWindowExact() override {
+    if (texture_) glDeleteTextures(1, &texture_);
+  }
+  size_t memory_bytes() const override { return bytes_; }
+
+  // Each step advances at least a texel along the faster axis (a climb) or descends, and
+  // descents are at most the climbs plus the first level; an exact segment of one texel
+  // solves at most 3 cells.
+  static double window_steps(const RayQuery& q) {
+    const double texels = std::floor(std::max(q.span_texels.x, q.span_texels.y)) + 2;
+    return std::min(4 * kWalkCellCap, 5 * texels + q.param("start_level"));
+  }
+
+  void prepare(const ReliefMap& map) override {
+    const std::vector<float> cells = build_min_depth_pyramid(map, kMargin).level[0];
+    top_ = quadtree_levels(map.width, map.height) - 1;
+    if (texture_) glDeleteTextures(1, &texture_);
+    glCreateTextures(GL_TEXTURE_2D, 1, &texture_);
+    glTextureStorage2D(texture_, top_ + 1, GL_R32F, map.width, map.height);
+    bytes_ = 0;
+    for (int k = 0; k <= top_; ++k) {
+      const int b = 1 << k;
+      const std::vector<float> level = window_level(cells, map.width, map.height, b);
+      glTextureSubImage2D(texture_, k, 0, 0, map.width / b, map.height / b, GL_RED, GL_FLOAT,
+                          level.data());
+      bytes_ += level.size() * sizeof(float);
+    }
+    glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+    glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(texture_, GL_TEXTURE_MAX_LEVEL, top_);
+  }
+
+ protected:
+  std::string intersect_file() const override {
+    return "techniques/relief_window_exact/relief_window_exact.glsl";
+  }
+  Defines parameter_defines() const override {
+    return {{"RL_START_LEVEL", std::to_string(static_cast<int>(param("start_level")))}};
+  }
+  void bind_resources(GLuint program) const override {
+    glBindTextureUnit(4, texture_);
+    glProgramUniform1f(program, glGetUniformLocation(program, "rl_window_top"), float(top_));
+  }
+
+ private:
+  GLuint texture_ = 0;
+  int top_ = 0;
+  size_t bytes_ = 0;
+};
+
+RL_REGISTER_TECHNIQUE(ReliefWindowExact);
+
+}  // namespace rl

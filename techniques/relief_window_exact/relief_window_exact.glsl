@@ -1,0 +1,94 @@
+// Window-pyramid exact search (ReliefLab, beyond the published work): empty-space skipping with
+// float arithmetic only. Level k of rl_window holds, per texel of a 2^k-texel block, the least
+// depth of every bilinear cell that a step of 2^k texels from anywhere in the block can reach
+// (harness/relief/window_pyramid.h). So from any point one fetch tells whether the ray may
+// advance 2^k texels along its faster axis: if its depth at the step's end is still above that
+// bound, nothing in reach can be hit. No node alignment, no integer cell arithmetic: a step
+// succeeds and the search climbs a level, or fails and it descends; where even a one-texel step
+// may hit, the cells of that texel of the ray are solved exactly, as relief_exact_bilinear
+// solves every cell it walks.
+#include "harness/glsl/bilinear_walk.glsl"
+
+layout(binding = 4) uniform sampler2D rl_window;  // R32F mip chain, nearest
+uniform float rl_window_top;                      // its coarsest level
+
+// Hard cap on steps per ray: loops stay bounded whatever the view (a ray that reaches it
+// reports no hit). Each step advances, or descends a level that a later step climbed.
+#define RL_WINDOW_MAX_STEPS (4 * RL_MAX_CELLS)
+
+#define RL_FETCH_WINDOW(uv, lod) (rl_fetches++, textureLod(rl_window, uv, lod).r)
+
+// The ray in texel-centre coordinates (centerline_walk.glsl's frame, set up once per ray):
+// X(t) = start + dir t, cell c spans [c, c + 1] per axis; per axis the t between crossings
+// (delta), which way cells advance (+1 or -1) and how far a crossing lies ahead of a cell's
+// low side (1 moving up, 0 moving down).
+struct RlCellRay {
+  vec2 start, dir, delta, advance, ahead;
+};
+
+RlCellRay rl_cell_ray(vec3 p, vec3 s) {
+  RlCellRay r;
+  r.start = fract(p.xy) * vec2(textureSize(rl_relief, 0)) - 0.5;
+  r.dir = s.xy * vec2(textureSize(rl_relief, 0));
+  r.delta = 1.0 / max(abs(r.dir), vec2(1e-30));
+  r.advance = mix(vec2(-1.0), vec2(1.0), greaterThanEqual(r.dir, vec2(0.0)));
+  r.ahead = max(r.advance, vec2(0.0));
+  return r;
+}
+
+// The first hit on the cells the ray crosses between t0 and t1 (about a texel of travel:
+// at most three cells, a fourth for rounding), each solved exactly unless the ray's depth at
+// the cell's exit is still above all four corners. Else false, with the t it got to.
+bool rl_solve_cells(RlCellRay r, float z0, float t0, float t1, out float t_out) {
+  vec2 cell = floor(r.start + r.dir * t0);
+  vec2 next = t0 + (cell + r.ahead - (r.start + r.dir * t0)) * r.advance * r.delta;
+  float t_enter = t0;
+  for (int n = 0; n < 4; n++) {
+    RL_ITERATE;
+    float t_exit = min(min(next.x, next.y), t1);
+    vec4 corners = rl_cell_corners(ivec2(cell));
+    if (z0 + t_exit >= min(min(corners.x, corners.y), min(corners.z, corners.w))) {
+      vec2 local = r.start + r.dir * t_enter - cell;
+      float tau = rl_patch_first_hit(corners, local, r.dir, z0 + t_enter, t_exit - t_enter);
+      if (tau >= 0.0) {
+        t_out = t_enter + tau;
+        return true;
+      }
+    }
+    t_enter = t_exit;
+    if (t_exit >= t1) break;
+    bool along_x = next.x <= next.y;
+    cell += along_x ? vec2(r.advance.x, 0.0) : vec2(0.0, r.advance.y);
+    next += along_x ? vec2(r.delta.x, 0.0) : vec2(0.0, r.delta.y);
+  }
+  t_out = t_enter;
+  return false;
+}
+
+RlHit rl_intersect(vec3 p, vec3 s) {
+  const float t_end = 1.0 - p.z;  // the ray reaches depth 1, inside everywhere
+  RlCellRay ray = rl_cell_ray(p, s);
+  // Ray parameter per texel of travel along the faster axis.
+  float t_texel = min(ray.delta.x, ray.delta.y);
+  float lod = min(float(RL_START_LEVEL), rl_window_top);
+  float t = 0.0;
+  for (int n = 0; n < RL_WINDOW_MAX_STEPS; n++) {
+    RL_ITERATE;
+    float t_next = min(t + exp2(lod) * t_texel, t_end);
+    if (p.z + t_next < RL_FETCH_WINDOW(p.xy + s.xy * t, lod)) {
+      // Above everything the step can reach: take it, and try a longer one next.
+      t = t_next;
+      lod = min(lod + 1.0, rl_window_top);
+    } else if (lod > 0.0) {
+      lod -= 1.0;
+    } else {
+      float t_hit;
+      if (rl_solve_cells(ray, p.z, t, t_next, t_hit)) return rl_hit_on_ray(p, s, t_hit, true);
+      // Depth 1 is inside everywhere: a ray that reaches it without a root (the floor met at
+      // its depth, where rounding may put the root just past the end) hits there.
+      if (t_hit >= t_end) return rl_hit_on_ray(p, s, t_end, true);
+      t = t_hit;
+    }
+  }
+  return rl_hit_on_ray(p, s, t_end, false);
+}
