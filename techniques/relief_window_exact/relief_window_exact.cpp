@@ -36,7 +36,15 @@ class ReliefWindowExact final : public Described<ReliefWindowExact, ShaderTechni
                     .min_value = 0,
                     .max_value = 16,
                     .doc = "level of the first step (2^level texels along the ray's faster "
-                           "axis), at most the pyramid's coarsest"}},
+                           "axis), at most the pyramid's coarsest"},
+                   {.name = "climb_after",
+                    .kind = ParamKind::Int,
+                    .default_value = 3,
+                    .min_value = 1,
+                    .max_value = 4,
+                    .doc = "steps taken at a level before the search tries the next one up "
+                           "(1: after every step, as maximum-mipmap traversals do; more saves "
+                           "the failing tries of a ray that runs close to the surface)"}},
         .box_proxy = true,
         .contract = {.answer = Answer::Exact,
                      .max_fetches = [](const RayQuery& q) { return window_steps(q) + 2; },
@@ -82,7 +90,8 @@ class ReliefWindowExact final : public Described<ReliefWindowExact, ShaderTechni
     return "techniques/relief_window_exact/relief_window_exact.glsl";
   }
   Defines parameter_defines() const override {
-    return {{"RL_START_LEVEL", std::to_string(static_cast<int>(param("start_level")))}};
+    return {{"RL_START_LEVEL", std::to_string(static_cast<int>(param("start_level")))},
+            {"RL_CLIMB_AFTER", std::to_string(static_cast<int>(param("climb_after")))}};
   }
   void bind_resources(GLuint program) const override {
     glBindTextureUnit(4, texture_);

@@ -72,15 +72,21 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   float t_texel = min(ray.delta.x, ray.delta.y);
   float lod = min(float(RL_START_LEVEL), rl_window_top);
   float t = 0.0;
+  float successes = 0.0;  // steps taken at this level since the last descent
   for (int n = 0; n < RL_WINDOW_MAX_STEPS; n++) {
     RL_ITERATE;
     float t_next = min(t + exp2(lod) * t_texel, t_end);
     if (p.z + t_next < RL_FETCH_WINDOW(p.xy + s.xy * t, lod)) {
       // Above everything the step can reach: take it, and try a longer one next.
       t = t_next;
-      lod = min(lod + 1.0, rl_window_top);
+      successes += 1.0;
+      if (successes >= float(RL_CLIMB_AFTER)) {
+        lod = min(lod + 1.0, rl_window_top);
+        successes = 0.0;
+      }
     } else if (lod > 0.0) {
       lod -= 1.0;
+      successes = 0.0;
     } else {
       float t_hit;
       if (rl_solve_cells(ray, p.z, t, t_next, t_hit)) return rl_hit_on_ray(p, s, t_hit, true);
