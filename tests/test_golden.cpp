@@ -38,8 +38,9 @@ std::vector<GoldenCell> golden_cells() {
                        "parallax",
                        {},
                        View{el, 30}});
-      for (const char* exact : {"relief_exact", "relief_exact_bilinear", "relief_robust",
-                                "relief_hierarchical_exact", "max_mipmap", "cone_relaxed", "pom"})
+      for (const char* exact :
+           {"relief_exact", "relief_exact_bilinear", "relief_robust", "relief_hierarchical_exact",
+            "relief_window_exact", "max_mipmap", "cone_relaxed", "pom"})
         cells.push_back({std::string(kind) + "/" + exact + "/el" + std::to_string(int(el)),
                          kind,
                          exact,

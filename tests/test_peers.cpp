@@ -143,6 +143,15 @@ TEST(QuadtreeSearch, GatheredCornersStayExactOn8BitMaps) {
         off["relief_window_exact"]);
     EXPECT_EQ(off["relief_hierarchical_exact"], 0);
     EXPECT_EQ(off["relief_window_exact"], 0);
+    // The packed blocks, built on 8-bit maps only, read the same corners.
+    const std::vector<ProbeHit> packed = probe(
+        "relief_hierarchical_exact", {{"block_cells", 1}, {"byte_bounds", 1}}, map, relief, rays);
+    int packed_off = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      const glm::dvec3 o(rays[i].origin), d(rays[i].direction);
+      packed_off += std::abs(packed[i].t - intersect_heightfield(map, o, d, 1.0 - o.z).t) > 1e-3;
+    }
+    EXPECT_EQ(packed_off, 0);
     EXPECT_LE(off["max_mipmap"], 5);
   }
 }
