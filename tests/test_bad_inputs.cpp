@@ -81,5 +81,21 @@ TEST(BadInputs, CommandLineMistakesAreRefused) {
   EXPECT_FALSE(fs::exists(latin1));
 }
 
+// A shared object cut short killed every command with SIGBUS when the plugin path named it
+// (the loader maps the segments its header declares): refused naming the file, no signal.
+TEST(BadInputs, ATruncatedPluginIsRefusedNotFatal) {
+  const fs::path library =
+      fs::canonical(fs::path(RELIEFLAB_CLI).parent_path() / "librelieflab_core.so");
+  const fs::path folder = test::scratch_dir("truncated-plugin");
+  fs::create_directories(folder);
+  const fs::path cut = folder / "cut.so";
+  fs::copy_file(library, cut, fs::copy_options::overwrite_existing);
+  fs::resize_file(cut, fs::file_size(library) / 2);
+  std::string out;
+  EXPECT_EQ(test::run_cli("--plugins " + cut.string() + " list", out), 2) << out;
+  EXPECT_NE(out.find("not a whole shared object"), std::string::npos) << out;
+  EXPECT_NE(out.find("cut.so"), std::string::npos) << out;
+}
+
 }  // namespace
 }  // namespace rl

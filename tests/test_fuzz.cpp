@@ -225,8 +225,25 @@ TEST(Fuzz, ImageAndMeshLoadersAcceptOrRefuseCleanly) {
         load_mesh(dir + "/input.obj");
       },
       3, 400);
+  // PLY, which Assimp reads by the header's counts and the faces' indices (a bad index crashed
+  // the process): ASCII and binary seeds, their headers, counts and indices mutated.
+  const std::vector<std::string> plys = {
+      read_file(kCorpus + "/assets/declares_more_faces.ply"),
+      read_file(kCorpus + "/assets/declares_more_faces_binary.ply"),
+      read_file(kCorpus + "/assets/face_past_vertices.ply"),
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n1 1 0.5\n3 0 1 2\n3 1 3 2\n"};
+  const FuzzResult rp = fuzz(
+      "ply", plys,
+      [&](const std::string& bytes) {
+        std::ofstream(dir + "/input.ply", std::ios::binary | std::ios::trunc) << bytes;
+        load_mesh(dir + "/input.ply");
+      },
+      4, 400);
   for (const std::string& f : ri.failures) ADD_FAILURE() << f;
   for (const std::string& f : rm.failures) ADD_FAILURE() << f;
+  for (const std::string& f : rp.failures) ADD_FAILURE() << f;
 }
 
 // The commands that read a finished run (issue 35): status, compare, report and merge, on a

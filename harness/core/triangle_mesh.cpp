@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -29,70 +30,140 @@ size_t ply_type_size(const std::string& t) {
   return 0;
 }
 
-// A PLY header states its element counts; Assimp believes them, so a file declaring 10 M faces
-// and holding 4 became 10 M triangles to bake. Checks the data can hold what the header
-// declares: a line per element in ASCII, the smallest size of each element in binary (a face's
-// list at least a triangle). Throws ConfigError naming the file.
-void check_ply_counts(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string line, format;
-  struct Element {
-    std::string name;
-    long long count = 0;
-    size_t min_bytes = 0;
-  };
-  std::vector<Element> elements;
-  while (std::getline(in, line)) {
+struct PlyProperty {
+  std::string type, count_type, name;  // count_type: a list's, empty for a scalar
+};
+struct PlyElement {
+  std::string name;
+  long long count = 0;
+  std::vector<PlyProperty> properties;
+};
+struct PlyHeader {
+  std::string format;
+  std::vector<PlyElement> elements;
+  std::streamoff data_start = -1;  // -1: no end_header
+};
+
+PlyHeader read_ply_header(std::ifstream& in, const std::string& path) {
+  PlyHeader h;
+  for (std::string line; std::getline(in, line);) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     std::istringstream words(line);
     std::string word;
     words >> word;
-    if (word == "end_header") break;
-    if (word == "format") words >> format;
+    if (word == "end_header") {
+      h.data_start = in.tellg();
+      break;
+    }
+    if (word == "format") words >> h.format;
     if (word == "element") {
-      Element e;
+      PlyElement e;
       words >> e.name >> e.count;
-      elements.push_back(e);
+      if (e.count < 0)
+        throw ConfigError("mesh " + path + ": element " + e.name + " has a negative count");
+      h.elements.push_back(e);
     }
-    if (word == "property" && !elements.empty()) {
-      std::string type, count_type, item_type;
-      words >> type;
-      if (type == "list") {
-        words >> count_type >> item_type;
-        const size_t items = elements.back().name == "face" ? 3 : 0;
-        elements.back().min_bytes += ply_type_size(count_type) + items * ply_type_size(item_type);
-      } else {
-        elements.back().min_bytes += ply_type_size(type);
+    if (word == "property" && !h.elements.empty()) {
+      PlyProperty p;
+      words >> p.type;
+      if (p.type == "list") words >> p.count_type >> p.type;
+      words >> p.name;
+      h.elements.back().properties.push_back(p);
+    }
+  }
+  return h;
+}
+
+// Reads a PLY file's data one value at a time, ASCII or binary (either byte order).
+class PlyValues {
+ public:
+  PlyValues(std::ifstream& in, const std::string& format) : in_(in), format_(format) {}
+  bool ascii() const { return format_ == "ascii"; }
+  // The next value of `type` as a double; false at the end of the data.
+  bool next(const std::string& type, double& v) {
+    if (ascii()) return bool(in_ >> v);
+    unsigned char b[8];
+    const size_t n = ply_type_size(type);
+    if (!n || !in_.read(reinterpret_cast<char*>(b), std::streamsize(n))) return false;
+    if (format_ == "binary_big_endian") std::reverse(b, b + n);
+    auto as = [&](auto x) {
+      std::memcpy(&x, b, sizeof x);
+      return double(x);
+    };
+    const bool is_signed = type[0] != 'u', is_float = type[0] == 'f' || type[0] == 'd';
+    if (is_float)
+      v = n == 4 ? as(float()) : as(double());
+    else if (n == 1)
+      v = is_signed ? as(int8_t()) : as(uint8_t());
+    else if (n == 2)
+      v = is_signed ? as(int16_t()) : as(uint16_t());
+    else
+      v = is_signed ? as(int32_t()) : as(uint32_t());
+    return true;
+  }
+
+ private:
+  std::ifstream& in_;
+  std::string format_;
+};
+
+std::string ply_element_at(const PlyElement& e, long long i) {
+  return e.name + " " + std::to_string(i) + " of " + std::to_string(e.count);
+}
+
+// A PLY header states its element counts and Assimp believes them, and it indexes vertices
+// with what the faces say: a header declaring 10 M faces and holding 4 became 10 M triangles
+// to bake, a face naming a vertex past the end or below zero crashed the process, and a header
+// declaring fewer vertices than the file holds read the rest as faces. So every element is read
+// here first, as the header declares it: each value present, face indices naming vertices the
+// file holds, and in ASCII nothing after the last element. Throws ConfigError naming the file and
+// the item.
+void check_ply(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const PlyHeader h = read_ply_header(in, path);
+  // Assimp was seen to loop on a header without its end.
+  if (h.data_start < 0)
+    throw ConfigError("mesh " + path + ": its PLY header has no end_header line");
+  if (h.format != "ascii" && h.format != "binary_little_endian" && h.format != "binary_big_endian")
+    throw ConfigError("mesh " + path + ": unknown PLY format '" + h.format +
+                      "' (ascii, binary_little_endian or binary_big_endian)");
+  long long vertices = 0;
+  for (const PlyElement& e : h.elements)
+    if (e.name == "vertex") vertices = e.count;
+  PlyValues values(in, h.format);
+  std::string declared;
+  for (const PlyElement& e : h.elements)
+    declared += (declared.empty() ? "" : ", ") + std::to_string(e.count) + " " + e.name;
+  const std::string short_data =
+      " (its header declares " + declared + ": cut short, or a wrong count?)";
+  for (const PlyElement& e : h.elements)
+    for (long long i = 0; i < e.count; ++i)
+      for (const PlyProperty& p : e.properties) {
+        double count = 1, v = 0;
+        if (!p.count_type.empty() && !values.next(p.count_type, count))
+          throw ConfigError("mesh " + path + ": no data for " + ply_element_at(e, i) + short_data);
+        if (!(count >= 0 && count <= 1 << 16))
+          throw ConfigError("mesh " + path + ": " + ply_element_at(e, i) + " has a list of " +
+                            std::to_string(count) + " items");
+        for (int k = 0; k < int(count); ++k) {
+          if (!values.next(p.type, v))
+            throw ConfigError("mesh " + path + ": no data for " + ply_element_at(e, i) +
+                              short_data);
+          const bool index =
+              e.name == "face" && (p.name == "vertex_indices" || p.name == "vertex_index");
+          if (index && !(v >= 0 && v < double(vertices) && v == std::floor(v)))
+            throw ConfigError("mesh " + path + ": " + ply_element_at(e, i) + " names vertex " +
+                              std::to_string((long long)v) + ", but the file holds " +
+                              std::to_string(vertices) + " (0 to " + std::to_string(vertices - 1) +
+                              ")");
+        }
       }
-    }
-  }
-  if (!in) return;  // no header end: Assimp's own error names it
-  const std::streamoff data_start = in.tellg();
-  long long declared = 0, lines = 0;
-  long double bytes = 0;
-  for (const Element& e : elements) {
-    if (e.count < 0)
-      throw ConfigError("mesh " + path + ": element " + e.name + " has a negative count");
-    declared += e.count;
-    bytes += (long double)e.count * (long double)e.min_bytes;
-  }
-  std::string description;
-  for (const Element& e : elements)
-    description += (description.empty() ? "" : ", ") + std::to_string(e.count) + " " + e.name;
-  if (format == "ascii") {
-    for (std::string data; std::getline(in, data);)
-      lines += data.find_first_not_of(" \t\r") != std::string::npos;
-    if (lines < declared)
-      throw ConfigError("mesh " + path + ": its header declares " + description + " (" +
-                        std::to_string(declared) + " lines of data) but it holds " +
-                        std::to_string(lines) + " (cut short, or a wrong count)");
-    return;
-  }
-  const long double size = (long double)std::filesystem::file_size(path) - (long double)data_start;
-  if (size < bytes)
-    throw ConfigError("mesh " + path + ": its header declares " + description + ", at least " +
-                      std::to_string((long long)bytes) + " bytes of data, but it holds " +
-                      std::to_string((long long)size) + " (cut short, or a wrong count)");
+  // In ASCII the values left over would be read as the next element's (binary files may end
+  // in padding).
+  double extra = 0;
+  if (values.ascii() && in >> extra)
+    throw ConfigError("mesh " + path +
+                      ": it holds more data than its header declares (a wrong count?)");
 }
 
 // Assimp's meshes, triangulated, in one list; texture coordinates only if every mesh has them.
@@ -177,7 +248,7 @@ void check_not_degenerate(const TriangleMesh& m, const std::string& path) {
 TriangleMesh load_mesh(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
   for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (extension == ".ply") check_ply_counts(path);
+  if (extension == ".ply") check_ply(path);
   Assimp::Importer importer;
   const aiScene* scene =
       importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
