@@ -97,5 +97,42 @@ TEST(BadInputs, ATruncatedPluginIsRefusedNotFatal) {
   EXPECT_NE(out.find("cut.so"), std::string::npos) << out;
 }
 
+// `verify` could be fooled (hostile input, round four): a folder that does not exist passed, a
+// check that holds whatever the rows say was accepted, and a second verdict section appended
+// to the README passed unread.
+TEST(BadInputs, VerifyCannotBeFooled) {
+  const fs::path dir = test::scratch_dir("verify-fooled");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "rows.csv") << "technique,wrong_pct\nrelief,5\n";
+  auto claims = [&](const std::string& check) {
+    std::ofstream(dir / "claims.toml", std::ios::trunc)
+        << "[[claim]]\nid = \"c\"\njudges = \"j\"\nverdict = \"confirmed\"\n"
+           "text = \"wrong {w}%\"\n[claim.values]\n"
+           "w = { where = \"technique=relief\", column = \"wrong_pct\", of = \"mean\" }\n"
+           "[[claim.check]]\nthat = \""
+        << check << "\"\n";
+  };
+  const std::string section = "<!-- claims: generated from claims.toml -->\n<!-- claims: end -->\n";
+  std::ofstream(dir / "README.md") << "# A folder\n\n" << section;
+  std::string out;
+  claims("w < 10");
+  ASSERT_EQ(test::run_cli("verify --write " + dir.string(), out), 0) << out;
+  ASSERT_EQ(test::run_cli("verify " + dir.string(), out), 0) << out;
+
+  EXPECT_EQ(test::run_cli("verify " + (dir / "missing").string(), out), 2) << out;
+  EXPECT_NE(out.find("missing: no such folder"), std::string::npos) << out;
+
+  std::ofstream(dir / "README.md", std::ios::app) << "\n" << section;
+  EXPECT_EQ(test::run_cli("verify " + dir.string(), out), 1) << out;
+  EXPECT_NE(out.find("more than one generated verdict section"), std::string::npos) << out;
+
+  for (const char* check : {"1 < 2", "w <= w", "w between 1 and w"}) {
+    claims(check);
+    EXPECT_EQ(test::run_cli("verify " + dir.string(), out), 2) << check << ": " << out;
+    EXPECT_NE(out.find("holds whatever the rows say"), std::string::npos) << check << ": " << out;
+  }
+}
+
 }  // namespace
 }  // namespace rl

@@ -89,6 +89,14 @@ void check_names(const Claim& c, const toml::node& n, const Src& src) {
       fail(src.at(n), "claim '" + c.id + "': check '" + check +
                           "' is neither 'A op B' (op: < <= > >= ==) nor 'A between B and C'");
     for (size_t i = 0; i < w.size(); i += 2) need(w[i], "check '" + check + "'");
+    // A check that holds whatever the rows say checks nothing: every side a number, or a value
+    // compared with itself.
+    bool any_value = false;
+    for (size_t i = 0; i < w.size(); i += 2) any_value = any_value || known.count(w[i]);
+    const bool self = w[0] == w[2] || (between && (w[0] == w[4]));
+    if (!any_value || self)
+      fail(src.at(n), "claim '" + c.id + "': check '" + check + "' holds whatever the rows say (" +
+                          (self ? "a value compared with itself" : "it names no value") + ")");
   }
 }
 

@@ -332,6 +332,13 @@ int verify_readme(const std::string& dir, const std::string& generated, const Cl
               kClaimsEnd + "')\n";
     return 1;
   }
+  // A second section would pass unread: one section, generated, is the README's verdict.
+  if (readme.find(kClaimsBegin, begin + 1) != std::string::npos ||
+      readme.find(kClaimsEnd, end + 1) != std::string::npos) {
+    report += path + ": more than one generated verdict section (the lines '" + kClaimsBegin +
+              "' and '" + kClaimsEnd + "'): keep one\n";
+    return 1;
+  }
   const std::string now = readme.substr(begin, end + std::string(kClaimsEnd).size() - begin);
   if (now == generated) return 0;
   if (!write) {

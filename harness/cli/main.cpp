@@ -118,6 +118,8 @@ int verify_folders(const std::vector<std::string>& dirs, bool write) {
   int failures = 0, checked = 0;
   std::string report;
   for (const std::string& dir : dirs) {
+    if (!std::filesystem::is_directory(dir))
+      throw rl::ConfigError("verify: " + dir + ": no such folder");
     if (!std::filesystem::exists(dir + "/claims.toml")) {
       std::printf("%s: no claims.toml: its verdicts are not checked\n", dir.c_str());
       continue;
