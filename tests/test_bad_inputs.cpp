@@ -134,5 +134,35 @@ TEST(BadInputs, VerifyCannotBeFooled) {
   }
 }
 
+// Nothing a run writes may go through a link one folder down (a planted images/<scene> made it
+// write its pictures into another folder), nor over the config it was given (kept in --out
+// under a name the run writes).
+TEST(BadInputs, ARunWritesThroughNoLinkAndOverNoConfig) {
+  const std::string config = kCorpus + "/../shard_sweep.toml";
+  const fs::path out = test::scratch_dir("planted-link");
+  const fs::path elsewhere = test::scratch_dir("planted-link-target");
+  fs::remove_all(out);
+  fs::remove_all(elsewhere);
+  fs::create_directories(out / "images");
+  fs::create_directories(elsewhere);
+  fs::create_directory_symlink(elsewhere, out / "images" / "bricks");
+  std::string text;
+  EXPECT_EQ(test::run_cli("run " + config + " -q --out " + out.string(), text), 2) << text;
+  EXPECT_NE(text.find("images/bricks is a symbolic link"), std::string::npos) << text;
+  EXPECT_TRUE(fs::is_empty(elsewhere));
+
+  fs::remove_all(out);
+  fs::create_directories(out);
+  fs::copy_file(config, out / "rows.csv");
+  const std::string kept = out.string() + "/rows.csv";
+  EXPECT_EQ(test::run_cli("run " + kept + " -q --out " + out.string(), text), 2) << text;
+  EXPECT_NE(text.find("where the run writes 'rows.csv': it would be overwritten"),
+            std::string::npos)
+      << text;
+  std::ifstream original(config), after(kept);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(original), {}),
+            std::string(std::istreambuf_iterator<char>(after), {}));
+}
+
 }  // namespace
 }  // namespace rl

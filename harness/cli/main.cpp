@@ -14,6 +14,7 @@
 //                                        cells of the base (output/compare.h)
 // Every command first loads the techniques built outside the tree from --plugins PATH and
 // $RELIEFLAB_PLUGIN_PATH (technique/plugins.h).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -132,6 +133,26 @@ int verify_folders(const std::vector<std::string>& dirs, bool write) {
   return failures ? 1 : 0;
 }
 
+// A config kept in the output folder under a name the run writes (rows.csv, a table, a file in
+// plots/) would be overwritten by the run it configures: refused before anything is written.
+void refuse_config_the_run_writes(const rl::SweepConfig& config, const std::string& config_path,
+                                  const std::string& out_dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path config_file = fs::weakly_canonical(config_path, ec);
+  const fs::path out = fs::weakly_canonical(out_dir, ec);
+  if (ec) return;
+  const fs::path inside = config_file.lexically_relative(out);
+  if (inside.empty() || *inside.begin() == "..") return;
+  std::vector<std::string> written = rl::run_owned_names();
+  for (const rl::TableSpec& t : config.tables) written.push_back(t.file);
+  const std::string first = inside.begin()->string();
+  if (std::find(written.begin(), written.end(), first) != written.end())
+    throw rl::ConfigError("config " + config_path + " lies in the output folder " + out_dir +
+                          " where the run writes '" + first +
+                          "': it would be overwritten (move it, or choose another --out)");
+}
+
 // `relieflab run [CONFIG] [--out DIR] [--shard I/N]`; `shard_text` is null without --shard
 // (an empty --shard "" is a mistake, not "every cell").
 void run_sweep_command(const std::string& config_path, const std::string& out_dir, bool quiet,
@@ -140,6 +161,7 @@ void run_sweep_command(const std::string& config_path, const std::string& out_di
       config_path.empty() ? rl::default_sweep_config() : rl::load_sweep_config(config_path);
   rl::RunOptions options;
   options.out_dir = out_dir.empty() ? "out/" + config.name : out_dir;
+  if (!config_path.empty()) refuse_config_the_run_writes(config, config_path, options.out_dir);
   options.progress = !quiet;
   if (shard_text) {
     options.shard = rl::parse_shard(*shard_text);

@@ -6,6 +6,22 @@
 #include "core/error.h"
 
 namespace rl {
+namespace {
+
+// Nothing the run writes may go through a link: a planted images/<scene> or a picture's name
+// linked elsewhere would have it write into another folder.
+void check_no_links_below(const std::filesystem::path& folder) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  for (fs::recursive_directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
+    if (it->is_symlink(ec))
+      throw ConfigError(it->path().string() +
+                        " is a symbolic link: a run writes its own files in its output folder "
+                        "and follows no link there (remove it, or choose another --out)");
+  if (ec) throw ConfigError(folder.string() + ": cannot be read (" + ec.message() + ")");
+}
+
+}  // namespace
 
 void check_run_folder(const std::string& dir) {
   namespace fs = std::filesystem;
@@ -23,6 +39,7 @@ void check_run_folder(const std::string& dir) {
       throw ConfigError(p.string() + " is not a " + (folder ? "folder" : "regular file") +
                         ": the run writes its own " + (folder ? "folder" : "file") +
                         " there (remove it, or choose another --out)");
+    if (folder) check_no_links_below(p);
   }
 }
 
