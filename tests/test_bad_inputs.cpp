@@ -5,6 +5,9 @@
 #include <fstream>
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include "core/atomic_write.h"
+#include "core/triangle_mesh.h"
 
 #include "config/config.h"
 #include "core/error.h"
@@ -162,6 +165,41 @@ TEST(BadInputs, ARunWritesThroughNoLinkAndOverNoConfig) {
   std::ifstream original(config), after(kept);
   EXPECT_EQ(std::string(std::istreambuf_iterator<char>(original), {}),
             std::string(std::istreambuf_iterator<char>(after), {}));
+}
+
+// FIFOs reached indirectly hung the reader: an OBJ's material library, the tolerance file of
+// `compare`, a file the claims read. Each is refused naming it, without blocking (a hang here
+// would end at the test's timeout). A FIFO in the precompute cache is a cache miss.
+TEST(BadInputs, FifosReachedIndirectlyAreRefusedNotWaitedOn) {
+  const fs::path dir = test::scratch_dir("fifos");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  ASSERT_EQ(::mkfifo((dir / "pipe.mtl").c_str(), 0600), 0);
+  ASSERT_EQ(::mkfifo((dir / "tolerances.toml").c_str(), 0600), 0);
+  std::ofstream(dir / "tri.obj") << "mtllib pipe.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  try {
+    load_mesh((dir / "tri.obj").string());
+    ADD_FAILURE() << "loaded an OBJ whose material library is a FIFO";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("pipe.mtl is not a regular file"), std::string::npos)
+        << e.what();
+  }
+  std::string out;
+  EXPECT_EQ(test::run_cli("compare " + dir.string() + " " + dir.string() + " --tolerances " +
+                              (dir / "tolerances.toml").string(),
+                          out),
+            2)
+      << out;
+  EXPECT_NE(out.find("tolerances.toml: the tolerance file is not a regular file"),
+            std::string::npos)
+      << out;
+  ASSERT_EQ(::mkfifo((dir / "README.md").c_str(), 0600), 0);
+  try {
+    read_text((dir / "README.md").string());
+    ADD_FAILURE() << "read a FIFO as text";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("README.md: not a regular file"), std::string::npos);
+  }
 }
 
 }  // namespace

@@ -236,6 +236,31 @@ linear_steps = [4]
   for (const Cell& c : cells) EXPECT_TRUE(keys.insert(c.key).second);
 }
 
+// Azimuths a full turn apart are one view (hostile input, round four: 0, 360 and -360 were three
+// cells of it); within [0, 360) an azimuth keeps its value, so earlier cells keep their keys.
+TEST(Sweep, AzimuthsAFullTurnApartAreOneView) {
+  const std::string text = R"(
+[sweep]
+name = "turns"
+elevations = [45]
+azimuths = [0, 360, -360, 30, -330]
+viewports = [16]
+[[scene]]
+name = "flat"
+relief = { procedural = "flat", resolution = 8 }
+[[technique]]
+name = "relief"
+)";
+  size_t duplicates = 0;
+  const std::vector<Cell> cells =
+      expand_cells(parse_sweep_config(text, "turns.toml", "."), &duplicates);
+  ASSERT_EQ(cells.size(), 2u);
+  EXPECT_EQ(duplicates, 3u);
+  std::set<double> azimuths;
+  for (const Cell& c : cells) azimuths.insert(c.view.azimuth_deg);
+  EXPECT_EQ(azimuths, (std::set<double>{0.0, 30.0}));
+}
+
 TEST(Sweep, DefaultConfigParsesAndExpands) {
   SweepConfig c = default_sweep_config();
   EXPECT_EQ(c.name, "default");

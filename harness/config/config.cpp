@@ -39,6 +39,17 @@ void parse_cost_model(const toml::table* sweep, const Src& src, const std::strin
   c.cost_model = load_cost_model(c.cost_model_name, base_dir, v ? src.at(*v) : src.file);
 }
 
+// Azimuths a full turn apart are one view: 0, 360 and -360 were three cells of it. In [0, 360)
+// they are one, which the cells then hold once, as they do a repeated elevation.
+void normalize_azimuths(std::vector<View>& views) {
+  for (View& v : views) {
+    double az = std::fmod(v.azimuth_deg, 360.0);
+    if (az < 0) az += 360.0;
+    // -1e-15 + 360 rounds to 360; fmod(-360, 360) is -0, a key apart from 0.
+    v.azimuth_deg = (az == 360.0 || az == 0.0) ? 0.0 : az;
+  }
+}
+
 // [sweep]: the name, views, viewports, texture sizes, timing and outputs; the views are the
 // elevations x azimuths unless 'views' lists them.
 void parse_sweep_table(const toml::table& root, const Src& src, SweepConfig& c) {
@@ -120,6 +131,7 @@ void parse_sweep_table(const toml::table& root, const Src& src, SweepConfig& c) 
   if (c.views.empty())
     for (double e : elevations)
       for (double a : azimuths) c.views.push_back({e, a});
+  normalize_azimuths(c.views);
   if (c.viewports.empty()) c.viewports.push_back({256, 256});
   if (c.texture_res.empty()) c.texture_res.push_back(0);
 }

@@ -11,6 +11,8 @@
 
 #include <unistd.h>
 
+#include "core/error.h"
+
 namespace rl {
 
 std::string unique_temp_path(const std::string& path) {
@@ -48,7 +50,15 @@ void write_text_atomic(const std::string& path, const std::string& text) {
   commit_temp(tmp, path);
 }
 
-std::string read_text(const std::string& path) {
+std::string read_text(const std::string& path, uintmax_t max_bytes) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) return {};
+  if (!std::filesystem::is_regular_file(status)) throw ConfigError(path + ": not a regular file");
+  const uintmax_t size = std::filesystem::file_size(path, ec);
+  if (!ec && size > max_bytes)
+    throw ConfigError(path + ": " + std::to_string(size) + " bytes, more than the " +
+                      std::to_string(max_bytes) + " this reads");
   std::ifstream in(path, std::ios::binary);
   std::stringstream text;
   text << in.rdbuf();

@@ -43,6 +43,9 @@ std::string precompute_cache_dir() {
 
 bool read_precompute_cache(const std::string& folder, const std::string& options, uint64_t map_hash,
                            void* out, size_t bytes) {
+  // Anything but a regular file (a FIFO planted in the cache would block the run) is a miss.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(cache_path(folder, options, map_hash), ec)) return false;
   std::ifstream in(cache_path(folder, options, map_hash), std::ios::binary);
   if (!in) return false;
   char magic[8];

@@ -243,12 +243,33 @@ void check_not_degenerate(const TriangleMesh& m, const std::string& path) {
   throw ConfigError("mesh " + path + text);
 }
 
+// The material libraries an OBJ names are opened by Assimp: one that is not a regular file (a
+// FIFO hangs the reader) is an error naming it; a missing one Assimp skips.
+void check_obj_materials(const std::string& path) {
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line);
+    std::string word, name;
+    words >> word;
+    if (word != "mtllib") continue;
+    while (words >> name) {
+      const std::filesystem::path lib = std::filesystem::path(path).parent_path() / name;
+      std::error_code ec;
+      const auto st = std::filesystem::status(lib, ec);
+      if (!ec && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
+        throw ConfigError("mesh " + path + ": its material library " + lib.string() +
+                          " is not a regular file");
+    }
+  }
+}
+
 }  // namespace
 
 TriangleMesh load_mesh(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
   for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (extension == ".ply") check_ply(path);
+  if (extension == ".obj") check_obj_materials(path);
   Assimp::Importer importer;
   const aiScene* scene =
       importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |

@@ -39,6 +39,9 @@ std::map<std::string, MetricTolerance> default_tolerances() {
 }
 
 void read_tolerances(const std::string& path, std::map<std::string, MetricTolerance>& into) {
+  // A FIFO or a device would block the reader or never end.
+  if (!std::filesystem::is_regular_file(path))
+    throw ConfigError(path + ": the tolerance file is not a regular file");
   toml::table root;
   try {
     root = toml::parse_file(path);
