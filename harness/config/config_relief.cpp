@@ -170,6 +170,13 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
   for (const char* k : {"up", "reverse_perspective", "faces"})
     if (t->contains(k))
       fail(src.at(node), "'up', 'reverse_perspective' and 'faces' apply to mesh reliefs only");
+  // A procedural relief makes its own colour and depths: image keys beside it were silently
+  // ignored, a missing colour file included.
+  for (const char* k : {"color", "convention", "flip_green", "normalize"})
+    if (procedural && t->contains(k))
+      fail(src.at(*t->get(k)), std::string("'") + k +
+                                   "' applies to reliefs from image files; a procedural relief "
+                                   "makes its own colour and depths");
   if (procedural)
     parse_procedural_relief(*t, src, r, canon);
   else
