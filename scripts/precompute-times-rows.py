@@ -2,7 +2,7 @@
 """results/precompute-times/rows.csv from bench/bench_precompute: every CPU precompute (safety
 radii, cone maps, texture-space AO maps) on every benchmark map and size, timed `--runs` times
 in random interleaving, so that its verdicts are claims checked by `relieflab verify` like every
-other folder's (issue 32: each at 1024^2 in at most 1 s on 2 cores).
+other folder's (the goal: each at 1024^2 in at most 1 s on 2 cores).
 
     cmake --build build --target bench_precompute && scripts/precompute-times-rows.py
 

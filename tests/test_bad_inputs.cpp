@@ -1,4 +1,4 @@
-// The bad-input corpus (tests/bad_inputs/, issue 15): every hostile config is refused before
+// The bad-input corpus (tests/bad_inputs/): every hostile config is refused before
 // any work with one clear line naming the config file and what is wrong.
 #include <algorithm>
 #include <filesystem>
@@ -63,7 +63,7 @@ TEST(BadInputs, EveryCorpusInputIsRefusedWithAClearMessage) {
   }
 }
 
-// Mistakes on the command line (issue 35): an empty --shard ran every cell; a device as the
+// Mistakes on the command line (hostile input, second round): an empty --shard ran every cell; a device as the
 // config gave a raw filesystem error. Both are refused naming what was given.
 TEST(BadInputs, CommandLineMistakesAreRefused) {
   std::string out;

@@ -339,7 +339,7 @@ std::string results_with(const std::string& name, const std::string& papers,
   return results;
 }
 
-// Issue 30's acceptance test, on every committed folder: scale the error and cost columns that
+// The peers re-judgement's acceptance test, on every committed folder: scale the error and cost columns that
 // `compare` watches (and the frame and precompute times) by 1.5 and by 1 / 1.5, and verify must
 // fail, naming a claim whose sentence or check the change moved. The checks alone, without the
 // sentence, catch fewer (relative claims - ratios of one column - are scale-free): their count

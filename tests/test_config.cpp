@@ -97,7 +97,7 @@ const std::vector<BadCase>& bad_cases() {
        std::string(kGood) + "[[table]]\nrows = [\"scene\"]\nvalues = [\"pos_err_rmes\"]\n",
        {"[[table]] value 'pos_err_rmes' is not a measured column"}},
       // Names become file and folder names: nothing may lead out of the output folder
-      // (issue 15, item 2), and a huge name is not echoed whole.
+      // (hostile input, first round), and a huge name is not echoed whole.
       {"scene_name_escapes",
        replace(kGood, "name = \"flat\"", "name = \"../../../../x\""),
        {"'name' must be a plain name", "\"../../../../x\""}},
@@ -107,7 +107,7 @@ const std::vector<BadCase>& bad_cases() {
       {"sweep_name_huge",
        replace(kGood, "name = \"ok\"", "name = \"" + std::string(100000, 'a') + "\""),
        {"'name' must be a plain name", "(100000 characters)"}},
-      // Non-finite and out-of-range numbers (issue 15, item 3), each named with its key.
+      // Non-finite and out-of-range numbers (hostile input, first round), each named with its key.
       {"azimuth_nan",
        replace(kGood, "elevations = [45]", "elevations = [45]\nazimuths = [nan]"),
        {"'azimuths' must be a finite number, got nan"}},
@@ -351,7 +351,7 @@ TEST(ConfigErrors, BadAssetsInALaterSceneStopTheRunBeforeAnythingIsWritten) {
   std::ofstream(files + "/inf.obj") << "v 0 0 0\nv 1 0 0\nv inf 1 0\nf 1 2 3\n";
   std::ofstream(files + "/flat.obj") << "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n";
   std::ofstream(files + "/huge.obj") << "v 0 0 0\nv 1e30 0 0\nv 0 1e30 0\nf 1 2 3\n";
-  // Issue 15's reports: the mesh that crashed Embree (a far vertex beside a unit triangle,
+  // The first hostile-input round's reports: the mesh that crashed Embree (a far vertex beside a unit triangle,
   // with uvs), a float depth map with a NaN texel, a grey + alpha PNG given as a normal map,
   // and a PNG whose header claims 100000 x 100000.
   std::ofstream(files + "/far.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1e30 1e30 1e30\n"

@@ -1,4 +1,4 @@
-// Faults while writing and reading results (issue 15, items 7, 8 and 9): a write the disk
+// Faults while writing and reading results (hostile input, first round): a write the disk
 // refuses stops with a clear error and leaves nothing under the final name; runs writing into
 // one output folder at once do not trip over each other's temporary files; a corrupt stored
 // row is dropped with a warning and its cell measured again.
@@ -180,7 +180,7 @@ TEST(Faults, ReportRefusesAStoreOfAnotherMeasurementVersion) {
   EXPECT_NE(before.find("relief,bricks,"), std::string::npos);
 }
 
-// Hostile input, issue 35: a link planted in the output folder under a name the run owns would
+// Hostile input, second round: a link planted in the output folder under a name the run owns would
 // send the log (or the pictures) outside it, and a FIFO as the log hung `report`. The run,
 // `report` and `merge` refuse such a folder before writing anything, naming the entry.
 TEST(Faults, LinksAndDevicesPlantedInTheOutputFolderAreRefused) {
@@ -214,7 +214,7 @@ TEST(Faults, LinksAndDevicesPlantedInTheOutputFolderAreRefused) {
   EXPECT_NE(output.find(out + "/run.log is not a regular file"), std::string::npos) << output;
 }
 
-// Misleading messages and read-only media (issue 35): an edited shard field in sweep.json was
+// Misleading messages and read-only media (hostile input, second round): an edited shard field in sweep.json was
 // reported as a --shard option never given; an empty store file as "no such table:
 // other.rows"; status, compare and report could not read a run on read-only media.
 TEST(Faults, DamagedRecordsAndReadOnlyRunsAreNamedOrRead) {

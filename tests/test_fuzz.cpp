@@ -1,4 +1,4 @@
-// Seeded mutation fuzzing (issue 15, item 11) of what reads user input: the config parser
+// Seeded mutation fuzzing of what reads user input: the config parser
 // (with its asset checks) and the image and mesh loaders. Each mutated input must either load
 // or be refused with a ConfigError; any other exception is a failure, and the input that
 // caused it is saved for the bad-input corpus. A crash ends the test binary.
@@ -246,7 +246,7 @@ TEST(Fuzz, ImageAndMeshLoadersAcceptOrRefuseCleanly) {
   for (const std::string& f : rp.failures) ADD_FAILURE() << f;
 }
 
-// The commands that read a finished run (issue 35): status, compare, report and merge, on a
+// The commands that read a finished run (hostile input, second round): status, compare, report and merge, on a
 // run folder whose sweep.json or results.sqlite is damaged byte by byte. Each must finish
 // with the folder's outputs rewritten or refuse with a ConfigError, or an error naming the
 // damaged store; anything else is a failure. A crash ends the test binary; a hang, its CTest

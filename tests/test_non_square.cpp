@@ -195,7 +195,7 @@ depth = 0.05
 namespace rl {
 namespace {
 
-// Hostile input, issue 35: an 8192 x 2 depth map rendered black for every technique while the
+// Hostile input, second round: an 8192 x 2 depth map rendered black for every technique while the
 // truth covered the view: fill framing puts the camera closer to the 2-texel side than the
 // near plane's old floor of 1e-3. The exact walk now agrees with the truth on every pixel.
 TEST(NonSquare, AMapOfExtremeAspectIsDrawn) {

@@ -1,4 +1,4 @@
-// The techniques engines ship, as peers for the paper techniques (issue 12): their cost bounds
+// The techniques engines ship, as peers for the paper techniques: their cost bounds
 // and their error against parallax and relief mapping on analytic procedural maps.
 #include <gtest/gtest.h>
 

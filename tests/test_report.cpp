@@ -43,7 +43,7 @@ TEST(Report, ChromiumRendersEveryTablePlotAndPicture) {
 
   const std::string dir = test::scratch_dir("report");
   // The config's text and a table title carry markup that would end or hide the page's data
-  // script if embedded as it is (hostile-input issue 35): the report must render regardless.
+  // script if embedded as it is (hostile input, second round): the report must render regardless.
   const SweepConfig config = test::run_sweep_in(R"(
 # a comment <!--<script> that an HTML parser must never see as markup </script> & more
 [sweep]

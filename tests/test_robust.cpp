@@ -384,7 +384,7 @@ TEST(SafetyRadius, CachedOnDiskByContentAndOptions) {
 }
 
 // A cache file that is not what was asked for is recomputed, never read: random bytes of the
-// payload's size (issue 15, item 10: they used to be taken as radii), one flipped payload bit,
+// payload's size (they used to be taken as radii), one flipped payload bit,
 // a truncated file, and a file of other options moved into this entry's place.
 TEST(SafetyRadius, CorruptedCacheFilesAreRecomputed) {
   const std::string dir = test::scratch_dir("cache-corrupt");

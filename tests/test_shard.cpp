@@ -138,7 +138,7 @@ TEST(Shard, MergedShardsEqualASingleProcessRun) {
   EXPECT_NE(out.find("run the missing shards"), std::string::npos) << out;
 }
 
-// Hostile input, issue 35: the config hash covered scenes, frames and tolerance only, so shards
+// Hostile input, second round: the config hash covered scenes, frames and tolerance only, so shards
 // of a sweep with other parameters merged; a merge into another sweep's folder mixed their rows;
 // and a corrupt stored row was published in rows.csv and the tables.
 TEST(Shard, MergeRefusesOtherSweepsAndPublishesNoCorruptRow) {

@@ -210,7 +210,7 @@ TEST(ResultStore, ShardsMergeByKey) {
   EXPECT_EQ((*a.row("k2"))["v"], 2);
 }
 
-// A repeated elevation or [[technique]] block renders each cell once (issue 15, item 6).
+// A repeated elevation or [[technique]] block renders each cell once.
 TEST(Sweep, RepeatedViewsAndTechniquesExpandToOneCellEach) {
   const std::string text = R"(
 [sweep]

@@ -3,7 +3,7 @@
 // bisection) on a real 1024^2 map. Nothing here calls the truth's walk, the reference walk of
 // relief/heightfield_reference.h or core/grid_walk.h.
 //
-// Stated tolerance (issue 27): hit/miss exact, positions within 0.01 texel, at every elevation
+// Stated tolerance: hit/miss exact, positions within 0.01 texel, at every elevation
 // from 1 to 90 degrees, on 1024^2 and 2048^2 maps (one non-square).
 #include <algorithm>
 #include <cmath>
