@@ -8,13 +8,6 @@
 #include "technique/shader_technique.h"
 
 namespace rl {
-namespace {
-
-// What the stored bounds are lowered by: a GPU's own conversion of 8-bit depths must never put
-// a corner above its bound (as relief_hierarchical_exact's quadtree does).
-constexpr float kMargin = 1e-6f;
-
-}  // namespace
 
 class ReliefWindowExact final : public Described<ReliefWindowExact, ShaderTechnique> {
  public:
@@ -67,7 +60,9 @@ class ReliefWindowExact final : public Described<ReliefWindowExact, ShaderTechni
   }
 
   void prepare(const ReliefMap& map) override {
-    const std::vector<float> cells = build_min_depth_pyramid(map, kMargin).level[0];
+    // The cells' least corner depths, lowered by the pyramid's default margin so that a GPU's
+    // own conversion of 8-bit depths never puts a corner above its bound.
+    const std::vector<float> cells = build_min_depth_pyramid(map).level[0];
     top_ = quadtree_levels(map.width, map.height) - 1;
     if (texture_) glDeleteTextures(1, &texture_);
     glCreateTextures(GL_TEXTURE_2D, 1, &texture_);
