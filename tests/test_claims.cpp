@@ -96,6 +96,24 @@ TEST(RowsCsv, ReadsQuotedCellsAndRefusesRaggedRows) {
   }
 }
 
+// A spreadsheet's byte-order mark is not part of the first column's name; a header naming a
+// column twice (a plugin parameter named like a result column) is refused, not half-read.
+TEST(RowsCsv, ReadsPastAByteOrderMarkAndRefusesAColumnNamedTwice) {
+  const std::vector<CsvRow> rows =
+      parse_rows_csv("\xEF\xBB\xBFtechnique,wrong_pct\nrelief,2\n", "r.csv");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].at("technique"), "relief");
+  try {
+    parse_rows_csv("technique,wrong_pct,wrong_pct\nrelief,2,3\n", "x/rows.csv");
+    FAIL() << "a header with a column named twice was read";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("x/rows.csv:1: two columns are named 'wrong_pct' "
+                                         "(columns 2 and 3)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Claims, HoldingClaimsFillTheirSentencesFromTheRows) {
   const std::string dir = folder_with("claims_hold", kRows, kClaims, "");
   const ClaimsFile file = load_claims(dir + "/claims.toml");
@@ -339,11 +357,11 @@ std::string results_with(const std::string& name, const std::string& papers,
   return results;
 }
 
-// The peers re-judgement's acceptance test, on every committed folder: scale the error and cost columns that
-// `compare` watches (and the frame and precompute times) by 1.5 and by 1 / 1.5, and verify must
-// fail, naming a claim whose sentence or check the change moved. The checks alone, without the
-// sentence, catch fewer (relative claims - ratios of one column - are scale-free): their count
-// is pinned from below so that claims do not drift back to ratios only.
+// The peers re-judgement's acceptance test, on every committed folder: scale the error and cost
+// columns that `compare` watches (and the frame and precompute times) by 1.5 and by 1 / 1.5, and
+// verify must fail, naming a claim whose sentence or check the change moved. The checks alone,
+// without the sentence, catch fewer (relative claims - ratios of one column - are scale-free):
+// their count is pinned from below so that claims do not drift back to ratios only.
 TEST(Claims, ScaledCommittedRowsFailVerifyNamingTheClaims) {
   std::vector<std::string> columns = {"frame_ms", "precompute_ms"};
   for (const auto& [name, tolerance] : default_tolerances()) columns.push_back(name);

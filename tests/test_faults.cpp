@@ -214,8 +214,8 @@ TEST(Faults, LinksAndDevicesPlantedInTheOutputFolderAreRefused) {
   EXPECT_NE(output.find(out + "/run.log is not a regular file"), std::string::npos) << output;
 }
 
-// Misleading messages and read-only media (hostile input, second round): an edited shard field in sweep.json was
-// reported as a --shard option never given; an empty store file as "no such table:
+// Misleading messages and read-only media (hostile input, second round): an edited shard field in
+// sweep.json was reported as a --shard option never given; an empty store file as "no such table:
 // other.rows"; status, compare and report could not read a run on read-only media.
 TEST(Faults, DamagedRecordsAndReadOnlyRunsAreNamedOrRead) {
   const std::string dir = test::scratch_dir("damaged-records");
@@ -264,6 +264,23 @@ TEST(Faults, DamagedRecordsAndReadOnlyRunsAreNamedOrRead) {
   EXPECT_NE(test::run_cli("report " + out, output), 0) << output;
   EXPECT_NE(output.find(out + "/sweep.json: its 'shard' field 'x/y' is not I/N"), std::string::npos)
       << output;
+}
+
+// Bytes that are not UTF-8 in run.log (a path in another encoding, a line another tool wrote)
+// used to end `report` with a raw JSON exception; the report shows them as U+FFFD.
+TEST(Faults, ARunLogInAnotherEncodingStillMakesAReport) {
+  const std::string dir = test::scratch_dir("log-encoding");
+  const std::string config = write_small_sweep(dir, "images = false\n");
+  const std::string out = dir + "/out";
+  std::string output;
+  ASSERT_EQ(test::run_cli("run " + config + " --out " + out + " -q", output), 0) << output;
+  std::ofstream(out + "/run.log", std::ios::app) << "latin-1 caf\xe9, broken \xff\xfe\n";
+  ASSERT_EQ(test::run_cli("report " + out, output), 0) << output;
+  std::ifstream in(out + "/report.html");
+  const std::string page((std::istreambuf_iterator<char>(in)), {});
+  const std::string replacement = "\xEF\xBF\xBD";  // U+FFFD in UTF-8
+  EXPECT_NE(page.find("latin-1 caf" + replacement + ", broken " + replacement + replacement),
+            std::string::npos);
 }
 
 }  // namespace

@@ -20,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // A throwaway plugin with a cross-parameter rule, as a POM-like technique would have.
-class PairedSamples final : public Technique {
+class PairedSamples : public Technique {
  public:
   using Technique::Technique;
   static TechniqueInfo describe() {
@@ -64,7 +64,7 @@ class PairedSamples final : public Technique {
 template <typename T>
 struct ScopedPlugin {
   ScopedPlugin() {
-    TechniqueRegistrar<T> registrar(__FILE__);
+    TechniqueRegistrar<T> registrar(__FILE__, "T");
     (void)registrar;
   }
   ~ScopedPlugin() { TechniqueRegistry::instance().remove(T::describe().name); }
@@ -161,6 +161,49 @@ TEST(Registry, RefusesAContractItCannotBeHeldTo) {
   converging.t_error = [](const RayQuery&) { return 0.0; };
   EXPECT_NE(refusal(with_contract(converging)).find("conditions in words"), std::string::npos);
   EXPECT_EQ(TechniqueRegistry::instance().find("test_bad_contract"), nullptr);
+}
+
+// A parameter is written as a rows.csv column: one named like a result column would give every
+// row two columns of one name (the hostile-input campaign saw rows.csv emptied, exit 0).
+TEST(Registry, RefusesAParameterNamedLikeAResultColumn) {
+  for (const char* column : {"wrong_pct", "technique", "frame_ms"}) {
+    TechniqueInfo info = PairedSamples::describe();
+    info.name = "test_param_like_column";
+    info.params[0].name = column;
+    const std::string message = refusal(entry_with(info));
+    EXPECT_NE(message.find(std::string("parameter '") + column +
+                           "' is named like the rows.csv "
+                           "column"),
+              std::string::npos)
+        << message;
+  }
+  TechniqueInfo column_like_param = PairedSamples::describe();
+  column_like_param.name = "test_column_like_param";
+  column_like_param.params.clear();
+  column_like_param.columns = {{.name = "linear_steps", .unit = "", .meaning = "clash"}};
+  const std::string message = refusal(entry_with(column_like_param));
+  EXPECT_NE(message.find("declares a column 'linear_steps' named like technique '"),
+            std::string::npos)
+      << message;
+  EXPECT_EQ(TechniqueRegistry::instance().find("test_param_like_column"), nullptr);
+}
+
+// A describe() that throws runs inside a plugin's static initialiser: the refusal names the
+// class and its file instead of ending the process with an unnamed exception.
+class ThrowingDescribe final : public PairedSamples {
+ public:
+  using PairedSamples::PairedSamples;
+  static TechniqueInfo describe() { throw std::runtime_error("no config for this build"); }
+};
+
+TEST(Registry, ADescribeThatThrowsIsRefusedByName) {
+  std::string sink;
+  set_registration_error_sink(&sink);
+  { TechniqueRegistrar<ThrowingDescribe> registrar(__FILE__, "ThrowingDescribe"); }
+  set_registration_error_sink(nullptr);
+  EXPECT_NE(sink.find("ThrowingDescribe::describe()"), std::string::npos) << sink;
+  EXPECT_NE(sink.find("test_registry.cpp"), std::string::npos) << sink;
+  EXPECT_NE(sink.find("threw: no config for this build"), std::string::npos) << sink;
 }
 
 TEST(Registry, ASharedParameterNameMeansOneQuantity) {

@@ -59,11 +59,18 @@ bool parse_number(const std::string& text, double& out) {
 }
 
 std::vector<CsvRow> parse_rows_csv(const std::string& text, const std::string& where) {
-  size_t at = 0;
+  // A spreadsheet that saved the file may have put a UTF-8 byte-order mark before the header,
+  // which would otherwise become part of the first column's name.
+  size_t at = text.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
   int line = 1;
   std::vector<std::string> header, cells;
   if (!next_record(text, at, line, header, where))
     throw ConfigError(where + ": rows.csv is empty (no header)");
+  for (size_t i = 0; i < header.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (header[i] == header[j])
+        throw ConfigError(where + ":1: two columns are named '" + header[i] + "' (columns " +
+                          std::to_string(j + 1) + " and " + std::to_string(i + 1) + ")");
   std::vector<CsvRow> rows;
   for (int record_line = line; next_record(text, at, line, cells, where); record_line = line) {
     if (cells.size() == 1 && cells[0].empty()) continue;  // a trailing newline

@@ -196,6 +196,21 @@ std::string join_names(const std::vector<std::string>& names) {
   return out;
 }
 
+// A table's title: one line of at most 200 characters (a newline would forge Markdown after
+// the table's heading, and a title is printed in every table file and the report).
+std::string table_title(const toml::node& n, const Src& src) {
+  const std::string v = string_of(n, src, "title");
+  const bool control = std::any_of(
+      v.begin(), v.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
+  if (control || v.size() > 200)
+    fail(src.at(n),
+         "[[table]] 'title' must be one line of at most 200 characters without "
+         "control characters (got " +
+             std::to_string(v.size()) + " characters" +
+             (control ? ", with a line break or control character" : "") + ")");
+  return v;
+}
+
 // [[table]]s, or the default table of the headline errors and costs by scene, view and
 // setting.
 void parse_tables(const toml::table& root, const Src& src, const std::set<std::string>& fields,
@@ -211,9 +226,9 @@ void parse_tables(const toml::table& root, const Src& src, const std::set<std::s
       TableSpec spec;
       spec.file =
           c.tables.empty() ? "table.md" : "table-" + std::to_string(c.tables.size() + 1) + ".md";
-      if (auto* v = t->get("file")) spec.file = string_of(*v, src, "file");
-      if (spec.file.find('/') != std::string::npos || spec.file.find("..") != std::string::npos)
-        fail(src.at(*t->get("file")), "table 'file' must be a plain file name");
+      // A plain name of at most 64 characters: a path or an overlong name would only fail
+      // when the tables are written, after everything was measured.
+      if (auto* v = t->get("file")) spec.file = plain_name(*v, src, "file");
       const toml::node& at = t->get("file") ? *t->get("file") : tn;
       const auto& owned = run_owned_names();
       if (std::find(owned.begin(), owned.end(), spec.file) != owned.end())
@@ -224,7 +239,7 @@ void parse_tables(const toml::table& root, const Src& src, const std::set<std::s
         if (other.file == spec.file)
           fail(src.at(at), "table 'file' \"" + spec.file +
                                "\" is already another [[table]]'s: the second would overwrite it");
-      if (auto* v = t->get("title")) spec.title = string_of(*v, src, "title");
+      if (auto* v = t->get("title")) spec.title = table_title(*v, src);
       if (auto* v = t->get("rows")) spec.rows = string_list(*v, src, "rows");
       if (auto* v = t->get("columns")) spec.columns = string_list(*v, src, "columns");
       if (auto* v = t->get("values")) spec.values = string_list(*v, src, "values");

@@ -346,7 +346,9 @@ namespace {
 // '<', '>' and '&' is written as its JSON unicode escape, which JSON.parse undoes.
 std::string script_json(const nlohmann::json& value) {
   std::string out;
-  for (char ch : value.dump()) {
+  // Bytes that are not UTF-8 (a run.log line naming a file in another encoding) are shown as
+  // U+FFFD rather than failing the whole report.
+  for (char ch : value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)) {
     if (ch == '<')
       out += "\\u003c";
     else if (ch == '>')

@@ -7,6 +7,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "core/columns.h"
 #include "core/error.h"
 
 namespace rl {
@@ -70,6 +71,24 @@ TechniqueRegistry& TechniqueRegistry::instance() {
   return registry;
 }
 
+// A parameter is a rows.csv column of its own: one named like a result column (or a column
+// named like another technique's parameter) would make two columns of one name in every row.
+void TechniqueRegistry::refuse_parameters_named_like_columns(const TechniqueEntry& entry) const {
+  const std::string& name = entry.info.name;
+  for (const ParamSpec& p : entry.info.params)
+    if (const DeclaredColumn* c = find_column(p.name))
+      throw std::logic_error("technique '" + name + "' parameter '" + p.name +
+                             "' is named like the rows.csv column '" + c->spec.name + "' that " +
+                             c->producer + " writes: rename the parameter");
+  for (const ColumnSpec& c : entry.info.columns)
+    for (const auto& [other_name, other] : entries_)
+      for (const ParamSpec& q : other.info.params)
+        if (q.name == c.name)
+          throw std::logic_error("technique '" + name + "' declares a column '" + c.name +
+                                 "' named like technique '" + other_name +
+                                 "''s parameter: rename the column");
+}
+
 void TechniqueRegistry::add(TechniqueEntry entry) {
   check_technique_info(entry.info);
   const std::string& name = entry.info.name;
@@ -84,6 +103,7 @@ void TechniqueRegistry::add(TechniqueEntry entry) {
               "technique '" + name + "' parameter '" + p.name + "' (" + param_kind_name(p.kind) +
               ") shares its name, and so its rows.csv column, with technique '" + other_name +
               "''s " + param_kind_name(q.kind) + " parameter: one name, one quantity");
+  refuse_parameters_named_like_columns(entry);
   declare_columns("technique " + name, entry.info.columns);  // throws on a unit conflict
   entries_.emplace(name, std::move(entry));
 }
@@ -96,17 +116,20 @@ void set_registration_error_sink(std::string* sink) {
   registration_error_sink = sink;
 }
 
+void refuse_registration(const std::string& why) {
+  if (registration_error_sink) {
+    *registration_error_sink += std::string(registration_error_sink->empty() ? "" : "; ") + why;
+    return;
+  }
+  std::fprintf(stderr, "relieflab: plugin registration failed: %s\n", why.c_str());
+  std::exit(3);
+}
+
 void register_or_exit(TechniqueEntry entry) {
   try {
     TechniqueRegistry::instance().add(std::move(entry));
   } catch (const std::logic_error& e) {
-    if (registration_error_sink) {
-      *registration_error_sink +=
-          std::string(registration_error_sink->empty() ? "" : "; ") + e.what();
-      return;
-    }
-    std::fprintf(stderr, "relieflab: plugin registration failed: %s\n", e.what());
-    std::exit(3);
+    refuse_registration(e.what());
   }
 }
 

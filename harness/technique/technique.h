@@ -196,6 +196,7 @@ class TechniqueRegistry {
                                     const std::string& where) const;
 
  private:
+  void refuse_parameters_named_like_columns(const TechniqueEntry& entry) const;
   std::map<std::string, TechniqueEntry> entries_;
 };
 
@@ -203,13 +204,25 @@ class TechniqueRegistry {
 // where nothing could catch it. While a plugin loads (technique/plugins.h), a refusal is
 // appended to the sink set here instead, and the loader reports it.
 void register_or_exit(TechniqueEntry entry);
+void refuse_registration(const std::string& why);
 void set_registration_error_sink(std::string* sink);
 
 template <typename T>
 struct TechniqueRegistrar {
-  explicit TechniqueRegistrar(const char* source) {
+  TechniqueRegistrar(const char* source, const char* class_name) {
     TechniqueEntry e;
-    e.info = T::describe();
+    // An exception may not leave a static initialiser (it would end the process unnamed).
+    try {
+      e.info = T::describe();
+    } catch (const std::exception& x) {
+      refuse_registration(std::string(class_name) + "::describe() (" + source +
+                          ") threw: " + x.what());
+      return;
+    } catch (...) {
+      refuse_registration(std::string(class_name) + "::describe() (" + source +
+                          ") threw something that is not a std::exception");
+      return;
+    }
     e.create = [](const ParamValues& p) { return std::make_unique<T>(p); };
     if constexpr (requires(const ParamValues& p, const std::string& w) { T::validate(p, w); })
       e.validate = [](const ParamValues& p, const std::string& w) { T::validate(p, w); };
@@ -219,6 +232,6 @@ struct TechniqueRegistrar {
 };
 
 #define RL_REGISTER_TECHNIQUE(Class) \
-  static const ::rl::TechniqueRegistrar<Class> rl_technique_registrar_##Class(__FILE__)
+  static const ::rl::TechniqueRegistrar<Class> rl_technique_registrar_##Class(__FILE__, #Class)
 
 }  // namespace rl
