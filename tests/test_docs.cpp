@@ -98,5 +98,27 @@ TEST(Docs, UpdateReplacesOnlyKnownBlocksAndKeepsTheRest) {
                std::runtime_error);
 }
 
+// `docs --update` with a plugin loaded wrote the plugin into the project's README (its table
+// row, its columns, an interface block): the project's files describe its own techniques.
+TEST(Docs, APluginLoadedIsLeftOutOfTheProjectsBlocks) {
+  TechniqueRegistry& registry = TechniqueRegistry::instance();
+  TechniqueEntry e = *registry.find("relief");
+  e.info.name = "test_loaded_plugin";
+  e.info.title = "Test plugin | with a bar";
+  e.info.columns = {{.name = "test_plugin_column", .unit = "", .meaning = "a plugin's own"}};
+  registry.add(e);
+  registry.set_plugin("test_loaded_plugin", "/tmp/libtest_loaded_plugin.so");
+  const auto all = generated_blocks(DocsScope::Registered);
+  const auto own = generated_blocks(DocsScope::BuiltIn);
+  registry.remove("test_loaded_plugin");
+  EXPECT_NE(all.at("techniques").find("Test plugin \\| with a bar"), std::string::npos);
+  EXPECT_NE(all.at("columns").find("`test_plugin_column`"), std::string::npos);
+  EXPECT_TRUE(all.count("interface of test_loaded_plugin"));
+  EXPECT_EQ(own.at("techniques").find("test_loaded_plugin"), std::string::npos);
+  EXPECT_EQ(own.at("columns").find("test_plugin_column"), std::string::npos);
+  EXPECT_FALSE(own.count("interface of test_loaded_plugin"));
+  EXPECT_EQ(own.at("techniques"), techniques_markdown());  // the built-in ones, all of them
+}
+
 }  // namespace
 }  // namespace rl

@@ -128,6 +128,10 @@ TEST(Registry, RefusesInconsistentMetadata) {
   twice.name = "test_bad_metadata";
   twice.params.push_back(twice.params[0]);
   EXPECT_NE(refusal(entry_with(twice)).find("declared twice"), std::string::npos);
+  TechniqueInfo two_line_title = PairedSamples::describe();
+  two_line_title.name = "test_bad_metadata";
+  two_line_title.title = "Title\n| forged | row |";
+  EXPECT_NE(refusal(entry_with(two_line_title)).find("title must be one line"), std::string::npos);
   TechniqueInfo bad_name = PairedSamples::describe();
   bad_name.name = "Test Plugin";
   EXPECT_NE(refusal(entry_with(bad_name)).find("lower-case"), std::string::npos);

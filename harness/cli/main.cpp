@@ -100,7 +100,8 @@ int update_docs(const std::string& root) {
   std::vector<fs::path> files = {fs::path(root) / "README.md"};
   for (const auto& e : fs::directory_iterator(fs::path(root) / "techniques"))
     if (fs::exists(e.path() / "README.md")) files.push_back(e.path() / "README.md");
-  const auto blocks = rl::generated_blocks();
+  // The project's files describe its own techniques, whatever plugins this process loaded.
+  const auto blocks = rl::generated_blocks(rl::DocsScope::BuiltIn);
   int changed = 0;
   for (const fs::path& f : files) {
     const std::string text = rl::read_text(f.string());

@@ -39,10 +39,20 @@ std::string short_source(const std::string& path) {
 
 }  // namespace
 
+// Texts printed in one Markdown table cell and one report line: a line break or another
+// control character would end the table or forge the lines after it.
+void require_one_line(const std::string& text, const std::string& what) {
+  for (char c : text)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      throw std::logic_error(what + " must be one line without control characters");
+}
+
 void check_technique_info(const TechniqueInfo& info) {
   const std::string who = "technique '" + info.name + "'";
   if (!is_identifier(info.name))
     throw std::logic_error(who + ": a name is lower-case letters, digits and '_'");
+  require_one_line(info.title, who + ": its title");
+  require_one_line(info.citation, who + ": its citation");
   std::set<std::string> seen;
   for (const ParamSpec& p : info.params) {
     const std::string param = who + " parameter '" + p.name + "'";
@@ -62,6 +72,7 @@ void check_technique_info(const TechniqueInfo& info) {
     if (p.kind == ParamKind::Bool && (p.min_value != 0 || p.max_value != 1))
       throw std::logic_error(param + ": a bool ranges over [0, 1]");
     if (p.doc.empty()) throw std::logic_error(param + " needs a doc string");
+    require_one_line(p.doc, param + ": its doc string");
   }
   check_contract(info.name, info.contract, info.params);
 }

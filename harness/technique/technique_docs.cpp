@@ -10,11 +10,24 @@ const std::string kOpen = "<!-- generated: ";
 const std::string kOpenTail = " (relieflab docs --update) -->";
 const std::string kClose = "<!-- end generated -->";
 
-// Table cells hold no raw '|'.
+// Table cells hold no raw '|' and no line break (either would end the cell or the table).
 std::string cell(const std::string& s) {
   std::string out;
-  for (char c : s) out += c == '|' ? std::string("\\|") : std::string(1, c);
+  for (char c : s)
+    out += c == '|' ? std::string("\\|") : c == '\n' || c == '\r' ? " " : std::string(1, c);
   return out;
+}
+
+bool in_scope(const TechniqueEntry& e, DocsScope scope) {
+  return scope == DocsScope::Registered || e.plugin.empty();
+}
+
+// Whether a column's producer is a technique outside `scope`.
+bool column_in_scope(const DeclaredColumn& c, DocsScope scope) {
+  const std::string prefix = "technique ";
+  if (c.producer.rfind(prefix, 0) != 0) return true;
+  const TechniqueEntry* e = TechniqueRegistry::instance().find(c.producer.substr(prefix.size()));
+  return !e || in_scope(*e, scope);
 }
 
 std::string effects_cell(const EffectSet& effects) {
@@ -63,7 +76,7 @@ const char* kind_name(ColumnKind k) {
 
 }  // namespace
 
-std::string columns_markdown() {
+std::string columns_markdown(DocsScope scope) {
   // In the order a row reads (what names the cell, its errors, the truth's, the run's, the
   // representation's, the technique's), not the order the libraries happened to load in.
   auto rank = [](const std::string& producer) {
@@ -72,7 +85,9 @@ std::string columns_markdown() {
       if (producer.rfind(order[k], 0) == 0) return k;
     return 6;
   };
-  std::vector<DeclaredColumn> columns = declared_columns();
+  std::vector<DeclaredColumn> columns;
+  for (const DeclaredColumn& c : declared_columns())
+    if (column_in_scope(c, scope)) columns.push_back(c);
   std::stable_sort(columns.begin(), columns.end(),
                    [&](const DeclaredColumn& a, const DeclaredColumn& b) {
                      const int ra = rank(a.producer), rb = rank(b.producer);
@@ -86,12 +101,13 @@ std::string columns_markdown() {
   return out;
 }
 
-std::string techniques_markdown() {
+std::string techniques_markdown(DocsScope scope) {
   std::string out =
       "| technique | what | source | effects | proxies | meta-relief |\n"
       "| --- | --- | --- | --- | --- | --- |\n";
   const auto& registry = TechniqueRegistry::instance();
   for (const std::string& name : registry.names()) {
+    if (!in_scope(*registry.find(name), scope)) continue;
     const TechniqueInfo& info = registry.find(name)->info;
     const std::string proxies = info.cell_complex ? "cell complex"
                                 : info.heightfield_object_only
@@ -156,12 +172,13 @@ std::string interface_markdown(const TechniqueInfo& info) {
   return out;
 }
 
-std::map<std::string, std::string> generated_blocks() {
-  std::map<std::string, std::string> blocks = {{"techniques", techniques_markdown()},
-                                               {"columns", columns_markdown()}};
+std::map<std::string, std::string> generated_blocks(DocsScope scope) {
+  std::map<std::string, std::string> blocks = {{"techniques", techniques_markdown(scope)},
+                                               {"columns", columns_markdown(scope)}};
   const auto& registry = TechniqueRegistry::instance();
   for (const std::string& name : registry.names())
-    blocks["interface of " + name] = interface_markdown(registry.find(name)->info);
+    if (in_scope(*registry.find(name), scope))
+      blocks["interface of " + name] = interface_markdown(registry.find(name)->info);
   return blocks;
 }
 

@@ -14,15 +14,20 @@
 
 namespace rl {
 
-// | technique | what | source | effects | proxies |, one row per registered technique.
-std::string techniques_markdown();
-// | column | unit | kind | meaning | declared by |, every declared column (core/columns.h).
-std::string columns_markdown();
+// Which techniques the blocks describe: all registered, or the project's own (a plugin loaded
+// from RELIEFLAB_PLUGIN_PATH is not the project's, and must not be written into its README).
+enum class DocsScope { Registered, BuiltIn };
+
+// | technique | what | source | effects | proxies |, one row per technique in `scope`.
+std::string techniques_markdown(DocsScope scope = DocsScope::Registered);
+// | column | unit | kind | meaning | declared by |, every declared column (core/columns.h) but
+// those of techniques outside `scope`.
+std::string columns_markdown(DocsScope scope = DocsScope::Registered);
 // Its effects and proxies, then | parameter | kind | default | range | meaning | (or "none").
 std::string interface_markdown(const TechniqueInfo& info);
 
-// Every generated block's key and content for the registry's techniques.
-std::map<std::string, std::string> generated_blocks();
+// Every generated block's key and content for the techniques in `scope`.
+std::map<std::string, std::string> generated_blocks(DocsScope scope = DocsScope::Registered);
 
 // `text` with the content of each generated block whose key is in `blocks` replaced; blocks
 // of unknown keys are left as they are. Throws std::runtime_error on an unterminated block.
