@@ -63,8 +63,8 @@ TEST(BadInputs, EveryCorpusInputIsRefusedWithAClearMessage) {
   }
 }
 
-// Mistakes on the command line (hostile input, second round): an empty --shard ran every cell; a device as the
-// config gave a raw filesystem error. Both are refused naming what was given.
+// Mistakes on the command line (hostile input, second round): an empty --shard ran every cell; a
+// device as the config gave a raw filesystem error. Both are refused naming what was given.
 TEST(BadInputs, CommandLineMistakesAreRefused) {
   std::string out;
   const std::string config = kCorpus + "/../shard_sweep.toml";

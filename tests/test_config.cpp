@@ -351,9 +351,9 @@ TEST(ConfigErrors, BadAssetsInALaterSceneStopTheRunBeforeAnythingIsWritten) {
   std::ofstream(files + "/inf.obj") << "v 0 0 0\nv 1 0 0\nv inf 1 0\nf 1 2 3\n";
   std::ofstream(files + "/flat.obj") << "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n";
   std::ofstream(files + "/huge.obj") << "v 0 0 0\nv 1e30 0 0\nv 0 1e30 0\nf 1 2 3\n";
-  // The first hostile-input round's reports: the mesh that crashed Embree (a far vertex beside a unit triangle,
-  // with uvs), a float depth map with a NaN texel, a grey + alpha PNG given as a normal map,
-  // and a PNG whose header claims 100000 x 100000.
+  // The first hostile-input round's reports: the mesh that crashed Embree (a far vertex beside a
+  // unit triangle, with uvs), a float depth map with a NaN texel, a grey + alpha PNG given as a
+  // normal map, and a PNG whose header claims 100000 x 100000.
   std::ofstream(files + "/far.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1e30 1e30 1e30\n"
                                        "vt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\n"
                                        "f 1/1 2/2 3/3\nf 2/2 4/4 3/3\n";
@@ -381,7 +381,7 @@ TEST(ConfigErrors, BadAssetsInALaterSceneStopTheRunBeforeAnythingIsWritten) {
        {"nan.obj"}},  // Assimp drops the vertex: a face then refers to a missing one
       {"inf_mesh",
        with_second_scene(scene + "relief = { mesh = \"" + files + "/inf.obj\" }\nproxy = \"box\""),
-       {"inf.obj", "non-finite"}},
+       {"inf.obj", "is not a finite number"}},
       {"degenerate_mesh",
        with_second_scene(scene + "relief = { mesh = \"" + files + "/flat.obj\" }\nproxy = \"box\""),
        {"flat.obj is degenerate"}},

@@ -246,9 +246,9 @@ TEST(Fuzz, ImageAndMeshLoadersAcceptOrRefuseCleanly) {
   for (const std::string& f : rp.failures) ADD_FAILURE() << f;
 }
 
-// The commands that read a finished run (hostile input, second round): status, compare, report and merge, on a
-// run folder whose sweep.json or results.sqlite is damaged byte by byte. Each must finish
-// with the folder's outputs rewritten or refuse with a ConfigError, or an error naming the
+// The commands that read a finished run (hostile input, second round): status, compare, report and
+// merge, on a run folder whose sweep.json or results.sqlite is damaged byte by byte. Each must
+// finish with the folder's outputs rewritten or refuse with a ConfigError, or an error naming the
 // damaged store; anything else is a failure. A crash ends the test binary; a hang, its CTest
 // timeout.
 TEST(Fuzz, RunFoldersForStatusCompareReportAndMergeFailCleanly) {

@@ -3,6 +3,7 @@
 // check runs for every setting of a config before anything is written. Paired settings
 // (`sets`) combine with the parameter lists as documented.
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
@@ -208,6 +209,52 @@ TEST(Registry, ADescribeThatThrowsIsRefusedByName) {
   EXPECT_NE(sink.find("ThrowingDescribe::describe()"), std::string::npos) << sink;
   EXPECT_NE(sink.find("test_registry.cpp"), std::string::npos) << sink;
   EXPECT_NE(sink.find("threw: no config for this build"), std::string::npos) << sink;
+}
+
+// A plugin that breaks its promise is named on every cell a sweep measures, not only by the
+// contract suite (which a plugin's author may never run): relief declaring a bound of 3.
+TEST(Registry, AFetchBoundBrokenAtRunTimeIsNamedInTheRunLog) {
+  auto& registry = TechniqueRegistry::instance();
+  const TechniqueEntry original = *registry.find("relief");
+  registry.remove("relief");
+  TechniqueEntry understated = original;
+  understated.info.contract.max_fetches = [](const RayQuery&) { return 3.0; };
+  understated.info.contract.max_fetches_formula = "3";
+  registry.add(understated);
+  const std::string dir = test::scratch_dir("fetch-bound");
+  fs::create_directories(dir);
+  const std::string text = std::string(R"([sweep]
+name = "bound"
+elevations = [45]
+viewports = [16]
+frames = 1
+warmup = 0
+images = false
+[[scene]]
+name = "bricks"
+relief = { procedural = "bricks", resolution = 32 }
+[[technique]]
+name = "relief"
+linear_steps = [8]
+)");
+  try {
+    test::run_sweep_in(text, dir);
+  } catch (...) {
+    registry.remove("relief");
+    registry.add(original);
+    throw;
+  }
+  registry.remove("relief");
+  registry.add(original);
+  std::ifstream in(dir + "/out/run.log");
+  const std::string log((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(log.find("warning: relief binary_steps=5 linear_steps=8 mipmap=0: a fragment paid"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("fetches, over the 3 its describe() declares (3): its contract does not "
+                     "hold on this cell"),
+            std::string::npos)
+      << log;
 }
 
 TEST(Registry, ASharedParameterNameMeansOneQuantity) {

@@ -255,5 +255,25 @@ TEST(ReliefImages, NormalizeRescalesAFloatMapBeyondZeroToOne) {
   EXPECT_FLOAT_EQ(map.depth_texel(3, 0), 0.0f);
 }
 
+// A GeoTIFF-like terrain (heights 100 to 115 m, two texels at the nodata value -9999) with
+// nodata = -9999: the valid heights span the whole depth, and the texels without data sit at
+// the deepest valid depth instead of squeezing the terrain into 0.15% of it.
+TEST(ReliefImages, NodataTexelsAreLeftOutOfTheRangeAndFilledAtTheDeepest) {
+  ReliefImageSource src;
+  src.depth_path =
+      std::string(RELIEFLAB_SOURCE_DIR) + "/tests/bad_inputs/assets/terrain_nodata.tif";
+  src.normalize = true;
+  src.nodata = -9999;
+  const ReliefMap map = load_relief_images(src, 1.0);
+  EXPECT_FLOAT_EQ(map.min_depth(), 0.0f);
+  EXPECT_FLOAT_EQ(map.max_depth(), 1.0f);
+  // File row 0 is the top (v = 1): heights 100, 104, 108, nodata; the last row 115 is the top.
+  EXPECT_FLOAT_EQ(map.depth_texel(0, 3), 1.0f);           // height 100, the lowest
+  EXPECT_FLOAT_EQ(map.depth_texel(1, 3), 11.0f / 15.0f);  // height 104
+  EXPECT_FLOAT_EQ(map.depth_texel(3, 3), 1.0f);           // nodata: the deepest
+  EXPECT_FLOAT_EQ(map.depth_texel(0, 0), 1.0f);           // nodata
+  EXPECT_FLOAT_EQ(map.depth_texel(3, 0), 0.0f);           // height 115, the top
+}
+
 }  // namespace
 }  // namespace rl

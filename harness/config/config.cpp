@@ -196,15 +196,15 @@ std::string join_names(const std::vector<std::string>& names) {
   return out;
 }
 
-// A table's title: one line of at most 200 characters (a newline would forge Markdown after
+// A table's title: one line of at most 1000 characters (a newline would forge Markdown after
 // the table's heading, and a title is printed in every table file and the report).
 std::string table_title(const toml::node& n, const Src& src) {
   const std::string v = string_of(n, src, "title");
   const bool control = std::any_of(
       v.begin(), v.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
-  if (control || v.size() > 200)
+  if (control || v.size() > 1000)
     fail(src.at(n),
-         "[[table]] 'title' must be one line of at most 200 characters without "
+         "[[table]] 'title' must be one line of at most 1000 characters without "
          "control characters (got " +
              std::to_string(v.size()) + " characters" +
              (control ? ", with a line break or control character" : "") + ")");

@@ -22,7 +22,7 @@ void parse_layers(const toml::table& t, const Src& src, ReliefSourceDesc& r,
 // relief = { mesh = "file", up, resolution, reverse_perspective, layers, faces }.
 void parse_mesh_relief(const toml::table& t, const toml::node& node, const Src& src,
                        const std::string& base_dir, ReliefSourceDesc& r, nlohmann::json& canon) {
-  for (const char* k : {"color", "convention", "flip_green", "normalize", "options"})
+  for (const char* k : {"color", "convention", "flip_green", "normalize", "nodata", "options"})
     if (t.contains(k))
       fail(src.at(node), std::string("'") + k + "' does not apply to a mesh relief");
   const toml::node& mn = *t.get("mesh");
@@ -130,6 +130,14 @@ void parse_image_relief(const toml::table& t, const toml::node& node, const Src&
   }
   if (auto* n = t.get("flip_green")) r.flip_green = number_or_flag(*n, src, "flip_green") != 0;
   if (auto* n = t.get("normalize")) r.normalize = number_or_flag(*n, src, "normalize") != 0;
+  if (auto* n = t.get("nodata")) {
+    r.nodata = number(*n, src, "nodata");
+    if (!std::isfinite(r.nodata))
+      fail(src.at(*n),
+           "'nodata' must be a finite number (the file's value for texels "
+           "without data, e.g. -9999)");
+    canon["nodata"] = r.nodata;  // only when given: keys of maps without it stay as they were
+  }
   // The native size (any aspect) and the files' hashes come from read_scene_files().
   canon["convention"] = r.height_convention ? "height" : "depth";
   canon["flip_green"] = r.flip_green;
@@ -152,10 +160,11 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
     parse_cells_relief(*t, src, base_dir, r, canon);
     return r;
   }
-  check_keys(*t,
-             {"procedural", "resolution", "options", "normal", "depth", "color", "convention",
-              "flip_green", "normalize", "mesh", "up", "reverse_perspective", "layers", "faces"},
-             src, "relief");
+  check_keys(
+      *t,
+      {"procedural", "resolution", "options", "normal", "depth", "color", "convention",
+       "flip_green", "normalize", "nodata", "mesh", "up", "reverse_perspective", "layers", "faces"},
+      src, "relief");
   const bool procedural = t->contains("procedural");
   const bool images = t->contains("normal") || t->contains("depth");
   const bool mesh = t->contains("mesh");
@@ -172,7 +181,7 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
       fail(src.at(node), "'up', 'reverse_perspective' and 'faces' apply to mesh reliefs only");
   // A procedural relief makes its own colour and depths: image keys beside it were silently
   // ignored, a missing colour file included.
-  for (const char* k : {"color", "convention", "flip_green", "normalize"})
+  for (const char* k : {"color", "convention", "flip_green", "normalize", "nodata"})
     if (procedural && t->contains(k))
       fail(src.at(*t->get(k)), std::string("'") + k +
                                    "' applies to reliefs from image files; a procedural relief "

@@ -247,8 +247,9 @@ const std::set<std::string> kSceneKeys = {
     "truth_color_resolution",
 };
 
-// The scene's numbers, each within a stated range (hostile input, first round): a value outside it is a mistake,
-// not a scene (size 1e-300, depth 1e30, fov 1e-30 all rendered nothing and were published).
+// The scene's numbers, each within a stated range (hostile input, first round): a value outside it
+// is a mistake, not a scene (size 1e-300, depth 1e30, fov 1e-30 all rendered nothing and were
+// published).
 void parse_numbers(const toml::table& t, const Src& src, SceneDesc& s) {
   auto in_range = [&](const char* key, double& out, double lo, double hi) {
     if (auto* n = t.get(key)) out = number_in(*n, src, key, lo, hi);

@@ -7,6 +7,7 @@
 #include "core/hash.h"
 #include "relief/image_backend.h"
 #include "relief/mesh_bake.h"
+#include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 
 namespace rl {
@@ -66,9 +67,15 @@ void read_scene_files(ParsedScene& parsed) {
     canon["depth"] = s.depth;
   }
   if (s.base.kind == "file") {
-    if (mesh_at(parsed.sites.base, s.base.path).uvs.empty())
+    const TriangleMesh base = mesh_at(parsed.sites.base, s.base.path);
+    if (base.uvs.empty())
       throw ConfigError(parsed.sites.base + ": base mesh " + s.base.path +
                         " has no texture coordinates; a relief needs a uv mapping");
+    try {
+      check_base_uvs(base);
+    } catch (const ConfigError& e) {
+      throw ConfigError(parsed.sites.base + ": scene '" + s.name + "': " + e.what());
+    }
     canon["base_file"] = file_id(s.base.path);
   }
   for (size_t i = 0; i < s.objects.size(); ++i) {

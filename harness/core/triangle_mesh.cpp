@@ -245,20 +245,36 @@ void check_not_degenerate(const TriangleMesh& m, const std::string& path) {
 
 // The material libraries an OBJ names are opened by Assimp: one that is not a regular file (a
 // FIFO hangs the reader) is an error naming it; a missing one Assimp skips.
-void check_obj_materials(const std::string& path) {
+void check_obj_material_library(const std::string& path, std::istringstream& words) {
+  std::string name;
+  while (words >> name) {
+    const std::filesystem::path lib = std::filesystem::path(path).parent_path() / name;
+    std::error_code ec;
+    const auto st = std::filesystem::status(lib, ec);
+    if (!ec && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
+      throw ConfigError("mesh " + path + ": its material library " + lib.string() +
+                        " is not a regular file");
+  }
+}
+
+// What Assimp reads of an OBJ without a word: its material libraries, and the numbers of its
+// vertex lines (it reads "nan" in a texture coordinate as 0, so a NaN uv was accepted).
+void check_obj(const std::string& path) {
   std::ifstream in(path);
+  int number = 0;
   for (std::string line; std::getline(in, line);) {
+    ++number;
     std::istringstream words(line);
-    std::string word, name;
+    std::string word;
     words >> word;
-    if (word != "mtllib") continue;
-    while (words >> name) {
-      const std::filesystem::path lib = std::filesystem::path(path).parent_path() / name;
-      std::error_code ec;
-      const auto st = std::filesystem::status(lib, ec);
-      if (!ec && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
-        throw ConfigError("mesh " + path + ": its material library " + lib.string() +
-                          " is not a regular file");
+    if (word == "mtllib") check_obj_material_library(path, words);
+    if (word != "v" && word != "vt" && word != "vn") continue;
+    for (std::string value; words >> value && value[0] != '#';) {
+      char* end = nullptr;
+      const double x = std::strtod(value.c_str(), &end);
+      if (end == value.c_str() || *end != '\0' || !std::isfinite(x))
+        throw ConfigError("mesh " + path + ":" + std::to_string(number) + ": '" + word +
+                          "' value '" + value.substr(0, 40) + "' is not a finite number");
     }
   }
 }
@@ -269,7 +285,7 @@ TriangleMesh load_mesh(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
   for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (extension == ".ply") check_ply(path);
-  if (extension == ".obj") check_obj_materials(path);
+  if (extension == ".obj") check_obj(path);
   Assimp::Importer importer;
   const aiScene* scene =
       importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |

@@ -74,16 +74,64 @@ Image resized(const Image& img, int w, int h) {
 // PFM) may hold any value: one outside [0, 1] was clamped silently, and normalize, applied
 // after the clamp, could not undo it. Out-of-range depths are now rescaled by normalize or
 // refused, naming the file and the values it holds (read_image refuses non-finite texels).
+// Texels at the source's nodata value are left out; without one, a usual nodata value of a
+// GeoTIFF at the edge of the range is refused rather than folded into it.
 struct DepthRange {
   float lo = 0, hi = 0;
+  long nodata = 0;  // texels at the nodata value
 };
+
+// Values that mark texels without data in elevation rasters (GDAL's and ESRI's usual ones).
+bool usual_nodata_value(float v) {
+  for (float x : {-9999.0f, -32768.0f, -32767.0f, -99999.0f, std::numeric_limits<float>::lowest(),
+                  std::numeric_limits<float>::max()})
+    if (v == x) return true;
+  return false;
+}
+
+std::string file_of(const ReliefImageSource& src) {
+  return src.depth_path.empty() ? src.normal_path : src.depth_path;
+}
+
+// With normalize and no nodata given: a usual nodata value at an end of the file's values would
+// squeeze the terrain into a sliver of the depth and show its missing texels as pits.
+void refuse_unnamed_nodata(const ReliefImageSource& src, float file_lo, float file_hi,
+                           const std::vector<float>& values) {
+  for (float sentinel : {file_lo, file_hi}) {
+    if (!usual_nodata_value(sentinel)) continue;
+    long count = 0;
+    float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+    for (float v : values)
+      if (v == sentinel)
+        ++count;
+      else
+        lo = std::min(lo, v), hi = std::max(hi, v);
+    if (lo > hi) continue;  // every texel holds it: a flat map, nothing to squeeze
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  ": %ld texel(s) hold %.9g, the usual nodata value of a GeoTIFF; normalize would "
+                  "fold it into the range, squeezing the other values (%.6g to %.6g) into %.2g%% "
+                  "of the depth: give nodata = %.9g to fill them at the deepest valid depth",
+                  count, double(sentinel), double(lo), double(hi),
+                  100.0 * double(hi - lo) / (double(file_hi) - double(file_lo)), double(sentinel));
+    throw ConfigError(file_of(src) + text);
+  }
+}
+
 DepthRange depth_range(const Image& depth, int channel, const ReliefImageSource& src) {
   DepthRange r{std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()};
   float file_lo = std::numeric_limits<float>::max(), file_hi = std::numeric_limits<float>::lowest();
   long outside = 0;
+  std::vector<float> values;
+  values.reserve(size_t(depth.width) * depth.height);
   for (int y = 0; y < depth.height; ++y)
     for (int x = 0; x < depth.width; ++x) {
       const float v = depth.at(x, y, channel);
+      values.push_back(v);
+      if (v == float(src.nodata)) {  // never true for NaN (none given)
+        ++r.nodata;
+        continue;
+      }
       const float d = src.height_convention ? 1.0f - v : v;
       file_lo = std::min(file_lo, v);
       file_hi = std::max(file_hi, v);
@@ -91,14 +139,20 @@ DepthRange depth_range(const Image& depth, int channel, const ReliefImageSource&
       r.hi = std::max(r.hi, d);
       outside += d < -1e-6f || d > 1.0f + 1e-6f;
     }
+  if (r.nodata == long(values.size())) {
+    char text[128];
+    std::snprintf(text, sizeof text, ": every texel holds the nodata value %.9g: no data",
+                  src.nodata);
+    throw ConfigError(file_of(src) + text);
+  }
+  if (src.normalize && std::isnan(src.nodata)) refuse_unnamed_nodata(src, file_lo, file_hi, values);
   if (outside && !src.normalize) {
     char range[96];
     std::snprintf(range, sizeof range, "%.6g to %.6g", file_lo, file_hi);
-    throw ConfigError((src.depth_path.empty() ? src.normal_path : src.depth_path) + ": " +
-                      std::to_string(outside) + " texel(s) lie outside [0, 1] (its values span " +
-                      range +
+    throw ConfigError(file_of(src) + ": " + std::to_string(outside) +
+                      " texel(s) lie outside [0, 1] (its values span " + range +
                       "): set normalize = true to rescale the map to [0, 1], or rescale the file "
-                      "(a GeoTIFF's nodata value shows as one too)");
+                      "(a GeoTIFF's nodata value shows as one too: name it with nodata = V)");
   }
   return r;
 }
@@ -138,8 +192,9 @@ ReliefMap load_relief_images(const ReliefImageSource& src, double depth_per_texe
   for (int y = 0; y < h; ++y) {
     const int file_row = h - 1 - y;  // file's top row is v = 1
     for (int x = 0; x < w; ++x) {
-      float d = depth.at(x, file_row, depth_channel);
-      if (src.height_convention) d = 1.0f - d;
+      const float v = depth.at(x, file_row, depth_channel);
+      // A texel without data sits at the deepest valid depth (the lowest valid height).
+      float d = v == float(src.nodata) ? range.hi : src.height_convention ? 1.0f - v : v;
       glm::vec4 t(0.5f, 0.5f, 1.0f, std::clamp(d, 0.0f, 1.0f));
       if (src.normalize && range.hi > range.lo) t.a = (d - range.lo) / (range.hi - range.lo);
       if (has_normals) {

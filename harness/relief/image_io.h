@@ -1,6 +1,7 @@
 #pragma once
 // Relief maps from image files (OpenImageIO, through relief/image_backend.h), and PNG output
 // for renders and heat maps.
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,9 @@ struct ReliefImageSource {
   // Remap the stored depths to the full [0, 1] range, as the papers normalise depth by the
   // bounding box (artists' height maps often use a narrow band of the 8-bit range).
   bool normalize = false;
+  // Texels holding this value (as read from the file) have no data: they are left out of the
+  // range and filled at the deepest valid depth. NaN: none.
+  double nodata = std::numeric_limits<double>::quiet_NaN();
 };
 
 // Loads and assembles a relief map at the resolution of its depth source; the colour map is

@@ -340,6 +340,12 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
                scene.name + " el=" + std::to_string(cell.view.elevation_deg) +
                ": neither the technique nor the truth covers a pixel; its error columns are "
                "empty (nothing was measured)");
+    if (!measured.fetch_bound_warning.empty()) {
+      char where[96];
+      std::snprintf(where, sizeof where, " (%s el=%g az=%g)", scene.name.c_str(),
+                    cell.view.elevation_deg, cell.view.azimuth_deg);
+      log.line(measured.fetch_bound_warning + where);
+    }
     Row row = cell_row(cell, scene, camera, asset, measured, truth, gl.renderer());
     write_cell_files(row, config, options, files, scene, cell, camera, measured.g, truth.g,
                      asset.metric_texel);

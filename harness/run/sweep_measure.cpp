@@ -83,6 +83,24 @@ std::string describe_params(const Cell& c) {
   return s;
 }
 
+namespace {
+
+// A promise is checked on every cell a sweep measures, not only by the contract suite: a
+// plugin whose fragments fetch more than its describe() declares is named in the run log.
+std::string check_fetch_bound(const TechniqueInfo& info, const Cell& cell, const ReliefMap& map,
+                              const FragmentCost& cost) {
+  const double bound = info.contract.max_fetches(whole_frame_query(cell.params, map));
+  if (!(cost.frag_fetches_max > bound)) return "";  // within it, or not counted (NaN)
+  char line[160];
+  std::snprintf(line, sizeof line, "a fragment paid %.0f fetches, over the %.0f",
+                cost.frag_fetches_max, bound);
+  return "relieflab: warning: " + info.name + " " + describe_params(cell) + ": " + line +
+         " its describe() declares (" + info.contract.max_fetches_formula +
+         "): its contract does not hold on this cell";
+}
+
+}  // namespace
+
 CellMeasure measure_cell(const SweepConfig& config, const SceneDesc& scene, Asset& asset,
                          const Cell& cell, const Camera& camera, const GBuffer& truth,
                          bool software_gl) {
@@ -104,6 +122,10 @@ CellMeasure measure_cell(const SweepConfig& config, const SceneDesc& scene, Asse
     target.read_back_costs(counts);
   }
   out.cost = fragment_cost(counts);
+  // The bound is a plain render's: shadow rays and AO samples fetch on top of it.
+  if (!frame.effects.has(Effect::SelfShadow) && !frame.effects.has(Effect::AmbientOcclusion))
+    out.fetch_bound_warning = check_fetch_bound(
+        TechniqueRegistry::instance().find(cell.technique)->info, cell, asset.map, out.cost);
   add_model_cost(config, *technique, frame, cell, out);
   out.frame_columns = technique->frame_columns();
   for (const auto& [name, value] : out.frame_columns) {

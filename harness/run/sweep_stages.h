@@ -73,6 +73,8 @@ struct CellMeasure {
   double precompute_ms = 0;
   bool precompute_cached = false;
   size_t technique_bytes = 0;
+  // Set when a fragment paid more fetches than the technique declares it can (contract.h).
+  std::string fetch_bound_warning;
 };
 
 // Where a cell's pictures and G-buffers go.

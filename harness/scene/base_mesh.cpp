@@ -201,6 +201,7 @@ void cylindrical_uvs(const std::vector<glm::dvec3>& positions,
 
 BaseMesh mesh_from_file(const TriangleMesh& file, bool generate_uvs, double size, double tile,
                         bool z_from_y) {
+  if (!generate_uvs) check_base_uvs(file);
   std::vector<glm::dvec3> positions;
   for (const glm::vec3& p : file.positions)
     positions.push_back(z_from_y ? glm::dvec3(p.x, -p.z, p.y) : glm::dvec3(p));
@@ -220,6 +221,32 @@ BaseMesh mesh_from_file(const TriangleMesh& file, bool generate_uvs, double size
 }
 
 }  // namespace
+
+// A base mesh's own texture coordinates must map the relief: near enough to the origin that a
+// float still tells texels apart, and spanning some area (all-equal uvs map every point of the
+// surface to one texel).
+void check_base_uvs(const TriangleMesh& file) {
+  constexpr float kLargestUv = 1024;  // float spacing there: 1.2e-4, an eighth of a 1024 texel
+  for (size_t i = 0; i < file.uvs.size(); ++i) {
+    const glm::vec2 uv = file.uvs[i];
+    if (!(std::abs(uv.x) <= kLargestUv && std::abs(uv.y) <= kLargestUv)) {
+      char text[200];
+      std::snprintf(text, sizeof text,
+                    ": texture coordinate %zu is (%.6g, %.6g), beyond +-1024 (float precision "
+                    "there cannot tell texels apart); bring the uvs near [0, 1]",
+                    i, double(uv.x), double(uv.y));
+      throw ConfigError("base mesh " + file.name + text);
+    }
+  }
+  for (const glm::uvec3& t : file.triangles) {
+    const glm::dvec2 a(file.uvs[t.x]), b(file.uvs[t.y]), c(file.uvs[t.z]);
+    if ((b - a).x * (c - a).y - (c - a).x * (b - a).y != 0) return;
+  }
+  throw ConfigError("base mesh " + file.name +
+                    ": every triangle has zero area in texture space (are all its texture "
+                    "coordinates equal?): it maps no relief; give it a uv mapping, or remove "
+                    "its uvs to have them generated");
+}
 
 BaseMesh make_base_mesh(const BaseDesc& desc, double size, double tile, bool require_uvs) {
   BaseMesh m;

@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/triangle_mesh.h"
 #include "scene/scene.h"
 
 namespace rl {
@@ -37,6 +38,10 @@ struct BaseMesh {
 // `tile` times. Throws ConfigError for unknown kinds, and for mesh files without uvs unless
 // `require_uvs` is false (plain objects), when they get the teapot's cylindrical projection.
 BaseMesh make_base_mesh(const BaseDesc& desc, double size, double tile, bool require_uvs = true);
+
+// A base mesh file's own uvs map a relief: each within +-1024 (float precision), and some
+// triangle of nonzero area in texture space. Throws ConfigError naming the file.
+void check_base_uvs(const TriangleMesh& file);
 
 // True for the generated kinds (an exact parametric surface), false for mesh files.
 inline bool has_charts(const BaseDesc& desc) {

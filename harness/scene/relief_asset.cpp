@@ -28,6 +28,7 @@ ReliefImageSource image_source(const ReliefSourceDesc& relief) {
   src.height_convention = relief.height_convention;
   src.flip_green = relief.flip_green;
   src.normalize = relief.normalize;
+  src.nodata = relief.nodata;
   return src;
 }
 

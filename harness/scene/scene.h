@@ -2,6 +2,7 @@
 // A scene: the relief asset, the base surface it is mapped on (the planar quad, or a curved
 // base mesh: harness/scene/base_mesh.h), its scale, the light, the effects it asks for and any
 // plain triangle-mesh objects standing in it.
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -34,6 +35,9 @@ struct ReliefSourceDesc {
   bool height_convention = true;  // image stores height (1 = top)
   bool flip_green = false;
   bool normalize = false;  // remap image depths to [0, 1]
+  // A value marking texels without data (a GeoTIFF's nodata): left out of the depth range and
+  // filled at the deepest valid depth. NaN: none given.
+  double nodata = std::numeric_limits<double>::quiet_NaN();
   std::string mesh_path;   // a mesh baked into the map (Baboud & Decoret)
   int mesh_up = 1;         // its up axis: 0, 1, 2 = x, y, z
   double reverse_cop = 0;  // reverse perspective: centre of projection depth (> 1), or 0

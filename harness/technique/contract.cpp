@@ -5,6 +5,10 @@
 #include <set>
 #include <stdexcept>
 
+#include "relief/cell_complex.h"
+#include "relief/heightfield_faces.h"
+#include "relief/relief_map.h"
+
 namespace rl {
 
 std::string answer_name(Answer a) {
@@ -19,6 +23,15 @@ std::string answer_name(Answer a) {
       return "shading only";
   }
   return "?";
+}
+
+RayQuery whole_frame_query(const ParamValues& params, const ReliefMap& map) {
+  RayQuery q{.params = params, .map_width = map.width, .map_height = map.height};
+  q.layer_groups = std::max(1, (map.layers.count + 3) / 4);
+  if (map.faces) q.faces = map.faces->count();
+  if (map.cells) q.grid_cells = map.cells->grid();
+  q.span_texels = glm::dvec2(map.width, map.height) * 1e3;
+  return q;
 }
 
 double walk_cells(const RayQuery& q) {

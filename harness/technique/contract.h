@@ -41,6 +41,12 @@ struct RayQuery {
   double param(const std::string& name) const { return params.at(name); }
 };
 
+struct ReliefMap;
+// The query for a whole frame of `map` with `params`: its sizes, and the longest span a ray
+// can have (one across the map a thousand times over, so that a walk's bound is its cap): a
+// fragment of any view is within the bound this gives.
+RayQuery whole_frame_query(const ParamValues& params, const ReliefMap& map);
+
 // The most cells the texel-centre walk (harness/glsl/centerline_walk.glsl) visits on a ray:
 // its first cell and one per centerline crossed, and never more than its cap (RL_MAX_CELLS).
 inline constexpr double kWalkCellCap = 16384;

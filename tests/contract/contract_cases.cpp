@@ -328,13 +328,10 @@ Frame draw(size_t index, const std::string& technique, const ParamValues& params
   f.metrics = compare_gbuffers(f.image, f.truth, c.scene.depth, texel_world(c.scene, res),
                                c.scene.effects.has(Effect::AmbientOcclusion));
   f.columns = t->frame_columns();
-  f.query = RayQuery{.params = params, .map_width = a.map.width, .map_height = a.map.height};
-  f.query.layer_groups = std::max(1, (a.map.layers.count + 3) / 4);
-  if (a.map.faces) f.query.faces = a.map.faces->count();
-  if (a.map.cells) f.query.grid_cells = a.map.cells->grid();
+  f.query = whole_frame_query(params, a.map);
   // A ray entering a box's side or a curved base is no longer than one across the map; a
   // planar base's pixels state their own.
-  f.query.span_texels = c.planar_rays ? a.span : glm::dvec2(a.map.width, a.map.height) * 1e3;
+  if (c.planar_rays) f.query.span_texels = a.span;
   return f;
 }
 
