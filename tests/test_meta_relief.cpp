@@ -12,6 +12,7 @@
 #include "gl/shader_library.h"
 #include "relief/heightfield_reference.h"
 #include "relief/meta_relief.h"
+#include "run/memory_estimate.h"
 #include "relief/procedural.h"
 #include "run/cells.h"
 #include "scene/base_mesh.h"
@@ -309,6 +310,37 @@ name = "relief"
   EXPECT_EQ(assets.size(), 3u);
   EXPECT_EQ(truths.size(), 2u);  // one truth per view, whatever the resolution
 }
+
+// Three 8192^2 layers grew a run past 6 GB while the memory estimate counted layer 0 only: the
+// estimate counts every layer at its own size (and the bake where the scene bakes).
+TEST(MetaReliefSweep, TheMemoryEstimateCountsEveryLayer) {
+  auto estimate = [](const std::string& meta) {
+    const std::string text = R"(
+[sweep]
+name = "t"
+elevations = [45]
+viewports = [16]
+[[technique]]
+name = "relief"
+[[scene]]
+name = "meta"
+relief = { procedural = "sines", resolution = 64 }
+)" + meta;
+    const SweepConfig config = parse_sweep_config(text, "t.toml", ".");
+    return estimate_cell_memory(config, expand_cells(config).front()).bytes;
+  };
+  const std::string layer = "[[scene.meta_relief.layers]]\nrelief = { procedural = \"bricks\", "
+                            "resolution = 8192 }\n";
+  const double none = estimate("");
+  const double three = estimate("[scene.meta_relief]\n" + layer + layer + layer);
+  EXPECT_GE(three - none, 3 * 8192.0 * 8192.0 * 30);  // at least 30 bytes a texel (as measured)
+  // A bake of the combination at 4096 adds its own map.
+  const double runtime = estimate("[scene.meta_relief]\n" + layer);
+  const double baked =
+      estimate("[scene.meta_relief]\ncombine = \"baked\"\nbake_resolution = 4096\n" + layer);
+  EXPECT_GE(baked - runtime, 4096.0 * 4096.0 * 30);
+}
+
 
 }  // namespace
 }  // namespace rl

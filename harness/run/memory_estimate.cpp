@@ -21,6 +21,21 @@ std::string gib(double bytes) {
   return text;
 }
 
+// A meta-relief's finer layers, each a map of its own size (with its AO map and GPU copy),
+// and the bake of their combination where the scene bakes it.
+double meta_relief_bytes(const SceneDesc& scene) {
+  double bytes = 0;
+  for (const MetaLayerDesc& layer : scene.meta.layers)
+    bytes += double(layer.relief.native.width) * layer.relief.native.height * kBytesPerTexel;
+  if (scene.meta.active() && !scene.meta.runtime()) {
+    const MapSize base = scene.relief.native;
+    const double side = scene.meta.bake_resolution > 0 ? scene.meta.bake_resolution
+                                                       : std::max(base.width, base.height);
+    bytes += side * side * kBytesPerTexel;
+  }
+  return bytes;
+}
+
 }  // namespace
 
 MemoryEstimate estimate_cell_memory(const SweepConfig& config, const Cell& cell) {
@@ -41,7 +56,8 @@ MemoryEstimate estimate_cell_memory(const SweepConfig& config, const Cell& cell)
       (scene.truth_color_texture_res > 0
            ? double(truth_color.width) * truth_color.height * 16 + texels * kBytesPerTexel
            : 0);
-  const double maps = texels * kBytesPerTexel * std::max(1, r.faces) + color_maps;
+  const double maps =
+      texels * kBytesPerTexel * std::max(1, r.faces) + color_maps + meta_relief_bytes(scene);
   double cells = 0;
   if (r.cells.active) {
     const double n = r.cells.grid > 0 ? r.cells.grid : r.cells.grid_max;
