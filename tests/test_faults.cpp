@@ -11,7 +11,6 @@
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
-#include <sqlite3.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -77,25 +76,11 @@ TEST(Faults, AFullDiskStopsTheWriteAndLeavesNoFile) {
   EXPECT_EQ(files_in(dir).size(), 2u);
 }
 
-// A sweep of 4 cells (relief at 8 and 16 steps, 45 and 20 degrees, 32^2 bricks) written to
-// dir/sweep.toml; `sweep_extra` adds [sweep] keys.
-std::string write_small_sweep(const std::string& dir, const std::string& sweep_extra) {
-  fs::create_directories(dir);
-  const std::string config = dir + "/sweep.toml";
-  std::ofstream(config) << "[sweep]\nname = \"small\"\nelevations = [45, 20]\nviewports = [32]\n"
-                           "frames = 1\nwarmup = 0\n"
-                        << sweep_extra
-                        << "[[scene]]\nname = \"bricks\"\n"
-                           "relief = { procedural = \"bricks\", resolution = 32 }\n"
-                           "[[technique]]\nname = \"relief\"\nlinear_steps = [8, 16]\n";
-  return config;
-}
-
 // Three runs of one sweep into one folder at once: each exits 0, and the folder holds one row
 // per cell and every image whole.
 TEST(Faults, ConcurrentRunsIntoOneFolderAllSucceed) {
   const std::string dir = test::scratch_dir("concurrent");
-  const std::string config = write_small_sweep(dir, "");
+  const std::string config = test::write_small_sweep(dir, "");
   const std::string out = dir + "/out";
   int codes[3] = {-1, -1, -1};
   std::string outputs[3];
@@ -126,25 +111,16 @@ TEST(Faults, ConcurrentRunsIntoOneFolderAllSucceed) {
   EXPECT_GT(images, 0);
 }
 
-// Runs `sql` on the store of a run folder.
-void store_exec(const std::string& db_path, const std::string& sql) {
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open(db_path.c_str(), &db), SQLITE_OK);
-  char* error = nullptr;
-  EXPECT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error), SQLITE_OK) << error;
-  sqlite3_free(error);
-  sqlite3_close(db);
-}
-
 TEST(Faults, CorruptStoredRowsAreMeasuredAgainWithAWarning) {
   const std::string dir = test::scratch_dir("corrupt-store");
-  const std::string config = write_small_sweep(dir, "images = false\n");
+  const std::string config = test::write_small_sweep(dir, "images = false\n");
   const std::string out = dir + "/out", db = out + "/results.sqlite";
   std::string output;
   ASSERT_EQ(test::run_cli("run " + config + " --out " + out + " -q", output), 0) << output;
   // A row cut short, and one whose measure is text.
-  store_exec(db, "UPDATE rows SET row = '{\"truncated' WHERE rowid = 1");
-  store_exec(db, "UPDATE rows SET row = json_set(row, '$.pos_err_rmse', 'banana') WHERE rowid = 2");
+  test::store_exec(db, "UPDATE rows SET row = '{\"truncated' WHERE rowid = 1");
+  test::store_exec(
+      db, "UPDATE rows SET row = json_set(row, '$.pos_err_rmse', 'banana') WHERE rowid = 2");
   ASSERT_EQ(test::run_cli("run " + config + " --out " + out + " -q", output), 0) << output;
   EXPECT_NE(output.find("is not valid JSON"), std::string::npos) << output;
   EXPECT_NE(output.find("holds a non-number in 'pos_err_rmse'"), std::string::npos) << output;
@@ -165,13 +141,13 @@ TEST(Faults, CorruptStoredRowsAreMeasuredAgainWithAWarning) {
 // have nothing to lay out, and must not overwrite the folder's tables with empty ones.
 TEST(Faults, ReportRefusesAStoreOfAnotherMeasurementVersion) {
   const std::string dir = test::scratch_dir("old-store");
-  const std::string config = write_small_sweep(dir, "images = false\n");
+  const std::string config = test::write_small_sweep(dir, "images = false\n");
   const std::string out = dir + "/out";
   std::string output;
   ASSERT_EQ(test::run_cli("run " + config + " --out " + out + " -q", output), 0) << output;
   std::ifstream before_file(out + "/rows.csv");
   const std::string before((std::istreambuf_iterator<char>(before_file)), {});
-  store_exec(out + "/results.sqlite", "UPDATE rows SET key = 'v0-' || key");
+  test::store_exec(out + "/results.sqlite", "UPDATE rows SET key = 'v0-' || key");
   EXPECT_NE(test::run_cli("report " + out, output), 0) << output;
   EXPECT_NE(output.find("none under this sweep's cell keys"), std::string::npos) << output;
   std::ifstream after_file(out + "/rows.csv");
@@ -185,7 +161,7 @@ TEST(Faults, ReportRefusesAStoreOfAnotherMeasurementVersion) {
 // `report` and `merge` refuse such a folder before writing anything, naming the entry.
 TEST(Faults, LinksAndDevicesPlantedInTheOutputFolderAreRefused) {
   const std::string dir = test::scratch_dir("planted");
-  const std::string config = write_small_sweep(dir, "images = true\n");
+  const std::string config = test::write_small_sweep(dir, "images = true\n");
   const std::string outside = dir + "/outside.txt";
   std::ofstream(outside) << "precious\n";
   std::string output;
@@ -219,7 +195,7 @@ TEST(Faults, LinksAndDevicesPlantedInTheOutputFolderAreRefused) {
 // other.rows"; status, compare and report could not read a run on read-only media.
 TEST(Faults, DamagedRecordsAndReadOnlyRunsAreNamedOrRead) {
   const std::string dir = test::scratch_dir("damaged-records");
-  const std::string config = write_small_sweep(dir, "images = false\n");
+  const std::string config = test::write_small_sweep(dir, "images = false\n");
   const std::string out = dir + "/out";
   std::string output;
   ASSERT_EQ(test::run_cli("run " + config + " --out " + out + " -q", output), 0) << output;
@@ -270,7 +246,7 @@ TEST(Faults, DamagedRecordsAndReadOnlyRunsAreNamedOrRead) {
 // used to end `report` with a raw JSON exception; the report shows them as U+FFFD.
 TEST(Faults, ARunLogInAnotherEncodingStillMakesAReport) {
   const std::string dir = test::scratch_dir("log-encoding");
-  const std::string config = write_small_sweep(dir, "images = false\n");
+  const std::string config = test::write_small_sweep(dir, "images = false\n");
   const std::string out = dir + "/out";
   std::string output;
   ASSERT_EQ(test::run_cli("run " + config + " --out " + out + " -q", output), 0) << output;

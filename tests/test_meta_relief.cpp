@@ -12,9 +12,9 @@
 #include "gl/shader_library.h"
 #include "relief/heightfield_reference.h"
 #include "relief/meta_relief.h"
-#include "run/memory_estimate.h"
 #include "relief/procedural.h"
 #include "run/cells.h"
+#include "run/memory_estimate.h"
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
@@ -329,8 +329,9 @@ relief = { procedural = "sines", resolution = 64 }
     const SweepConfig config = parse_sweep_config(text, "t.toml", ".");
     return estimate_cell_memory(config, expand_cells(config).front()).bytes;
   };
-  const std::string layer = "[[scene.meta_relief.layers]]\nrelief = { procedural = \"bricks\", "
-                            "resolution = 8192 }\n";
+  const std::string layer =
+      "[[scene.meta_relief.layers]]\nrelief = { procedural = \"bricks\", "
+      "resolution = 8192 }\n";
   const double none = estimate("");
   const double three = estimate("[scene.meta_relief]\n" + layer + layer + layer);
   EXPECT_GE(three - none, 3 * 8192.0 * 8192.0 * 30);  // at least 30 bytes a texel (as measured)
@@ -340,7 +341,6 @@ relief = { procedural = "sines", resolution = 64 }
       estimate("[scene.meta_relief]\ncombine = \"baked\"\nbake_resolution = 4096\n" + layer);
   EXPECT_GE(baked - runtime, 4096.0 * 4096.0 * 30);
 }
-
 
 }  // namespace
 }  // namespace rl

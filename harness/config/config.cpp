@@ -414,6 +414,8 @@ const std::vector<std::string>& run_owned_names() {
                                                  "results.sqlite-shm",
                                                  "rows.csv",
                                                  "sweep.json",
+                                                 "outputs.json",
+                                                 ".relieflab-lock",
                                                  "run.log",
                                                  "pareto.md",
                                                  "report.html",

@@ -1,7 +1,9 @@
 #include "core/columns.h"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <stdexcept>
 
 namespace rl {
@@ -37,6 +39,33 @@ const DeclaredColumn* find_column(const std::string& name) {
   for (const DeclaredColumn& c : catalog())
     if (c.spec.name == name) return &c;
   return nullptr;
+}
+
+ValueRange column_range(const ColumnSpec& c) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  const std::string& u = c.unit;
+  // A share of a whole that contains what it counts is at most 100; of another population
+  // (false hits of the truth's covered pixels) or a relative error, it may exceed it.
+  for (const char* whole : {"% of union_px", "% of texels", "% of fragments", "% of pixels"})
+    if (u == whole) return {0, 100};
+  if (u.rfind("%", 0) == 0) return {0, inf};
+  for (const char* unit : {"ms", "fetches", "ops / px", "texels", "pixels", "fragments", "bytes",
+                           "1/s", "rays", "passes", "iterations", "cells", "triangles", "regions",
+                           "maps", "frames", "faces", "crossings", "depth units"})
+    if (u == unit) return {0, inf};
+  if (u == "visibility") return {-1, 1};
+  if (u == "degrees") return {-180, 180};
+  if (u == "dB") return {-inf, 100};
+  return {-inf, inf};
+}
+
+std::string value_outside_range(const ColumnSpec& c, double value) {
+  const ValueRange r = column_range(c);
+  if (std::isfinite(value) && value >= r.lo && value <= r.hi) return "";
+  char text[160];
+  std::snprintf(text, sizeof text, "%.6g lies outside [%g, %g]%s%s%s", value, r.lo, r.hi,
+                c.unit.empty() ? "" : " (", c.unit.c_str(), c.unit.empty() ? "" : ")");
+  return text;
 }
 
 std::vector<std::string> measured_columns() {

@@ -35,6 +35,18 @@ const DeclaredColumn* find_column(const std::string& name);
 // The declared numbers and flags: what a table, a plot or `compare` may take as a value.
 std::vector<std::string> measured_columns();
 
+// The values a number column can take, from its unit: a share of a whole ("% of union_px") lies
+// in [0, 100], other percentages are at least 0; a time, a
+// count, a size or an error distance is at least 0; a visibility lies in [-1, 1] (biases
+// included); an angle in [-180, 180]; a PSNR at most 100 (capped). Others: any finite value.
+struct ValueRange {
+  double lo, hi;
+};
+ValueRange column_range(const ColumnSpec& c);
+// "" when `value` can be a value of `c`; else why not ("-5 lies outside [0, 100] (% of
+// pixels)").
+std::string value_outside_range(const ColumnSpec& c, double value);
+
 // Declares at load time: `static const ColumnDeclaration columns("metrics", {...});`. A
 // conflict here is a bug in the declaring code: it prints and exits(3), like a technique's.
 struct ColumnDeclaration {

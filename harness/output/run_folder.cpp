@@ -1,5 +1,12 @@
 #include "output/run_folder.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 #include "config/config.h"
@@ -41,6 +48,28 @@ void check_run_folder(const std::string& dir) {
                         " there (remove it, or choose another --out)");
     if (folder) check_no_links_below(p);
   }
+}
+
+RunFolderLock::RunFolderLock(const std::string& dir) {
+  const std::string path = dir + "/.relieflab-lock";
+  fd_ = open(path.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (fd_ < 0)
+    throw ConfigError(path + ": cannot open the folder's lock file (" + std::strerror(errno) +
+                      "); a run folder must be writable");
+  if (flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
+  std::fprintf(stderr,
+               "relieflab: waiting for another relieflab command writing into %s to finish\n",
+               dir.c_str());
+  while (flock(fd_, LOCK_EX) != 0)
+    if (errno != EINTR) {
+      const int e = errno;
+      close(fd_);
+      throw ConfigError(path + ": cannot lock (" + std::strerror(e) + ")");
+    }
+}
+
+RunFolderLock::~RunFolderLock() {
+  if (fd_ >= 0) close(fd_);  // releases the lock
 }
 
 }  // namespace rl

@@ -87,6 +87,9 @@ std::string row_problem(const std::optional<nlohmann::ordered_json>& row, const 
     if (c.spec.kind == ColumnKind::Number ? !it->is_number() : flag && !it->is_boolean())
       return std::string("holds a non-") + (flag ? "boolean" : "number") + " in '" + c.spec.name +
              "'";
+    if (c.spec.kind == ColumnKind::Number)
+      if (const std::string why = value_outside_range(c.spec, it->get<double>()); !why.empty())
+        return "holds a value in '" + c.spec.name + "' its column cannot take: " + why;
   }
   return "";
 }
@@ -109,11 +112,15 @@ std::optional<nlohmann::ordered_json> usable_stored_row(const ResultStore& store
   return row;
 }
 
+}  // namespace
+
 std::string stored_row_problem(const ResultStore& store, const Cell& cell) {
   std::string problem;
   usable_stored_row(store, cell, problem);
   return problem;
 }
+
+namespace {
 
 // ---- plan -----------------------------------------------------------------------------------
 
@@ -304,7 +311,9 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   refuse_cells_beyond_memory(config, cells);  // sizes known once the files are read
 
   fs::create_directories(options.out_dir);
+  const RunFolderLock lock(options.out_dir);
   check_run_folder(options.out_dir);
+  refuse_another_shard(options.shard, options.out_dir);
   write_sweep_record(config, options.shard, options.out_dir);
   Log log(options.out_dir + "/run.log");
   ResultStore store(options.out_dir + "/results.sqlite");

@@ -38,4 +38,8 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options);
 size_t write_sweep_outputs(const SweepConfig& config, const std::vector<Cell>& cells,
                            const ResultStore& store, const std::string& out_dir);
 
+// Why the row `store` holds for `cell` cannot stand for it ("" when it can): the check a run
+// makes before reusing a row and before publishing one.
+std::string stored_row_problem(const ResultStore& store, const Cell& cell);
+
 }  // namespace rl

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_write.h"
+#include "core/columns.h"
 #include "core/data_paths.h"
 #include "core/error.h"
 #include "core/hash.h"
@@ -131,6 +132,24 @@ void write_sweep_record(const SweepConfig& config, const ShardSpec& shard,
   write_text_atomic(out_dir + "/sweep.json", j.dump(2) + "\n");
 }
 
+void refuse_another_shard(const ShardSpec& shard, const std::string& out_dir) {
+  if (!fs::exists(out_dir + "/sweep.json")) return;
+  std::string recorded;
+  try {
+    recorded = read_record(out_dir)["shard"].get<std::string>();
+  } catch (const ConfigError&) {
+    return;  // a damaged record is rewritten by this run
+  }
+  if (recorded == shard.text()) return;
+  auto what = [](const std::string& s) {
+    return s == "0/1" ? std::string("the whole sweep") : "shard " + s;
+  };
+  throw ConfigError(out_dir + " holds a run of " + what(recorded) +
+                    " (its sweep.json); this run measures " + what(shard.text()) +
+                    ", and its rows.csv and tables would replace the folder's with those of " +
+                    what(shard.text()) + " alone: give another --out (nothing was written)");
+}
+
 namespace {
 
 // The config every folder ran (they must agree), rebuilt from the first one's record.
@@ -160,8 +179,11 @@ SweepConfig recorded_config(const std::vector<std::string>& dirs) {
 }
 
 // A merge writes into a new folder or one of the same sweep (a shard's own, or an earlier
-// merge): the rows of another sweep would mix with these, and its tables be replaced.
-void refuse_another_sweep(const std::string& out_dir, const nlohmann::json& shards) {
+// merge): the rows of another sweep would mix with these, and its tables be replaced. A store
+// without sweep.json is a merge of this sweep killed before it wrote one (it writes the record
+// first now) when every row in it is one of this sweep's cells: the merge resumes.
+void refuse_another_sweep(const std::string& out_dir, const nlohmann::json& shards,
+                          const std::vector<Cell>& cells) {
   if (fs::exists(out_dir + "/sweep.json")) {
     const nlohmann::json there = read_record(out_dir);
     if (there["config_hash"] != shards["config_hash"])
@@ -171,9 +193,57 @@ void refuse_another_sweep(const std::string& out_dir, const nlohmann::json& shar
                         shards["config_hash"].get<std::string>() +
                         "); merge into a new folder (nothing was written)");
   } else if (fs::exists(out_dir + "/results.sqlite")) {
-    throw ConfigError("merge: " + out_dir +
-                      " holds a result store but no sweep.json: not a run of this sweep; merge "
-                      "into a new folder (nothing was written)");
+    std::set<std::string> keys;
+    for (const Cell& c : cells) keys.insert(c.key);
+    const ResultStore store(out_dir + "/results.sqlite", ResultStore::Access::ReadOnly);
+    for (const std::string& k : store.keys())
+      if (!keys.count(k))
+        throw ConfigError("merge: " + out_dir +
+                          " holds a result store but no sweep.json, with rows of cells this "
+                          "sweep does not have (key " +
+                          k +
+                          "): not a run of this sweep; merge into a new folder (nothing "
+                          "was written)");
+  }
+}
+
+// Columns that differ between two measurements of one cell without either being wrong: times
+// (and rates) and whether the precompute came from the cache.
+bool varies_between_runs(const ColumnSpec& c) {
+  return c.unit == "ms" || c.unit == "1/s" || c.kind == ColumnKind::Text ||
+         c.name == "precompute_cached";
+}
+
+// Two shards (or a shard and an earlier merge) that measured one cell must agree on it but for
+// its times: otherwise one was measured by another build or renderer, or edited, and keeping
+// either without a word would publish a number the other contradicts.
+void refuse_disagreeing_rows(const std::string& out_dir, const std::vector<std::string>& dirs,
+                             const std::vector<Cell>& cells) {
+  std::map<std::string, std::pair<nlohmann::ordered_json, std::string>> first;  // key: row, dir
+  std::vector<std::string> sources = dirs;
+  if (fs::exists(out_dir + "/results.sqlite")) sources.insert(sources.begin(), out_dir);
+  for (const std::string& d : sources) {
+    const ResultStore store(d + "/results.sqlite", ResultStore::Access::ReadOnly);
+    const std::set<std::string> keys = store.keys();
+    for (const Cell& c : cells) {
+      if (!keys.count(c.key) || !stored_row_problem(store, c).empty()) continue;
+      const nlohmann::ordered_json row = *store.row(c.key);
+      auto [it, fresh] = first.emplace(c.key, std::make_pair(row, d));
+      if (fresh) continue;
+      for (const DeclaredColumn& col : declared_columns()) {
+        if (varies_between_runs(col.spec)) continue;
+        const nlohmann::ordered_json& kept = it->second.first;
+        const auto a = kept.find(col.spec.name), b = row.find(col.spec.name);
+        const bool in_a = a != kept.end(), in_b = b != row.end();
+        if (in_a == in_b && (!in_a || *a == *b)) continue;
+        throw ConfigError("merge: " + it->second.second + " and " + d + " disagree on " +
+                          c.technique + " (key " + c.key + "): '" + col.spec.name + "' is " +
+                          (in_a ? a->dump() : "absent") + " in one and " +
+                          (in_b ? b->dump() : "absent") +
+                          " in the other (measured by another build or renderer, or edited?); "
+                          "merge shards of one run (nothing was written)");
+      }
+    }
   }
 }
 
@@ -200,11 +270,18 @@ RunStatus run_status(const std::vector<std::string>& dirs) {
       s.shard = shard.text();
     }
   }
-  std::set<std::string> have;
+  // A row counts as done when a run would reuse it (a corrupt one is measured again).
+  std::set<std::string> have, stored;
   for (const std::string& d : dirs) {
     const ResultStore store(d + "/results.sqlite", ResultStore::Access::ReadOnly);
-    for (const std::string& k : store.keys()) have.insert(k);
+    const std::set<std::string> keys = store.keys();
+    for (const Cell& c : cells)
+      if (keys.count(c.key) && !have.count(c.key)) {
+        stored.insert(c.key);
+        if (stored_row_problem(store, c).empty()) have.insert(c.key);
+      }
   }
+  s.unusable = stored.size() - have.size();
   std::map<std::string, std::pair<size_t, size_t>> truths, techniques;
   std::vector<std::string> order;
   for (const Cell& c : cells) {
@@ -226,6 +303,7 @@ RunStatus run_status(const std::vector<std::string>& dirs) {
 size_t rewrite_outputs(const std::string& dir) {
   check_run_folder(dir);
   const SweepConfig config = recorded_config({dir});
+  const RunFolderLock lock(dir);
   std::vector<Cell> cells = expand_cells(config);
   const ShardSpec shard = recorded_shard(dir);
   cells = shard_cells(config, cells, shard);
@@ -251,6 +329,10 @@ std::string format_run_status(const RunStatus& s) {
                 s.shard.empty() ? "" : (", shard " + s.shard).c_str(), s.done, s.cells,
                 s.cells ? 100.0 * s.done / s.cells : 100.0, s.truths_done, s.truths);
   std::string out = line;
+  if (s.unusable)
+    out += "  " + std::to_string(s.unusable) +
+           " stored row(s) cannot stand for their cells (cut short, edited, or out of their "
+           "columns' range): not counted; the next run measures them again\n";
   for (const auto& [t, c] : s.techniques) {
     std::snprintf(line, sizeof line, "  %-26s %zu / %zu\n", t.c_str(), c.first, c.second);
     out += line;
@@ -262,18 +344,21 @@ MergeSummary merge_shards(const std::string& out_dir, const std::vector<std::str
   if (shard_dirs.empty()) throw ConfigError("merge: give the shards' output folders");
   require_utf8_path(out_dir, "merge: the output folder");
   const SweepConfig config = recorded_config(shard_dirs);
-  refuse_another_sweep(out_dir, read_record(shard_dirs.front()));
+  const std::vector<Cell> cells = expand_cells(config);
+  refuse_another_sweep(out_dir, read_record(shard_dirs.front()), cells);
   fs::create_directories(out_dir);
+  const RunFolderLock lock(out_dir);
   check_run_folder(out_dir);
+  refuse_disagreeing_rows(out_dir, shard_dirs, cells);
+  // The record first: a merge killed after this point is resumed by merging again.
+  write_sweep_record(config, ShardSpec{}, out_dir);
   MergeSummary summary;
   summary.shards = shard_dirs.size();
   ResultStore store(out_dir + "/results.sqlite");
   for (const std::string& d : shard_dirs)
     summary.rows_added += store.merge_from(d + "/results.sqlite");
-  const std::vector<Cell> cells = expand_cells(config);
   summary.cells = cells.size();
   summary.missing = missing_cells(cells, store);
-  write_sweep_record(config, ShardSpec{}, out_dir);
   summary.missing += write_sweep_outputs(config, cells, store, out_dir);  // unusable rows
   return summary;
 }

@@ -36,6 +36,10 @@ std::vector<Cell> shard_cells(const SweepConfig& config, const std::vector<Cell>
 // and the shard it ran; merge checks that every shard ran the same config.
 void write_sweep_record(const SweepConfig& config, const ShardSpec& shard,
                         const std::string& out_dir);
+// A run writes rows.csv and the tables of its own cells: into a folder that recorded another
+// shard (a whole run, or another slice), it would silently replace them with a part. Throws
+// ConfigError naming both before anything is written.
+void refuse_another_shard(const ShardSpec& shard, const std::string& out_dir);
 
 struct MergeSummary {
   size_t shards = 0, rows_added = 0, cells = 0, missing = 0;
@@ -53,6 +57,7 @@ MergeSummary merge_shards(const std::string& out_dir, const std::vector<std::str
 struct RunStatus {
   std::string name, source, shard;  // shard: "i/n", or "" for a whole run or several folders
   size_t cells = 0, done = 0, truths = 0, truths_done = 0;
+  size_t unusable = 0;  // stored rows that cannot stand for their cell (not counted as done)
   std::vector<std::pair<std::string, std::pair<size_t, size_t>>> techniques;  // done, all
 };
 RunStatus run_status(const std::vector<std::string>& dirs);

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include <gtest/gtest.h>
+#include <sqlite3.h>
 #include <glm/gtc/constants.hpp>
 
 #include "core/atomic_write.h"
@@ -192,6 +193,27 @@ int run_cli(const std::string& args, std::string& output, const std::string& pre
   while (fgets(buf.data(), buf.size(), pipe)) output += buf.data();
   const int status = pclose(pipe);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string write_small_sweep(const std::string& dir, const std::string& sweep_extra) {
+  std::filesystem::create_directories(dir);
+  const std::string config = dir + "/sweep.toml";
+  std::ofstream(config) << "[sweep]\nname = \"small\"\nelevations = [45, 20]\nviewports = [32]\n"
+                           "frames = 1\nwarmup = 0\n"
+                        << sweep_extra
+                        << "[[scene]]\nname = \"bricks\"\n"
+                           "relief = { procedural = \"bricks\", resolution = 32 }\n"
+                           "[[technique]]\nname = \"relief\"\nlinear_steps = [8, 16]\n";
+  return config;
+}
+
+void store_exec(const std::string& db_path, const std::string& sql) {
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(db_path.c_str(), &db), SQLITE_OK);
+  char* error = nullptr;
+  EXPECT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error), SQLITE_OK) << error;
+  sqlite3_free(error);
+  sqlite3_close(db);
 }
 
 }  // namespace rl::test

@@ -78,6 +78,13 @@ SweepConfig run_sweep_in(const std::string& toml, const std::string& dir);
 std::map<std::string, nlohmann::json> rows_by_scene(const SweepConfig& config,
                                                     const std::string& dir);
 
+// A sweep of 4 cells (relief at 8 and 16 steps, 45 and 20 degrees, 32^2 bricks) written to
+// dir/sweep.toml (the folder created); `sweep_extra` adds [sweep] keys. Returns its path.
+std::string write_small_sweep(const std::string& dir, const std::string& sweep_extra);
+
+// Runs `sql` on the result store at `db_path` (a test damaging or editing it as a user could).
+void store_exec(const std::string& db_path, const std::string& sql);
+
 // Runs the relieflab CLI with `args`; returns its exit status, stderr+stdout in `output`.
 // `prefix` goes before the program (e.g. setpriv to run it as another user).
 int run_cli(const std::string& args, std::string& output, const std::string& prefix = "");
