@@ -44,7 +44,7 @@ for spec in "$@"; do
   mkdir -p "$runs/$name"
   echo "gpu-rows: $name took $(( $(date +%s) - start )) s"
   find "$runs/$name" -mindepth 1 -maxdepth 1 \
-    ! -name rows.csv ! -name run.log ! -name sweep.json -exec rm -rf {} +
+    ! -name rows.csv ! -name outputs.json ! -name run.log ! -name sweep.json -exec rm -rf {} +
   mv "$runs/$name.out" "$runs/$name/console.txt"
   tail -3 "$runs/$name/console.txt"
   tar -C "$runs" -czf "$result/runs.tar.gz.part" . && mv "$result/runs.tar.gz.part" "$result/runs.tar.gz"

@@ -24,6 +24,7 @@ import json
 import os
 import subprocess
 import sys
+import outputs_record  # scripts/outputs_record.py, beside this one
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FOLDER = os.path.join(ROOT, "results", "precompute-times")
@@ -115,6 +116,7 @@ def main():
         w.writeheader()
         w.writerows(rows)
     os.replace(path + ".tmp", path)
+    outputs_record.write_record(FOLDER, ["rows.csv"])
     print(f"results/precompute-times/rows.csv: {len(rows)} rows, {args.runs} runs each")
 
 

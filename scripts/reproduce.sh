@@ -24,7 +24,7 @@ export RELIEFLAB_CACHE_DIR="$run/precompute-cache"
 dest="results/$name"
 mkdir -p "$dest"
 rm -rf "$dest/plots"
-cp "$run"/*.md "$run"/rows.csv "$dest/"
+cp "$run"/*.md "$run"/rows.csv "$run"/outputs.json "$dest/"
 # LaTeX tables (format = "latex"), where the config asks for them.
 for tex in "$run"/*.tex; do [ -e "$tex" ] && cp "$tex" "$dest/"; done
 # The HTML report (its pictures are those of images/, so complete with --images).

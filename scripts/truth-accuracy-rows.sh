@@ -24,4 +24,5 @@ cd "$(dirname "$0")/../results/truth-accuracy"
   }' timing.md
 } > rows.csv.tmp
 mv rows.csv.tmp rows.csv
+python3 ../../scripts/outputs_record.py . rows.csv
 echo "results/truth-accuracy/rows.csv: $(($(wc -l < rows.csv) - 1)) rows"

@@ -11,6 +11,7 @@
 
 #include "config/config.h"
 #include "core/error.h"
+#include "output/outputs_record.h"
 #include "run/asset_check.h"
 #include "run/cells.h"
 #include "run/memory_estimate.h"
@@ -107,7 +108,9 @@ TEST(BadInputs, VerifyCannotBeFooled) {
   const fs::path dir = test::scratch_dir("verify-fooled");
   fs::remove_all(dir);
   fs::create_directories(dir);
-  std::ofstream(dir / "rows.csv") << "technique,wrong_pct\nrelief,5\n";
+  const std::string rows = "technique,wrong_pct\nrelief,5\n";
+  std::ofstream(dir / "rows.csv") << rows;
+  write_outputs_record(dir.string(), {{"rows.csv", rows}});  // as the run that wrote them
   auto claims = [&](const std::string& check) {
     std::ofstream(dir / "claims.toml", std::ios::trunc)
         << "[[claim]]\nid = \"c\"\njudges = \"j\"\nverdict = \"confirmed\"\n"

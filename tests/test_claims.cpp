@@ -12,6 +12,7 @@
 #include "core/atomic_write.h"
 #include "core/error.h"
 #include "output/compare.h"
+#include "output/outputs_record.h"
 #include "support/test_support.h"
 
 namespace rl {
@@ -65,11 +66,18 @@ std::string write(const std::string& path, const std::string& text) {
   return path;
 }
 
+// rows.csv as a run writes it: with its digest in outputs.json (output/outputs_record.h).
+void write_rows(const std::string& dir, const std::string& rows) {
+  std::filesystem::create_directories(dir);
+  write(dir + "/rows.csv", rows);
+  write_outputs_record(dir, {{"rows.csv", rows}});
+}
+
 std::string folder_with(const std::string& name, const std::string& rows, const std::string& claims,
                         const std::string& readme) {
   const std::string dir = test::scratch_dir(name);
   std::filesystem::create_directories(dir);
-  write(dir + "/rows.csv", rows);
+  write_rows(dir, rows);
   write(dir + "/claims.toml", claims);
   write(dir + "/README.md", readme);
   return dir;
@@ -183,7 +191,7 @@ TEST(Claims, AVerdictThatHoldsOnOneRendererOnlySaysWhich) {
   const std::string dir = folder_with("claims_renderers", kRows, kClaims,
                                       std::string(kClaimsBegin) + "\n" + kClaimsEnd + "\n");
   std::filesystem::create_directories(dir + "/gpu-x");
-  write(dir + "/gpu-x/rows.csv", gpu_rows);
+  write_rows(dir + "/gpu-x", gpu_rows);
   std::string report;
   EXPECT_EQ(verify_result_folder(dir, true, report), 1) << report;
   EXPECT_NE(report.find("claim exact-cheaper: does not hold on gpu-x (gpu-x/rows.csv): check "
@@ -205,7 +213,7 @@ TEST(Claims, AVerdictThatHoldsOnOneRendererOnlySaysWhich) {
       << readme;
   EXPECT_NE(readme.find("also runs on the rows measured on gpu-x"), std::string::npos) << readme;
   // Said, but it holds there after all: the exception is stale.
-  write(dir + "/gpu-x/rows.csv", kRows);
+  write_rows(dir + "/gpu-x", kRows);
   report.clear();
   EXPECT_GE(verify_result_folder(dir, false, report), 1);
   EXPECT_NE(report.find("holds on gpu-x (gpu-x/rows.csv) now: drop it from not_on"),
@@ -251,10 +259,23 @@ TEST(Claims, VerifyChecksTheReadmeSectionAndWriteRegeneratesIt) {
       << page;
   report.clear();
   EXPECT_EQ(verify_result_folder(dir, false, report), 0) << report;
-  // A folder whose rows moved fails in the CLI, naming the claim.
-  write(dir + "/rows.csv",
-        std::string(kRows).replace(std::string(kRows).find(",40,4.0,"), 8, ",40,0.1,"));
+  // Rows edited after the run: verify fails naming the file, and --write rewrites nothing (it
+  // would launder them into the README while the tables still showed the run's numbers).
+  const std::string moved =
+      std::string(kRows).replace(std::string(kRows).find(",40,4.0,"), 8, ",40,0.1,");
+  write(dir + "/rows.csv", moved);
   std::string output;
+  for (const char* write_flag : {"", "--write "}) {
+    EXPECT_EQ(test::run_cli(std::string("verify ") + write_flag + dir, output), 1) << output;
+    EXPECT_NE(output.find(dir + "/rows.csv: differs from what the run wrote (outputs.json)"),
+              std::string::npos)
+        << output;
+  }
+  std::ifstream after_in(dir + "/README.md");
+  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(after_in)), {}), now)
+      << "verify --write rewrote the README from edited rows";
+  // A run whose rows moved (its own record beside them) fails in the CLI, naming the claim.
+  write_rows(dir, moved);
   EXPECT_EQ(test::run_cli("verify " + dir, output), 1) << output;
   EXPECT_NE(output.find("claim grazing-worse: check 'grazing > steep' does not hold"),
             std::string::npos)

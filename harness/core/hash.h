@@ -9,6 +9,9 @@
 
 namespace rl {
 
+// The default start is not FNV's published offset basis (14695981039346656037, a digit longer):
+// a slip kept because every result-store key and cache name is derived from it. Digests meant
+// for other tools pass the published one (output/outputs_record.cpp).
 inline uint64_t fnv1a64(const void* data, size_t size, uint64_t h = 1469598103934665603ull) {
   const auto* p = static_cast<const unsigned char*>(data);
   for (size_t i = 0; i < size; ++i) {

@@ -18,6 +18,7 @@
 #include "core/elapsed.h"
 #include "core/error.h"
 #include "gl/context.h"
+#include "output/outputs_record.h"
 #include "output/pareto.h"
 #include "output/report.h"
 #include "output/result_store.h"
@@ -401,14 +402,18 @@ size_t write_sweep_outputs(const SweepConfig& config, const std::vector<Cell>& c
   std::vector<std::string> leading = {"technique",   "scene",       "elevation_deg",
                                       "azimuth_deg", "texture_res", "viewport"};
   for (const auto& p : parameter_columns(config)) leading.push_back(p);
-  write_text_atomic(out_dir + "/rows.csv", format_csv(rows, csv_columns(rows, leading)));
+  // Each file's text, written and recorded with its digest (output/outputs_record.h).
+  std::map<std::string, std::string> written;
+  written["rows.csv"] = format_csv(rows, csv_columns(rows, leading));
   for (const TableSpec& t : config.tables)
-    write_text_atomic(out_dir + "/" + t.file, t.format == "latex" ? format_latex_table(rows, t)
-                                                                  : format_markdown_table(rows, t));
+    written[t.file] =
+        t.format == "latex" ? format_latex_table(rows, t) : format_markdown_table(rows, t);
   std::string fronts;
   for (const PlotSpec& p : config.plots)
     fronts += write_pareto_plots(rows, p, parameter_columns(config), out_dir) + "\n";
-  write_text_atomic(out_dir + "/pareto.md", fronts);
+  written["pareto.md"] = fronts;
+  for (const auto& [name, text] : written) write_text_atomic(out_dir + "/" + name, text);
+  write_outputs_record(out_dir, written);
   write_report(config, rows, parameter_columns(config), out_dir);
   return left_out;
 }
