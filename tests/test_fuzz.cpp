@@ -7,6 +7,7 @@
 //   RELIEFLAB_FUZZ_SECONDS=600 ./build/tests/test_fuzz
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -244,6 +245,70 @@ TEST(Fuzz, ImageAndMeshLoadersAcceptOrRefuseCleanly) {
   for (const std::string& f : ri.failures) ADD_FAILURE() << f;
   for (const std::string& f : rm.failures) ADD_FAILURE() << f;
   for (const std::string& f : rp.failures) ADD_FAILURE() << f;
+}
+
+// A plugin file damaged in its structure (hostile input, round four: one cut short killed every
+// command with SIGBUS): the ELF header's table offsets and counts and the program headers'
+// offsets and sizes set to extreme values, or the file cut at any length. `relieflab --plugins
+// FILE list` must refuse it with exit 2 (or, untouched where it counts, load it), never die of
+// a signal. Each input runs in its own process, as a bad plugin would end it.
+TEST(Fuzz, PluginFilesDamagedInTheirStructureAreRefusedNotFatal) {
+  const std::string seed_file =
+      fs::canonical(fs::path(RELIEFLAB_CLI).parent_path() / "librelieflab_stb.so").string();
+  const std::string seed = read_file(seed_file);
+  ASSERT_GT(seed.size(), 4096u);
+  const std::string dir = test::scratch_dir("fuzz-plugin-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  auto u64 = [&](const std::string& b, size_t at) {
+    uint64_t v = 0;
+    std::memcpy(&v, b.data() + at, 8);
+    return v;
+  };
+  const uint64_t phoff = u64(seed, 32);
+  const uint16_t phnum = uint16_t(uint8_t(seed[56]) | uint8_t(seed[57]) << 8);
+  std::mt19937 rng(7);
+  const uint64_t extremes[] = {0,
+                               1,
+                               0x7fffffffffffffffull,
+                               ~0ull,
+                               seed.size(),
+                               seed.size() + 1,
+                               ~0ull - 4095,
+                               uint64_t(seed.size()) * 4096};
+  int failures = 0;
+  const char* seconds = std::getenv("RELIEFLAB_FUZZ_SECONDS");
+  const auto start = std::chrono::steady_clock::now();
+  auto more = [&](int i) {
+    if (!seconds) return i < 120;
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() <
+           std::atof(seconds);
+  };
+  for (int i = 0; more(i) && failures < 5; ++i) {
+    std::string bytes = seed;
+    if (i % 4 == 3) {
+      bytes.resize(rng() % seed.size());  // cut short anywhere
+    } else {
+      // A header field (table offsets, sizes and counts) or a program header's offset, sizes
+      // or address, 8 bytes at a time (2 for the counts), set to an extreme value.
+      std::vector<std::pair<size_t, size_t>> fields = {{32, 8}, {40, 8}, {54, 2}, {56, 2},
+                                                       {58, 2}, {60, 2}, {62, 2}};
+      for (uint16_t k = 0; k < phnum; ++k)
+        for (size_t f : {8, 16, 32, 40, 48}) fields.push_back({phoff + k * 56 + f, 8});
+      const auto [at, width] = fields[rng() % fields.size()];
+      const uint64_t value = extremes[rng() % std::size(extremes)];
+      std::memcpy(bytes.data() + at, &value, width);
+    }
+    const std::string path = dir + "/plugin-" + std::to_string(i) + ".so";
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+    std::string out;
+    const int code = test::run_cli("--plugins " + path + " list", out);
+    if (code != 2 && code != 0) {
+      ++failures;
+      ADD_FAILURE() << path << ": exit " << code << " (a signal?): " << out.substr(0, 300);
+    } else {
+      fs::remove(path);
+    }
+  }
 }
 
 // The commands that read a finished run (hostile input, second round): status, compare, report and

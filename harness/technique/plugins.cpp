@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "technique/elf_check.h"
 #include "technique/technique.h"
 
 namespace rl {
@@ -38,36 +39,6 @@ std::vector<fs::path> plugin_files(const std::string& path) {
   if (ec) throw ConfigError("plugin folder " + path + ": " + ec.message());
   std::sort(files.begin(), files.end());
   return files;
-}
-
-// A 64-bit ELF shared object whose file holds every segment and table its header names: the
-// loader maps segments as they are declared, and touching a page past the file's end raises
-// SIGBUS in whatever command loaded it. Throws ConfigError naming the file and what is missing.
-void check_elf_is_whole(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  Elf64_Ehdr eh{};
-  const uint64_t size = fs::file_size(path);
-  auto refuse = [&](const std::string& why) {
-    throw ConfigError("plugin " + path + ": not a whole shared object (" + why + ")");
-  };
-  if (!in.read(reinterpret_cast<char*>(&eh), sizeof eh) ||
-      std::memcmp(eh.e_ident, ELFMAG, SELFMAG) != 0)
-    refuse("no ELF header");
-  if (eh.e_ident[EI_CLASS] != ELFCLASS64) return;  // the loader's own check names it
-  if (eh.e_phentsize != sizeof(Elf64_Phdr) ||
-      eh.e_phoff + uint64_t(eh.e_phnum) * sizeof(Elf64_Phdr) > size)
-    refuse("its program headers lie past its end");
-  if (eh.e_shnum && eh.e_shoff + uint64_t(eh.e_shnum) * eh.e_shentsize > size)
-    refuse("its section headers lie past its end: cut short?");
-  in.seekg(std::streamoff(eh.e_phoff));
-  for (int i = 0; i < eh.e_phnum; ++i) {
-    Elf64_Phdr ph{};
-    if (!in.read(reinterpret_cast<char*>(&ph), sizeof ph)) refuse("unreadable program header");
-    if (ph.p_type == PT_LOAD && ph.p_offset + ph.p_filesz > size)
-      refuse("a segment of " + std::to_string(ph.p_filesz) + " bytes at " +
-             std::to_string(ph.p_offset) + " runs past its " + std::to_string(size) +
-             " bytes: cut short?");
-  }
 }
 
 LoadedPlugin load_one(const fs::path& file) {
