@@ -436,12 +436,18 @@ partly = ["p/fig2", "p/fps"])");
   const std::vector<std::string> want = {"reproduced", "partial", "missing", "not_reproducible"};
   for (size_t i = 0; i < want.size(); ++i) EXPECT_EQ(ledger.rows[i].status, want[i]) << i;
   EXPECT_EQ(ledger.rows[0].claims, std::vector<std::string>{"one/exact-cheaper"});
-  EXPECT_EQ(ledger_csv(ledger).rfind("paper,item,status,folder,claims,partly_claims,what,note\n"
-                                     "p,table1,reproduced,one,one/exact-cheaper,,Table 1,\n",
-                                     0),
-            0u)
+  EXPECT_EQ(
+      ledger_csv(ledger).rfind("paper,item,status,outcome,folder,claims,partly_claims,what,note\n"
+                               "p,table1,reproduced,confirmed,one,one/exact-cheaper,,Table 1,\n",
+                               0),
+      0u)
       << ledger_csv(ledger);
   EXPECT_NE(ledger_totals_markdown(ledger).find("| p | 4 | 1 | 1 | 1 | 1 |"), std::string::npos)
+      << ledger_totals_markdown(ledger);
+  // Outcomes: confirmed (in full, confirmed), partly confirmed (only in part), missing, and
+  // not reproducible here.
+  EXPECT_NE(ledger_totals_markdown(ledger).find("| p | 4 | 1 | 1 | 0 | 0 | 1 | 1 |"),
+            std::string::npos)
       << ledger_totals_markdown(ledger);
   // Written once, then checked clean; a claim that stops listing an item makes it stale.
   std::string report;
@@ -460,6 +466,37 @@ partly = ["p/fig2", "p/fps"])");
   EXPECT_NE(report.find("papers.toml:5: item p/table1: missing, and says nothing of why"),
             std::string::npos)
       << report;
+}
+
+// An item's outcome follows from its claims' verdicts, not from their being there: a claim
+// listing it that refutes it makes it contradicted (named), one that only measures, not judged.
+TEST(Ledger, OutcomesFollowTheVerdictsOfTheClaims) {
+  auto outcome_of_table1 = [](const std::string& name, const std::string& verdict) {
+    const std::string results = results_with(name, kPapers, R"(items = ["p/table1"])");
+    const std::string claims = read_text(results + "/one/claims.toml");
+    write(results + "/one/claims.toml",
+          std::string(claims).replace(claims.find("verdict = \"confirmed\""), 21,
+                                      "verdict = \"" + verdict + "\""));
+    const Ledger ledger = build_ledger(results);
+    EXPECT_TRUE(ledger.problems.empty());
+    return ledger.rows[0];
+  };
+  const LedgerRow refuted = outcome_of_table1("ledger_refuted", "refuted");
+  EXPECT_EQ(refuted.status, "reproduced");
+  EXPECT_EQ(refuted.outcome, "contradicted");
+  EXPECT_EQ(refuted.evidence, "one/exact-cheaper (refuted)");
+  EXPECT_EQ(outcome_of_table1("ledger_not_confirmed", "not confirmed").outcome, "contradicted");
+  EXPECT_EQ(outcome_of_table1("ledger_measured", "measured").outcome, "not judged");
+  EXPECT_EQ(outcome_of_table1("ledger_partly", "partly confirmed").outcome, "partly confirmed");
+  // The note names the evidence.
+  const LedgerRow r = outcome_of_table1("ledger_contradicted_csv", "refuted");
+  Ledger one;
+  one.papers = {{"p", "A paper"}};
+  one.rows = {r};
+  EXPECT_NE(ledger_csv(one).find("p,table1,reproduced,contradicted,one,one/exact-cheaper,,Table "
+                                 "1,Contradicted by one/exact-cheaper (refuted).\n"),
+            std::string::npos)
+      << ledger_csv(one);
 }
 
 TEST(Ledger, InconsistenciesAreNamed) {

@@ -86,10 +86,38 @@ void attach_claims(const std::string& results_dir, Ledger& ledger) {
                                       "' in results/papers.toml");
             continue;
           }
-          (list == &c.items ? it->second->claims : it->second->partly_claims)
+          const bool full = list == &c.items;
+          (full ? it->second->claims : it->second->partly_claims)
               .push_back(folder.filename().string() + "/" + c.id);
+          (full ? it->second->verdicts : it->second->partly_verdicts).push_back(c.verdict);
         }
   }
+}
+
+// What the experiment found (ledger.h): from the verdicts of the claims that list the item in
+// full, else of those that list it in part.
+void find_outcome(LedgerRow& r) {
+  if (r.status == "not_reproducible" || r.status == "missing") {
+    r.outcome = r.status == "missing" ? "missing" : "not reproducible here";
+    return;
+  }
+  const bool full = !r.claims.empty();
+  const std::vector<std::string>& claims = full ? r.claims : r.partly_claims;
+  const std::vector<std::string>& verdicts = full ? r.verdicts : r.partly_verdicts;
+  bool confirmed = false, partly = false;
+  for (size_t i = 0; i < verdicts.size(); ++i) {
+    if (verdicts[i] == "not confirmed" || verdicts[i] == "refuted") {
+      r.outcome = "contradicted";
+      r.evidence = claims[i] + " (" + verdicts[i] + ")";
+      return;
+    }
+    confirmed = confirmed || verdicts[i] == "confirmed";
+    partly = partly || verdicts[i] == "partly confirmed";
+  }
+  if (!confirmed && !partly)
+    r.outcome = "not judged";
+  else
+    r.outcome = full && !partly ? "confirmed" : "partly confirmed";
 }
 
 void judge(LedgerRow& r, std::vector<std::string>& problems) {
@@ -131,6 +159,8 @@ std::vector<std::string> folders_of(const LedgerRow& r) {
 }
 
 std::string note_of(const LedgerRow& r) {
+  if (r.outcome == "contradicted")
+    return "Contradicted by " + r.evidence + "." + (r.item.gap.empty() ? "" : " " + r.item.gap);
   if (r.status == "not_reproducible")
     return "Not here: " + r.item.not_reproducible + ". Compared instead: " + r.item.instead + ".";
   return r.item.gap;
@@ -144,7 +174,7 @@ std::string markdown_cell(const std::string& s) {
 }
 
 struct Totals {
-  std::map<std::string, int> by_status;
+  std::map<std::string, int> by_status, by_outcome;
   int items = 0;
 };
 
@@ -154,6 +184,7 @@ std::map<std::string, Totals> totals_by_paper(const Ledger& ledger) {
     for (const std::string& key : {r.item.paper, std::string()}) {
       ++t[key].items;
       ++t[key].by_status[r.status];
+      ++t[key].by_outcome[r.outcome];
     }
   }
   return t;
@@ -165,14 +196,17 @@ Ledger build_ledger(const std::string& results_dir) {
   Ledger ledger;
   load_papers(results_dir + "/papers.toml", ledger);
   attach_claims(results_dir, ledger);
-  for (LedgerRow& r : ledger.rows) judge(r, ledger.problems);
+  for (LedgerRow& r : ledger.rows) {
+    judge(r, ledger.problems);
+    find_outcome(r);
+  }
   return ledger;
 }
 
 std::string ledger_csv(const Ledger& ledger) {
-  std::string csv = "paper,item,status,folder,claims,partly_claims,what,note\n";
+  std::string csv = "paper,item,status,outcome,folder,claims,partly_claims,what,note\n";
   for (const LedgerRow& r : ledger.rows)
-    csv += r.item.paper + "," + r.item.id + "," + r.status + "," +
+    csv += r.item.paper + "," + r.item.id + "," + r.status + "," + csv_field(r.outcome) + "," +
            csv_field(joined(folders_of(r), ";")) + "," + csv_field(joined(r.claims, ";")) + "," +
            csv_field(joined(r.partly_claims, ";")) + "," + csv_field(r.item.what) + "," +
            csv_field(note_of(r)) + "\n";
@@ -181,20 +215,32 @@ std::string ledger_csv(const Ledger& ledger) {
 
 std::string ledger_totals_markdown(const Ledger& ledger) {
   const std::map<std::string, Totals> totals = totals_by_paper(ledger);
-  std::string md =
-      "| paper | items | reproduced | partial | missing | not reproducible here |\n"
-      "| --- | ---: | ---: | ---: | ---: | ---: |\n";
-  auto line = [&](const std::string& name, const Totals& t) {
-    md += "| " + name + " | " + std::to_string(t.items);
-    for (const char* s : kStatuses) {
-      const auto it = t.by_status.find(s);
-      md += " | " + std::to_string(it == t.by_status.end() ? 0 : it->second);
-    }
-    md += " |\n";
+  // Two tables: what is covered (status), and what was found (outcome).
+  auto table = [&](const std::string& header, const auto& keys, auto Totals::*counts) {
+    std::string md = header;
+    auto line = [&](const std::string& name, const Totals& t) {
+      md += "| " + name + " | " + std::to_string(t.items);
+      for (const char* k : keys) {
+        const auto it = (t.*counts).find(k);
+        md += " | " + std::to_string(it == (t.*counts).end() ? 0 : it->second);
+      }
+      md += " |\n";
+    };
+    for (const Ledger::Paper& p : ledger.papers) line(p.id, totals.at(p.id));
+    line("**all**", totals.at(""));
+    return md;
   };
-  for (const Ledger::Paper& p : ledger.papers) line(p.id, totals.at(p.id));
-  line("**all**", totals.at(""));
-  return md;
+  return "Coverage: is there a reproduction of the item?\n\n" +
+         table(
+             "| paper | items | reproduced | partial | missing | not reproducible here |\n"
+             "| --- | ---: | ---: | ---: | ---: | ---: |\n",
+             kStatuses, &Totals::by_status) +
+         "\nOutcome: what the reproduction found, from its claims' verdicts.\n\n" +
+         table(
+             "| paper | items | confirmed | partly confirmed | contradicted | not judged | "
+             "missing | not reproducible here |\n"
+             "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
+             kOutcomes, &Totals::by_outcome);
 }
 
 std::string ledger_markdown(const Ledger& ledger) {
@@ -205,12 +251,17 @@ std::string ledger_markdown(const Ledger& ledger) {
       "claims of `results/*/claims.toml` that judge them (checked against their rows by "
       "`relieflab verify`). An item is *reproduced* when a claim lists it in full, *partial* "
       "when claims cover only part of it, *missing* when none does, *not reproducible* when it "
-      "cannot be tested on these machines (what is compared instead is said). Do not edit: "
-      "`ledger.csv` holds the same rows.\n\n" +
+      "cannot be tested on these machines (what is compared instead is said). Its *outcome* is "
+      "what the reproduction found, from the verdicts of those claims: *contradicted* when one "
+      "is \"not confirmed\" or \"refuted\" (named in the note), *confirmed* when claims in "
+      "full judge it and every judgement confirms it, *partly confirmed* when judged so or only "
+      "in part, *not judged* when its claims only measure. Do not edit: `ledger.csv` holds the "
+      "same rows.\n\n" +
       ledger_totals_markdown(ledger);
   for (const Ledger::Paper& p : ledger.papers) {
-    md += "\n## " + p.id + "\n\n" + p.cite + "\n\n| item | what | status | claims | note |\n" +
-          "| --- | --- | --- | --- | --- |\n";
+    md += "\n## " + p.id + "\n\n" + p.cite +
+          "\n\n| item | what | status | outcome | claims | note |\n" +
+          "| --- | --- | --- | --- | --- | --- |\n";
     for (const LedgerRow& r : ledger.rows) {
       if (r.item.paper != p.id) continue;
       std::string claims;
@@ -221,7 +272,7 @@ std::string ledger_markdown(const Ledger& ledger) {
                     "/README.md) `" + id + "`" + (list == &r.partly_claims ? " (in part)" : "");
         }
       md += "| `" + r.item.id + "` | " + markdown_cell(r.item.what) + " | " + r.status + " | " +
-            claims + " | " + markdown_cell(note_of(r)) + " |\n";
+            r.outcome + " | " + claims + " | " + markdown_cell(note_of(r)) + " |\n";
     }
   }
   return md;

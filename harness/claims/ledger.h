@@ -10,6 +10,15 @@
 //                     compared), and no claim reproduces it
 //   missing           no claim covers it; its `gap` says why
 //
+// and its outcome, what the experiment found, from the verdicts of those claims (the claims
+// that list it in full if any, else those that list it in part):
+//
+//   contradicted          a claim's verdict is "not confirmed" or "refuted" (`evidence` names it)
+//   confirmed             claims in full judge it, every judgement "confirmed"
+//   partly confirmed      judged "partly confirmed", or judged only by claims in part
+//   not judged            its claims only measure ("measured"): the statement is not tested
+//   missing, not reproducible here   as the status says
+//
 // `relieflab ledger --write` writes results/ledger.csv, results/LEDGER.md and the README's
 // totals; without --write it fails naming each file that is stale and each inconsistency.
 #include <string>
@@ -24,9 +33,13 @@ struct PaperItem {
 
 struct LedgerRow {
   PaperItem item;
-  std::string status;  // reproduced, partial, missing, not_reproducible
-  // "folder/claim-id" of the claims that list it in full, and of those that list it in part.
+  std::string status;    // reproduced, partial, missing, not_reproducible
+  std::string outcome;   // confirmed, partly confirmed, contradicted, not judged, missing, ...
+  std::string evidence;  // for contradicted: "folder/claim-id (verdict)"
+  // "folder/claim-id" of the claims that list it in full, and of those that list it in part,
+  // with their verdicts in the same order.
   std::vector<std::string> claims, partly_claims;
+  std::vector<std::string> verdicts, partly_verdicts;
 };
 
 struct Ledger {
@@ -41,6 +54,9 @@ struct Ledger {
 };
 
 inline constexpr const char* kStatuses[] = {"reproduced", "partial", "missing", "not_reproducible"};
+inline constexpr const char* kOutcomes[] = {"confirmed",    "partly confirmed",
+                                            "contradicted", "not judged",
+                                            "missing",      "not reproducible here"};
 
 // Reads RESULTS/papers.toml and every RESULTS/*/claims.toml. Throws ConfigError (file, line)
 // on a malformed file; inconsistencies go to `problems`.
