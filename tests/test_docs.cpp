@@ -4,6 +4,7 @@
 // `relieflab docs --update`. They iterate the registry, so a new plugin without a README (or
 // with a stale one) fails the day it lands.
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -118,6 +119,42 @@ TEST(Docs, APluginLoadedIsLeftOutOfTheProjectsBlocks) {
   EXPECT_EQ(own.at("columns").find("test_plugin_column"), std::string::npos);
   EXPECT_FALSE(own.count("interface of test_loaded_plugin"));
   EXPECT_EQ(own.at("techniques"), techniques_markdown());  // the built-in ones, all of them
+}
+
+// The repository speaks to its readers: a step of its own history (a numbered stop or issue, a
+// working period) means nothing to them; a date, a commit or the goal in words does. Every
+// text file of the source tree (build and output folders aside) is held to it.
+TEST(Docs, NoFileNamesAStepOfTheProjectsOwnHistory) {
+  // Spelled in pieces, so that this file does not match itself; a word, then what follows it.
+  const std::vector<std::pair<std::string, std::string>> words = {
+      {std::string("st") + "op ", "0123456789"},
+      {std::string("iss") + "ue ", "0123456789#"},
+      {std::string("ses") + "sion", ""}};
+  std::vector<std::string> found;
+  for (auto it = fs::recursive_directory_iterator(kRepo); it != fs::recursive_directory_iterator();
+       ++it) {
+    const std::string name = it->path().filename().string();
+    if (it->is_directory() && (name.rfind("build", 0) == 0 || name == "out" || name == ".git" ||
+                               name == ".gl" || name == ".whl")) {
+      it.disable_recursion_pending();
+      continue;
+    }
+    if (!it->is_regular_file() || it->file_size() > (8u << 20)) continue;
+    std::string text = read_text(it->path());
+    if (text.find('\0') != std::string::npos) continue;  // a binary file
+    for (char& c : text) c = char(std::tolower(static_cast<unsigned char>(c)));
+    for (const auto& [word, next] : words)
+      for (size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1))
+        if (next.empty() || (at + word.size() < text.size() &&
+                             next.find(text[at + word.size()]) != std::string::npos)) {
+          found.push_back(fs::relative(it->path(), kRepo).string() + ": '" +
+                          text.substr(at, word.size() + 1) + "'");
+          break;
+        }
+  }
+  std::string list;
+  for (const std::string& f : found) list += "\n  " + f;
+  EXPECT_TRUE(found.empty()) << found.size() << " file(s):" << list;
 }
 
 }  // namespace
