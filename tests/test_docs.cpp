@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "config/config.h"
 #include "technique/technique.h"
 #include "technique/technique_docs.h"
 
@@ -47,7 +48,7 @@ TEST(Docs, ReadmeTechniqueTableMatchesTheRegistry) {
 
 // Every declared column (core/columns.h), with its unit and meaning, as the producers declare it.
 TEST(Docs, ReadmeColumnReferenceMatchesTheDeclarations) {
-  expect_block_current(kRepo / "README.md", "columns");
+  expect_block_current(kRepo / "docs" / "columns.md", "columns");
   const std::string table = columns_markdown();
   for (const char* name : {"wrong_pct", "warp_fetches_per_px", "truth_bound_texels", "frame_ms",
                            "layer_overflow_pct", "cell_grid", "odd_missed_rays"})
@@ -155,6 +156,19 @@ TEST(Docs, NoFileNamesAStepOfTheProjectsOwnHistory) {
   std::string list;
   for (const std::string& f : found) list += "\n  " + f;
   EXPECT_TRUE(found.empty()) << found.size() << " file(s):" << list;
+}
+
+// The front page's example is a committed config, shown as it is (its comment aside), and it
+// parses with every file it names.
+TEST(Docs, TheFrontPagesExampleIsTheCommittedConfig) {
+  const std::string readme = read_text(kRepo / "README.md");
+  std::string config = read_text(kRepo / "configs" / "first.toml");
+  config = config.substr(config.find("[sweep]"));  // its header comment is not shown
+  EXPECT_NE(readme.find("```toml\n" + config + "```"), std::string::npos)
+      << "README.md does not show configs/first.toml as it is";
+  EXPECT_NO_THROW(load_sweep_config((kRepo / "configs" / "first.toml").string()));
+  // A front page a newcomer reads through; the manual is docs/.
+  EXPECT_LE(std::count(readme.begin(), readme.end(), '\n'), 200) << "README.md grew past 200 lines";
 }
 
 }  // namespace

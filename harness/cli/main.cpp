@@ -6,7 +6,7 @@
 //   relieflab status DIR...              how far a run (or a sweep's shards) has got
 //   relieflab report DIR                 rewrite a run's tables and report from its store
 //   relieflab list [--markdown]          techniques with citation, effects and parameters
-//   relieflab docs --update [--root DIR] rewrite the generated tables in README.md and
+//   relieflab docs --update [--root DIR] rewrite the generated tables in README.md, docs/*.md and
 //                                        techniques/*/README.md (technique/technique_docs.h)
 //   relieflab compare BASE NEW [--tolerances FILE] [--allow-missing]
 //                                        cells that got worse from one run to another; exit
@@ -98,6 +98,8 @@ void print_markdown() {
 int update_docs(const std::string& root) {
   namespace fs = std::filesystem;
   std::vector<fs::path> files = {fs::path(root) / "README.md"};
+  for (const auto& e : fs::directory_iterator(fs::path(root) / "docs"))
+    if (e.path().extension() == ".md") files.push_back(e.path());
   for (const auto& e : fs::directory_iterator(fs::path(root) / "techniques"))
     if (fs::exists(e.path() / "README.md")) files.push_back(e.path() / "README.md");
   // The project's files describe its own techniques, whatever plugins this process loaded.

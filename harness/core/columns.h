@@ -1,9 +1,9 @@
 #pragma once
 // The columns a row may hold, declared by the code that writes them: the metrics, the truth,
 // the harness's timing, each representation and each technique (TechniqueInfo::columns).
-// Tables, plots, `compare` and the stored-row checks take any declared column, and the README's
-// column reference is generated from the declarations (relieflab docs --update), so a column
-// added tomorrow is usable and documented the day it is declared.
+// Tables, plots, `compare` and the stored-row checks take any declared column, and the
+// column reference (docs/columns.md) is generated from the declarations (relieflab docs --update),
+// so a column added tomorrow is usable and documented the day it is declared.
 #include <string>
 #include <vector>
 

@@ -3,7 +3,7 @@
 // technique README's parameter table cannot drift from describe(). A Markdown file carries a
 // generated block between
 //   <!-- generated: KEY (relieflab docs --update) -->   and   <!-- end generated -->
-// with KEY "techniques" or "columns" (README.md), or "interface of NAME"
+// with KEY "techniques" (README.md), "columns" (docs/columns.md), or "interface of NAME"
 // (techniques/NAME/README.md).
 // `relieflab list --markdown` prints the blocks; `relieflab docs --update` rewrites them in
 // place; tests/test_docs.cpp fails when a committed block differs.
