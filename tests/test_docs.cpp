@@ -171,5 +171,22 @@ TEST(Docs, TheFrontPagesExampleIsTheCommittedConfig) {
   EXPECT_LE(std::count(readme.begin(), readme.end(), '\n'), 200) << "README.md grew past 200 lines";
 }
 
+// The results tree keeps one copy of the reports' script (results/report_assets/), which every
+// committed report loads; a copy per folder was 46 identical files.
+TEST(Docs, CommittedReportsShareOneCopyOfTheirScript) {
+  int copies = 0, reports = 0;
+  for (const auto& e : fs::recursive_directory_iterator(kRepo / "results")) {
+    copies += e.path().filename() == "d3.min.js";
+    if (e.path().filename() != "report.html") continue;
+    ++reports;
+    EXPECT_NE(read_text(e.path()).find("<script src=\"../report_assets/d3.min.js\">"),
+              std::string::npos)
+        << e.path();
+  }
+  EXPECT_GT(reports, 40);
+  EXPECT_EQ(copies, 1);
+  EXPECT_TRUE(fs::exists(kRepo / "results" / "report_assets" / "d3.min.js"));
+}
+
 }  // namespace
 }  // namespace rl
