@@ -10,6 +10,7 @@
 
 #include "config/config.h"
 #include "config/config_technique.h"
+#include "core/atomic_write.h"
 #include "core/error.h"
 #include "run/cells.h"
 #include "support/test_support.h"
@@ -223,20 +224,8 @@ TEST(Registry, AFetchBoundBrokenAtRunTimeIsNamedInTheRunLog) {
   registry.add(understated);
   const std::string dir = test::scratch_dir("fetch-bound");
   fs::create_directories(dir);
-  const std::string text = std::string(R"([sweep]
-name = "bound"
-elevations = [45]
-viewports = [16]
-frames = 1
-warmup = 0
-images = false
-[[scene]]
-name = "bricks"
-relief = { procedural = "bricks", resolution = 32 }
-[[technique]]
-name = "relief"
-linear_steps = [8]
-)");
+  // The 4-cell sweep of the fault tests (relief at 8 and 16 steps on 32^2 bricks).
+  const std::string text = read_text(test::write_small_sweep(dir, "images = false\n"));
   try {
     test::run_sweep_in(text, dir);
   } catch (...) {
