@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "../techniques/relief_robust/safety_radius.h"
+#include "safety_radius.h"
 #include "gl/context.h"
 #include "relief/heightfield_reference.h"
 #include "relief/image_io.h"
