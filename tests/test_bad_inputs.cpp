@@ -205,5 +205,32 @@ TEST(BadInputs, FifosReachedIndirectlyAreRefusedNotWaitedOn) {
   }
 }
 
+// verify and ledger read whatever file they are pointed at: a README of 300 MiB (sparse here,
+// so it costs no disk) is refused by size, not read whole into memory.
+TEST(BadInputs, AHugeTextFileIsRefusedNotReadWhole) {
+  const fs::path dir = test::scratch_dir("huge-readme");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "README.md").close();
+  fs::resize_file(dir / "README.md", uintmax_t(300) << 20);
+  try {
+    read_text((dir / "README.md").string());
+    ADD_FAILURE() << "read a 300 MiB file whole";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("README.md"), std::string::npos) << e.what();
+  }
+  // A ledger of one item, consistent, so that the command reaches the README.
+  std::ofstream(dir / "papers.toml")
+      << "[[paper]]\nid = \"p\"\ncite = \"A paper\"\n[[paper.item]]\nid = \"a\"\n"
+         "what = \"Table 1\"\ngap = \"not yet run\"\n";
+  std::string out;
+  EXPECT_EQ(
+      test::run_cli(
+          "ledger --results " + dir.string() + " --readme " + (dir / "README.md").string(), out),
+      2)
+      << out;
+  EXPECT_NE(out.find("README.md"), std::string::npos) << out;
+}
+
 }  // namespace
 }  // namespace rl
