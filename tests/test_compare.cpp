@@ -68,6 +68,27 @@ class WorsenedRelief final : public ShaderTechnique {
   TechniqueInfo info_;
 };
 
+// What compare watches by default is what the columns declare (core/columns.h), pinned here:
+// a declaration that stops watching a column, or loosens it, fails.
+TEST(Compare, DefaultTolerancesAreTheColumnsDeclarations) {
+  const auto tol = default_tolerances();
+  const std::vector<std::string> watched = {
+      "ao_err_mean",       "artifact_pct",        "false_pct",
+      "fetches_mean",      "frag_fetches_mean",   "iterations_mean",
+      "missed_pct",        "normal_err_mean_deg", "object_disagree_pct",
+      "pos_err_p99",       "pos_err_rmse",        "pos_err_texels_mean",
+      "psnr_db",           "shadow_disagree_pct", "ssim",
+      "warp_fetches_mean", "warp_fetches_per_px", "wrong_pct"};
+  std::vector<std::string> names;
+  for (const auto& [name, t] : tol) names.push_back(name);
+  EXPECT_EQ(names, watched);
+  EXPECT_TRUE(tol.at("wrong_pct").lower_is_better);
+  EXPECT_EQ(tol.at("wrong_pct").abs, 0.25);
+  EXPECT_EQ(tol.at("pos_err_rmse").rel, 0.02);
+  EXPECT_FALSE(tol.at("psnr_db").lower_is_better);
+  EXPECT_EQ(tol.at("ssim").abs, 0.002);
+}
+
 TEST(Compare, AnIdenticalRerunReportsNothing) {
   const std::string dir = test::scratch_dir("compare_same");
   SweepConfig c = default_relief_subset();

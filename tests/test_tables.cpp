@@ -130,6 +130,10 @@ TEST(Latex, BooktabsWithTheBestValueOfEachColumnInBold) {
   EXPECT_FALSE(best_is_lowest("ssim", has_best));
   best_is_lowest("covered_px", has_best);
   EXPECT_FALSE(has_best);  // a pixel count has no better or worse: no bold
+  // As each column declares it (core/columns.h): a PSNR against the footprint is better higher
+  // (it was bolded as if an error before the direction was declared with the column).
+  EXPECT_FALSE(best_is_lowest("psnr_footprint_db", has_best));
+  EXPECT_TRUE(has_best);
 }
 
 TEST(Pareto, FrontKeepsOnlyUndominatedPoints) {

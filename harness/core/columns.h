@@ -13,11 +13,49 @@ namespace rl {
 // a column that names the cell (technique, scene, view, sizes; parameters are the technique's).
 enum class ColumnKind { Number, Flag, Text, Identity };
 
+// Which way a number is better: tables mark the best of a row, `compare` calls a change worse or
+// better. Neither: a size, a count or a setting of the run (no bold, no direction).
+enum class Better { Lower, Higher, Neither };
+
+// How far a number may move between two runs before `compare` calls it a change: the larger of
+// `abs` and `rel` times the base value. Unset (both 0): `compare` does not watch the column.
+struct CompareTolerance {
+  double abs = 0, rel = 0;
+  bool watched() const { return abs > 0 || rel > 0; }
+};
+
+// A column as its producer declares it: everything tables, plots, `compare` and the report need
+// to know about it is here, so adding a column is one declaration. The chained setters read as
+// the sentence they declare: {"psnr_db", "dB", "..."}.higher_is_better().compared(0.25, 0).
 struct ColumnSpec {
   std::string name;     // rows.csv column, e.g. "wrong_pct"
   std::string unit;     // e.g. "% of pixels", "texels", "ms"; "" for a count or a ratio
   std::string meaning;  // one sentence a reader of a table needs
   ColumnKind kind = ColumnKind::Number;
+  Better better = Better::Lower;  // errors and costs: lower is better
+  CompareTolerance tolerance{};   // what `compare` watches by default
+  bool in_report = false;         // among the numbers each cell shows in the HTML report
+
+  ColumnSpec higher_is_better() const {
+    return with([](ColumnSpec& c) { c.better = Better::Higher; });
+  }
+  ColumnSpec neither_better() const {
+    return with([](ColumnSpec& c) { c.better = Better::Neither; });
+  }
+  ColumnSpec compared(double abs, double rel) const {
+    return with([&](ColumnSpec& c) { c.tolerance = {abs, rel}; });
+  }
+  ColumnSpec reported() const {
+    return with([](ColumnSpec& c) { c.in_report = true; });
+  }
+
+ private:
+  template <typename F>
+  ColumnSpec with(F&& change) const {
+    ColumnSpec c = *this;
+    change(c);
+    return c;
+  }
 };
 
 struct DeclaredColumn {

@@ -12,9 +12,11 @@ const ColumnDeclaration cost_model_columns(
       "fragments and lockstep ops counted in this run (core/cost_model.h)"},
      {"model_gpu", "", "the cost model that predicted model_frame_ms (configs/gpu-models/)",
       ColumnKind::Text},
-     {"gpu_frame_ms", "ms",
-      "time on a GPU: frame_ms_min where the row was timed on one (timing gpu_timer), else "
-      "model_frame_ms; the default cost of the Pareto fronts"},
+     ColumnSpec{
+         "gpu_frame_ms", "ms",
+         "time on a GPU: frame_ms_min where the row was timed on one (timing gpu_timer), else "
+         "model_frame_ms; the default cost of the Pareto fronts"}
+         .reported(),
      {"gpu_frame_ms_source", "", "what gpu_frame_ms is: \"measured\" or \"model <model_gpu>\"",
       ColumnKind::Text}});
 

@@ -12,17 +12,28 @@ namespace {
 const ColumnDeclaration fragment_cost_columns(
     "metrics (fragment cost)",
     {{"fragments", "fragments", "fragments the technique's passes shaded, kept or discarded"},
-     {"frag_fetches_mean", "fetches", "texture fetches per shaded fragment, every pass"},
+     ColumnSpec{"frag_fetches_mean", "fetches", "texture fetches per shaded fragment, every pass"}
+         .compared(1e-9, 0.02)
+         .reported(),
      {"frag_fetches_max", "fetches", "the most fetches one shaded fragment paid"},
      {"quad_fetches_mean", "fetches",
       "lockstep cost of 2 x 2 quads: each quad pays its slowest fragment, per fragment"},
-     {"warp_fetches_mean", "fetches",
-      "lockstep cost of 32-lane groups (8 x 4 tiles): each pays its slowest fragment, per "
-      "fragment"},
-     {"warp_fetches_per_px", "fetches",
-      "the same warp total per pixel shaded at least once: the frame's cost per pixel drawn, "
-      "the default Pareto cost"},
-     {"iterations_mean", "iterations", "passes through the search loops per shaded fragment"},
+     ColumnSpec{
+         "warp_fetches_mean", "fetches",
+         "lockstep cost of 32-lane groups (8 x 4 tiles): each pays its slowest fragment, per "
+         "fragment"}
+         .compared(1e-9, 0.02)
+         .reported(),
+     ColumnSpec{
+         "warp_fetches_per_px", "fetches",
+         "the same warp total per pixel shaded at least once: the frame's cost per pixel drawn, "
+         "the default Pareto cost"}
+         .compared(1e-9, 0.02)
+         .reported(),
+     ColumnSpec{"iterations_mean", "iterations",
+                "passes through the search loops per shaded fragment"}
+         .compared(1e-9, 0.02)
+         .reported(),
      {"iterations_max", "iterations", "the most search-loop passes of one fragment"}});
 
 }  // namespace

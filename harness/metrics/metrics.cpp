@@ -16,60 +16,105 @@ namespace {
 // The columns ImageMetrics::named() writes (metrics.h defines each measure).
 const ColumnDeclaration image_metric_columns(
     "metrics",
-    {{"covered_px", "pixels", "pixels the truth covers"},
-     {"union_px", "pixels", "pixels the technique or the truth covers: wrong_pct's denominator"},
-     {"wrong_pct", "% of union_px",
-      "the headline error: pixels whose coverage disagrees (missed or false) or whose hit lies "
-      "more than one texel from the truth's"},
-     {"missed_pct", "% of covered_px", "pixels the truth covers and the technique leaves empty"},
-     {"false_pct", "% of covered_px", "pixels the technique covers and the truth leaves empty"},
+    {ColumnSpec{"covered_px", "pixels", "pixels the truth covers"}.neither_better(),
+     ColumnSpec{"union_px", "pixels",
+                "pixels the technique or the truth covers: wrong_pct's denominator"}
+         .neither_better(),
+     ColumnSpec{
+         "wrong_pct", "% of union_px",
+         "the headline error: pixels whose coverage disagrees (missed or false) or whose hit lies "
+         "more than one texel from the truth's"}
+         .compared(0.25, 0)
+         .reported(),
+     ColumnSpec{"missed_pct", "% of covered_px",
+                "pixels the truth covers and the technique leaves empty"}
+         .compared(0.25, 0)
+         .reported(),
+     ColumnSpec{"false_pct", "% of covered_px",
+                "pixels the technique covers and the truth leaves empty"}
+         .compared(0.25, 0)
+         .reported(),
      {"pos_err_mean", "depth units",
       "mean world distance of the hit from the truth's, over "
       "jointly covered pixels, in relief depths"},
-     {"pos_err_rmse", "depth units", "root mean square of the same distance"},
-     {"pos_err_p99", "depth units", "its 99th percentile"},
+     ColumnSpec{"pos_err_rmse", "depth units", "root mean square of the same distance"}
+         .compared(1e-9, 0.02)
+         .reported(),
+     ColumnSpec{"pos_err_p99", "depth units", "its 99th percentile"}.compared(1e-9, 0.02),
      {"pos_err_max", "depth units", "its largest value"},
-     {"pos_err_texels_mean", "texels",
-      "mean distance of the hit from the truth's, in texels of the map, over jointly covered "
-      "pixels"},
+     ColumnSpec{
+         "pos_err_texels_mean", "texels",
+         "mean distance of the hit from the truth's, in texels of the map, over jointly covered "
+         "pixels"}
+         .compared(1e-9, 0.02)
+         .reported(),
      {"pos_err_texels_rmse", "texels", "root mean square of the same distance"},
      {"pos_err_texels_p99", "texels", "its 99th percentile"},
      {"pos_err_texels_max", "texels", "its largest value"},
-     {"artifact_pct", "% of covered_px",
-      "jointly covered pixels whose hit is more than one texel off (quote coverage beside it)"},
-     {"normal_err_mean_deg", "degrees", "mean angle between shading normals, jointly covered"},
+     ColumnSpec{
+         "artifact_pct", "% of covered_px",
+         "jointly covered pixels whose hit is more than one texel off (quote coverage beside it)"}
+         .compared(0.25, 0),
+     ColumnSpec{"normal_err_mean_deg", "degrees",
+                "mean angle between shading normals, jointly covered"}
+         .compared(0.25, 0)
+         .reported(),
      {"normal_err_p99_deg", "degrees", "its 99th percentile"},
-     {"psnr_db", "dB", "PSNR of the shaded colour over the whole image (capped at 100)"},
-     {"ssim", "", "SSIM of the shaded colour over the whole image (Wang et al. 2004)"},
-     {"shadow_disagree_pct", "% of covered_px",
-      "jointly covered pixels whose self-shadow flag differs from the truth's"},
-     {"object_disagree_pct", "% of covered_px",
-      "jointly covered pixels where one shows a plain scene object and the other the relief"},
-     {"fetches_mean", "fetches", "texture fetches per covered pixel of the final image"},
+     ColumnSpec{"psnr_db", "dB", "PSNR of the shaded colour over the whole image (capped at 100)"}
+         .higher_is_better()
+         .compared(0.25, 0)
+         .reported(),
+     ColumnSpec{"ssim", "", "SSIM of the shaded colour over the whole image (Wang et al. 2004)"}
+         .higher_is_better()
+         .compared(0.002, 0),
+     ColumnSpec{"shadow_disagree_pct", "% of covered_px",
+                "jointly covered pixels whose self-shadow flag differs from the truth's"}
+         .compared(0.25, 0),
+     ColumnSpec{
+         "object_disagree_pct", "% of covered_px",
+         "jointly covered pixels where one shows a plain scene object and the other the relief"}
+         .compared(0.25, 0),
+     ColumnSpec{"fetches_mean", "fetches", "texture fetches per covered pixel of the final image"}
+         .compared(1e-9, 0.02)
+         .reported(),
      {"fetches_p99", "fetches", "their 99th percentile"},
      {"fetches_max", "fetches", "their largest value"},
      {"nonfinite_px", "pixels", "pixels whose output held a NaN or an infinity"},
-     {"truth_bound_texels", "texels",
-      "the largest distance the truth's hit may be off, over the pixels it covers, in texels "
-      "at the view"},
-     {"truth_uncertain_pct", "% of union_px",
-      "pixels the truth covers whose truth bound exceeds 0.05 texel"},
-     {"ao_err_mean", "visibility", "mean |AO - reference AO| over jointly covered pixels"},
+     ColumnSpec{
+         "truth_bound_texels", "texels",
+         "the largest distance the truth's hit may be off, over the pixels it covers, in texels "
+         "at the view"}
+         .neither_better()
+         .reported(),
+     ColumnSpec{"truth_uncertain_pct", "% of union_px",
+                "pixels the truth covers whose truth bound exceeds 0.05 texel"}
+         .neither_better()
+         .reported(),
+     ColumnSpec{"ao_err_mean", "visibility", "mean |AO - reference AO| over jointly covered pixels"}
+         .compared(1e-9, 0.02)
+         .reported(),
      {"ao_err_p99", "visibility", "its 99th percentile"},
-     {"ao_bias", "visibility", "mean (AO - reference AO): the sign says which side is darker"},
-     {"ao_ref_stderr", "visibility",
-      "the reference AO's own standard error, averaged: the noise floor of ao_err_mean"},
+     ColumnSpec{"ao_bias", "visibility",
+                "mean (AO - reference AO): the sign says which side is darker"}
+         .neither_better(),
+     ColumnSpec{"ao_ref_stderr", "visibility",
+                "the reference AO's own standard error, averaged: the noise floor of ao_err_mean"}
+         .neither_better(),
      {"ao_color_share_pct", "% of the colour error",
       "the ambient term's AO difference as a share of the colour error, jointly covered"},
-     {"color_bias", "colour", "mean signed colour difference (rgb mean): > 0 brighter"}});
+     ColumnSpec{"color_bias", "colour", "mean signed colour difference (rgb mean): > 0 brighter"}
+         .neither_better()});
 
 // The columns footprint_metrics() writes, where a sweep asks for footprint_samples.
 const ColumnDeclaration footprint_columns(
     "metrics",
-    {{"psnr_footprint_db", "dB",
-      "PSNR of the shaded colour against the truth averaged over each pixel's footprint "
-      "(footprint_samples^2 rays a pixel; capped at 100): what filtering and mip-mapping aim at"},
-     {"ssim_footprint", "", "SSIM against the same footprint colour"}});
+    {ColumnSpec{
+         "psnr_footprint_db", "dB",
+         "PSNR of the shaded colour against the truth averaged over each pixel's footprint "
+         "(footprint_samples^2 rays a pixel; capped at 100): what filtering and mip-mapping aim at"}
+         .higher_is_better(),
+     ColumnSpec{"ssim_footprint", "", "SSIM against the same footprint colour"}
+         .higher_is_better()});
 
 }  // namespace
 

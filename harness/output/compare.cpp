@@ -15,28 +15,15 @@
 namespace rl {
 
 std::map<std::string, MetricTolerance> default_tolerances() {
-  // Percentages of pixels: a quarter of a percentage point; position errors: 2% of the value
-  // (they span decades across scenes); angles a quarter degree; PSNR a quarter dB.
-  const MetricTolerance pct{true, 0.25, 0};
-  const MetricTolerance relative{true, 1e-9, 0.02};
-  return {{"wrong_pct", pct},
-          {"missed_pct", pct},
-          {"false_pct", pct},
-          {"artifact_pct", pct},
-          {"shadow_disagree_pct", pct},
-          {"object_disagree_pct", pct},
-          {"pos_err_rmse", relative},
-          {"pos_err_p99", relative},
-          {"pos_err_texels_mean", relative},
-          {"normal_err_mean_deg", {true, 0.25, 0}},
-          {"psnr_db", {false, 0.25, 0}},
-          {"ssim", {false, 0.002, 0}},
-          {"ao_err_mean", relative},
-          {"fetches_mean", relative},
-          {"frag_fetches_mean", relative},
-          {"warp_fetches_mean", relative},
-          {"warp_fetches_per_px", relative},
-          {"iterations_mean", relative}};
+  // What each column declares (core/columns.h): percentages of pixels a quarter of a point,
+  // position errors and costs 2% of the value (they span decades across scenes), angles a
+  // quarter degree, PSNR a quarter dB.
+  std::map<std::string, MetricTolerance> out;
+  for (const DeclaredColumn& c : declared_columns())
+    if (c.spec.kind == ColumnKind::Number && c.spec.tolerance.watched())
+      out[c.spec.name] = {c.spec.better != Better::Higher, c.spec.tolerance.abs,
+                          c.spec.tolerance.rel};
+  return out;
 }
 
 void read_tolerances(const std::string& path, std::map<std::string, MetricTolerance>& into) {

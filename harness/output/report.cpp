@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_write.h"
+#include "core/columns.h"
 #include "output/pareto.h"
 #include "output/tables.h"
 
@@ -99,31 +100,17 @@ nlohmann::json report_data(const SweepConfig& config, const std::vector<Row>& ro
       }
       data["plots"].push_back(plot);
     }
-  const char* numbers[] = {"wrong_pct",
-                           "missed_pct",
-                           "false_pct",
-                           "pos_err_rmse",
-                           "pos_err_texels_mean",
-                           "normal_err_mean_deg",
-                           "psnr_db",
-                           "fetches_mean",
-                           "frag_fetches_mean",
-                           "warp_fetches_mean",
-                           "warp_fetches_per_px",
-                           "gpu_frame_ms",
-                           "iterations_mean",
-                           "frame_ms",
-                           "memory_bytes",
-                           "ao_err_mean",
-                           "truth_bound_texels",
-                           "truth_uncertain_pct"};
+  // The numbers each cell shows: the columns declared for the report (core/columns.h).
+  std::vector<std::string> numbers;
+  for (const DeclaredColumn& c : declared_columns())
+    if (c.spec.in_report) numbers.push_back(c.spec.name);
   data["cells"] = nlohmann::json::array();
   for (const Row& r : rows) {
     nlohmann::json cell = {{"key", r.value("key", std::string())},
                            {"title", cell_title(r, parameter_columns)}};
     for (const char* img : {"image_render", "image_truth", "image_error"})
       if (r.contains(img) && r[img].is_string()) cell["images"][img] = r[img];
-    for (const char* n : numbers)
+    for (const std::string& n : numbers)
       if (r.contains(n) && r[n].is_number()) cell["numbers"][n] = r[n].get<double>();
     if (r.value("truth_flagged", false)) cell["flag"] = truth_flag_note();
     data["cells"].push_back(cell);

@@ -1,5 +1,6 @@
 #include "output/tables.h"
 
+#include "core/columns.h"
 #include "metrics/metrics.h"
 #include "technique/technique.h"
 
@@ -253,22 +254,12 @@ std::string plain_column_label(const std::vector<std::string>& fields,
 }
 
 bool best_is_lowest(const std::string& metric, bool& has_best) {
-  // Columns with no better or worse (sizes, counts, settings of the run) get no bold.
-  static const std::set<std::string> neutral = {"covered_px",          "union_px",
-                                                "elev_min_deg",        "elev_max_deg",
-                                                "frames_timed",        "truth_bound",
-                                                "truth_subdivision",   "truth_ms",
-                                                "truth_unresolved_px", "layers",
-                                                "depth_complexity",    "ao_rescale",
-                                                "truth_ao_rays",       "ao_ref_stderr",
-                                                "cell_grid",           "mesh_faces",
-                                                "grey_cells",          "domain_faces",
-                                                "color_bias",          "ao_bias",
-                                                "face_count",          "truth_bound_texels",
-                                                "truth_uncertain_pct"};
-  has_best = !neutral.count(metric);
-  return !(metric == "psnr_db" || metric == "ssim" || metric == "intersections_per_s" ||
-           metric == "rays_per_s" || metric == "fps");
+  // The column's declaration says which way it is better (core/columns.h); sizes, counts and
+  // settings of the run have no best and get no bold.
+  const DeclaredColumn* c = find_column(metric);
+  const Better better = c ? c->spec.better : Better::Lower;
+  has_best = better != Better::Neither;
+  return better != Better::Higher;
 }
 
 std::string format_markdown_table(const std::vector<Row>& rows, const TableSpec& spec) {

@@ -26,10 +26,12 @@ namespace {
 // A cubic cell complex's columns (Apaza & Andujar; the sweep writes them from Stats).
 const ColumnDeclaration cell_complex_columns(
     "relief (cell complex)",
-    {{"cell_grid", "cells", "cells per side of the cell complex's grid"},
-     {"mesh_faces", "triangles", "triangles of the mesh the cell complex encodes"},
-     {"grey_cells", "cells", "cells the surface passes through"},
-     {"domain_faces", "faces", "faces of the grey cells' domain, one relief map each"},
+    {ColumnSpec{"cell_grid", "cells", "cells per side of the cell complex's grid"}.neither_better(),
+     ColumnSpec{"mesh_faces", "triangles", "triangles of the mesh the cell complex encodes"}
+         .neither_better(),
+     ColumnSpec{"grey_cells", "cells", "cells the surface passes through"}.neither_better(),
+     ColumnSpec{"domain_faces", "faces", "faces of the grey cells' domain, one relief map each"}
+         .neither_better(),
      {"cell_bytes", "bytes", "GPU memory of the cell complex's textures and buffers"},
      {"cell_classify_ms", "ms", "time to classify the grid's cells"},
      {"cell_sample_ms", "ms", "time to sample the domain faces' relief maps"},
@@ -45,7 +47,8 @@ const ColumnDeclaration cell_complex_columns(
      {"multi_crossing_pct", "% of texels",
       "domain-face texels whose projection line crosses the surface more than once"},
      {"grid_trials", "", "each grid an automatic choice tried, N:occluded %", ColumnKind::Text},
-     {"intersections_per_s", "1/s", "covered pixels per second of frame time"}});
+     ColumnSpec{"intersections_per_s", "1/s", "covered pixels per second of frame time"}
+         .higher_is_better()});
 
 }  // namespace
 

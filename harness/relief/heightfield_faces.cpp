@@ -11,9 +11,10 @@
 namespace rl {
 namespace {
 
-const ColumnDeclaration face_columns("relief (heightfield faces)",
-                                     {{"face_count", "maps",
-                                       "heightfield maps of an object from several heightfields"}});
+const ColumnDeclaration face_columns(
+    "relief (heightfield faces)",
+    {ColumnSpec{"face_count", "maps", "heightfield maps of an object from several heightfields"}
+         .neither_better()});
 
 }  // namespace
 

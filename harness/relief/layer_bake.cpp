@@ -16,12 +16,14 @@ namespace {
 // A multilayer map's columns (the sweep writes them from the bake's LayerStack).
 const ColumnDeclaration layer_columns(
     "relief (multilayer bake)",
-    {{"layers", "", "depth layers per texel of a multilayer map (0: a heightfield)"},
+    {ColumnSpec{"layers", "", "depth layers per texel of a multilayer map (0: a heightfield)"}
+         .neither_better(),
      {"layer_overflow_pct", "% of texels",
       "texels whose ray crossed more surfaces than the map has layers for"},
      {"layer_odd_pct", "% of texels",
       "texels with an odd number of crossings (an open or non-manifold mesh)"},
-     {"depth_complexity", "crossings", "the most surface crossings of one texel's ray"},
+     ColumnSpec{"depth_complexity", "crossings", "the most surface crossings of one texel's ray"}
+         .neither_better(),
      {"normal_storage_err_mean_deg", "degrees",
       "on an 8-bit multilayer map, the layers' normals as Figure 5 stores them (x and y in 8 "
       "bits, z rebuilt on the layer's side) against the normals before: the mean angle over "

@@ -26,16 +26,24 @@ const ColumnDeclaration cell_identity_columns(
 
 const ColumnDeclaration runner_columns(
     "run (runner)",
-    {{"elev_min_deg", "degrees", "the smallest elevation of the view rays over covered pixels"},
-     {"elev_max_deg", "degrees", "the largest elevation of the view rays over covered pixels"},
-     {"frame_ms", "ms",
-      "median frame time of the colour-only shader (timer queries on a GPU, glFinish + wall "
-      "clock on llvmpipe)"},
-     {"fps", "1/s", "frames per second, 1000 / frame_ms"},
-     {"rays_per_s", "1/s", "viewport pixels x frames per second (Apaza & Andujar's count)"},
+    {ColumnSpec{"elev_min_deg", "degrees",
+                "the smallest elevation of the view rays over covered pixels"}
+         .neither_better(),
+     ColumnSpec{"elev_max_deg", "degrees",
+                "the largest elevation of the view rays over covered pixels"}
+         .neither_better(),
+     ColumnSpec{
+         "frame_ms", "ms",
+         "median frame time of the colour-only shader (timer queries on a GPU, glFinish + wall "
+         "clock on llvmpipe)"}
+         .reported(),
+     ColumnSpec{"fps", "1/s", "frames per second, 1000 / frame_ms"}.higher_is_better(),
+     ColumnSpec{"rays_per_s", "1/s",
+                "viewport pixels x frames per second (Apaza & Andujar's count)"}
+         .higher_is_better(),
      {"frame_ms_min", "ms", "the fastest timed frame"},
      {"frame_ms_iqr", "ms", "interquartile range of the timed frames"},
-     {"frames_timed", "frames", "frames the median is over"},
+     ColumnSpec{"frames_timed", "frames", "frames the median is over"}.neither_better(),
      {"timing", "", "how frames were timed (timer query or glFinish + wall clock)",
       ColumnKind::Text},
      {"precompute_ms", "ms", "the technique's prepare() time (its precompute)"},
@@ -43,10 +51,12 @@ const ColumnDeclaration runner_columns(
       "the precompute came from the cache (precompute_ms is then the "
       "read)",
       ColumnKind::Flag},
-     {"memory_bytes", "bytes", "the relief's textures plus the technique's own"},
+     ColumnSpec{"memory_bytes", "bytes", "the relief's textures plus the technique's own"}
+         .reported(),
      {"ao_precompute_ms", "ms", "time to compute the texture-space AO map"},
      {"ao_precompute_cached", "", "the AO map came from the cache", ColumnKind::Flag},
-     {"ao_rescale", "", "the AO map's rescale factor for the scene's depth"},
+     ColumnSpec{"ao_rescale", "", "the AO map's rescale factor for the scene's depth"}
+         .neither_better(),
      {"ao_drawn", "",
       "the technique drew the scene's AO (false: ambient_occlusion.render = false, the scene "
       "without AO scored against the AO truth)",

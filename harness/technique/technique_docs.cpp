@@ -1,6 +1,7 @@
 #include "technique/technique_docs.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 
 namespace rl {
@@ -74,6 +75,21 @@ const char* kind_name(ColumnKind k) {
   return "?";
 }
 
+// Which way a number is better, and what `compare` allows it to move by default.
+std::string better_name(const ColumnSpec& c) {
+  if (c.kind != ColumnKind::Number || c.better == Better::Neither) return "-";
+  std::string out = c.better == Better::Lower ? "lower" : "higher";
+  char allowed[64];
+  if (c.tolerance.watched()) {
+    if (c.tolerance.rel > 0)
+      std::snprintf(allowed, sizeof allowed, " (compare: %g%%)", 100 * c.tolerance.rel);
+    else
+      std::snprintf(allowed, sizeof allowed, " (compare: %g)", c.tolerance.abs);
+    out += allowed;
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string columns_markdown(DocsScope scope) {
@@ -94,10 +110,12 @@ std::string columns_markdown(DocsScope scope) {
                      return ra != rb ? ra < rb : (ra >= 4 && a.producer < b.producer);
                    });
   std::string out =
-      "| column | unit | kind | meaning | declared by |\n| --- | --- | --- | --- | --- |\n";
+      "| column | unit | kind | better | meaning | declared by |\n"
+      "| --- | --- | --- | --- | --- | --- |\n";
   for (const DeclaredColumn& c : columns)
     out += "| `" + c.spec.name + "` | " + cell(c.spec.unit) + " | " + kind_name(c.spec.kind) +
-           " | " + cell(c.spec.meaning) + " | " + cell(c.producer) + " |\n";
+           " | " + better_name(c.spec) + " | " + cell(c.spec.meaning) + " | " + cell(c.producer) +
+           " |\n";
   return out;
 }
 

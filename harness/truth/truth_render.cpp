@@ -23,17 +23,24 @@ namespace {
 // The truth's columns (the sweep writes them from the trace and the asset's truth).
 const ColumnDeclaration truth_columns(
     "truth",
-    {{"truth_subdivision", "",
-      "tessellation of a tessellated truth: k per texel, or n per base triangle"},
-     {"truth_bound", "depth units",
-      "the truth's vertical deviation from the surface it stands for (0 for the exact truths)"},
+    {ColumnSpec{"truth_subdivision", "",
+                "tessellation of a tessellated truth: k per texel, or n per base triangle"}
+         .neither_better(),
+     ColumnSpec{
+         "truth_bound", "depth units",
+         "the truth's vertical deviation from the surface it stands for (0 for the exact truths)"}
+         .neither_better(),
      {"truth_flagged", "",
       "truth_uncertain_pct above 0.1 %: wrong_pct could be the truth's own error, not scored",
       ColumnKind::Flag},
-     {"truth_ms", "ms", "time to trace the truth of this view (shared by its cells)"},
-     {"truth_unresolved_px", "pixels", "covered pixels whose truth ray found no surface (0)"},
-     {"truth_ao_rays", "rays",
-      "hemisphere rays the reference AO of this view traced (cached pixels counted too)"},
+     ColumnSpec{"truth_ms", "ms", "time to trace the truth of this view (shared by its cells)"}
+         .neither_better(),
+     ColumnSpec{"truth_unresolved_px", "pixels",
+                "covered pixels whose truth ray found no surface (0)"}
+         .neither_better(),
+     ColumnSpec{"truth_ao_rays", "rays",
+                "hemisphere rays the reference AO of this view traced (cached pixels counted too)"}
+         .neither_better(),
      {"truth", "", "the truth level (source, sampled, model; @N: the map at another resolution)",
       ColumnKind::Text}});
 
