@@ -87,7 +87,7 @@ std::string counting_form(const std::string& text, const std::string& owner, int
 // is GLSL that SPIRV-Cross wrote, and its warnings (locals it declares before assigning, say)
 // are not the technique's. Its errors still throw, from the compile log.
 struct QuietCompiler {
-  explicit QuietCompiler(bool quiet) : quiet(quiet) { set(GL_FALSE); }
+  explicit QuietCompiler(bool silence) : quiet(silence) { set(GL_FALSE); }
   ~QuietCompiler() { set(GL_TRUE); }
   void set(GLboolean report) const {
     if (quiet)

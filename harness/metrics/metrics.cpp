@@ -256,10 +256,11 @@ ImageMetrics compare_gbuffers(const GBuffer& t, const GBuffer& r, double depth_w
     pos.push_back(d_safe / depth_world);
     pos_texels.push_back(d_safe / texel_world);
     if (d_safe > texel_world) ++artifacts;
-    const double c =
+    const double cos_angle =
         glm::dot(glm::normalize(glm::dvec3(t.normal[i])), glm::normalize(glm::dvec3(r.normal[i])));
-    normal_deg.push_back(std::isfinite(c) ? glm::degrees(std::acos(std::clamp(c, -1.0, 1.0)))
-                                          : 180.0);
+    normal_deg.push_back(std::isfinite(cos_angle)
+                             ? glm::degrees(std::acos(std::clamp(cos_angle, -1.0, 1.0)))
+                             : 180.0);
     if (t.shadowed(i) != r.shadowed(i)) ++shadow_diff;
     if (is_object(t, i) != is_object(r, i)) ++object_diff;
     if (ambient_occlusion && !is_object(t, i) && !is_object(r, i)) {
