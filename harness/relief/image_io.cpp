@@ -107,7 +107,7 @@ void refuse_unnamed_nodata(const ReliefImageSource& src, float file_lo, float fi
       else
         lo = std::min(lo, v), hi = std::max(hi, v);
     if (lo > hi) continue;  // every texel holds it: a flat map, nothing to squeeze
-    char text[256];
+    char text[384];
     std::snprintf(text, sizeof text,
                   ": %ld texel(s) hold %.9g, the usual nodata value of a GeoTIFF; normalize would "
                   "fold it into the range, squeezing the other values (%.6g to %.6g) into %.2g%% "
