@@ -217,6 +217,8 @@ TEST(Fuzz, ImageAndMeshLoadersAcceptOrRefuseCleanly) {
       2, 400);
   const std::vector<std::string> meshes = {
       read_file(kCorpus + "/assets/far.obj"), read_file(kCorpus + "/assets/nan.obj"),
+      read_file(kCorpus + "/assets/base_uv_nan.obj"),
+      read_file(kCorpus + "/assets/base_uv_huge.obj"),
       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0.5\nvt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\n"
       "f 1/1 2/2 3/3\nf 2/2 4/4 3/3\n"};
   const FuzzResult rm = fuzz(
