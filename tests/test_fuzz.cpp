@@ -12,6 +12,7 @@
 #include <fstream>
 #include <functional>
 #include <random>
+#include <set>
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -24,6 +25,7 @@
 #include "run/asset_check.h"
 #include "run/shard.h"
 #include "support/test_support.h"
+#include "technique/elf_check.h"
 
 namespace rl {
 namespace {
@@ -311,6 +313,22 @@ TEST(Fuzz, PluginFilesDamagedInTheirStructureAreRefusedNotFatal) {
       fs::remove(path);
     }
   }
+}
+
+// The structural check must not refuse what linkers write: every shared object this test
+// program has loaded (ReliefLab's libraries, Mesa, Embree, glibc's, ... built by GNU ld and
+// others) passes it.
+TEST(Fuzz, EverySharedObjectThisProcessLoadedPassesThePluginCheck) {
+  std::ifstream maps("/proc/self/maps");
+  std::set<std::string> objects;
+  for (std::string line; std::getline(maps, line);) {
+    const size_t slash = line.find('/');
+    if (slash == std::string::npos) continue;
+    const std::string path = line.substr(slash);
+    if (path.find(".so") != std::string::npos && fs::is_regular_file(path)) objects.insert(path);
+  }
+  ASSERT_GT(objects.size(), 10u);
+  for (const std::string& path : objects) EXPECT_NO_THROW(check_elf_is_whole(path)) << path;
 }
 
 // The commands that read a finished run (hostile input, second round): status, compare, report and
