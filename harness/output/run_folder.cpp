@@ -57,6 +57,15 @@ RunFolderLock::RunFolderLock(const std::string& dir) {
     throw ConfigError(path + ": cannot open the folder's lock file (" + std::strerror(errno) +
                       "); a run folder must be writable");
   if (flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
+  if (errno != EWOULDBLOCK) {
+    // A file system without locks (some network mounts): the run goes on, unguarded, and
+    // says so rather than refusing a folder it could always write before.
+    std::fprintf(stderr,
+                 "relieflab: warning: %s cannot be locked (%s): nothing keeps another command "
+                 "from writing into %s at the same time\n",
+                 path.c_str(), std::strerror(errno), dir.c_str());
+    return;
+  }
   std::fprintf(stderr,
                "relieflab: waiting for another relieflab command writing into %s to finish\n",
                dir.c_str());
