@@ -113,22 +113,6 @@ void compare_cell(const nlohmann::ordered_json& b, const nlohmann::ordered_json&
   }
 }
 
-// A stored value its column cannot take (a wrong_pct of -1 would count as better than any
-// measurement) is an error naming the row: the store was edited or damaged.
-void refuse_values_outside_range(const nlohmann::ordered_json& row, const std::string& path,
-                                 const std::string& key) {
-  if (!row.is_object()) return;
-  for (const DeclaredColumn& c : declared_columns()) {
-    if (c.spec.kind != ColumnKind::Number) continue;
-    auto it = row.find(c.spec.name);
-    if (it == row.end() || !it->is_number()) continue;
-    if (const std::string why = value_outside_range(c.spec, it->get<double>()); !why.empty())
-      throw ConfigError(path + ": the row of " + row.value("technique", std::string("?")) + " " +
-                        describe_cell(row) + " (key " + key + ") holds a value in '" + c.spec.name +
-                        "' its column cannot take: " + why + " (was the store edited?)");
-  }
-}
-
 }  // namespace
 
 std::map<std::string, nlohmann::ordered_json> read_run_rows(const std::string& dir) {
@@ -140,7 +124,12 @@ std::map<std::string, nlohmann::ordered_json> read_run_rows(const std::string& d
   for (const std::string& k : store.keys()) {
     try {
       if (auto r = store.row(k)) {
-        refuse_values_outside_range(*r, path, k);
+        // A value its column cannot take (a wrong_pct of -1 would count as better than any
+        // measurement) is an error naming the row: the store was edited or damaged.
+        if (const std::string why = stored_value_outside_range(*r); !why.empty())
+          throw ConfigError(path + ": the row of " + r->value("technique", std::string("?")) + " " +
+                            describe_cell(*r) + " (key " + k + ") " + why +
+                            " (was the store edited?)");
         rows[k] = *r;
       }
     } catch (const nlohmann::json::exception&) {

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "core/columns.h"
 #include "core/error.h"
 
 namespace rl {
@@ -161,6 +162,18 @@ size_t ResultStore::merge_from(const std::string& other_path) {
   const size_t merged = size_t(sqlite3_total_changes(db_) - before);
   check(sqlite3_exec(db_, "DETACH DATABASE other", nullptr, nullptr, nullptr), db_, "detach");
   return merged;
+}
+
+std::string stored_value_outside_range(const nlohmann::ordered_json& row) {
+  if (!row.is_object()) return "";
+  for (const DeclaredColumn& c : declared_columns()) {
+    if (c.spec.kind != ColumnKind::Number) continue;
+    auto it = row.find(c.spec.name);
+    if (it == row.end() || !it->is_number()) continue;
+    if (const std::string why = value_outside_range(c.spec, it->get<double>()); !why.empty())
+      return "holds a value in '" + c.spec.name + "' its column cannot take: " + why;
+  }
+  return "";
 }
 
 }  // namespace rl

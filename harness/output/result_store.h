@@ -42,4 +42,9 @@ class ResultStore {
   std::string path_;
 };
 
+// "" when every number a stored row holds is one its column can take (core/columns.h:
+// column_range); else "holds a value in 'COLUMN' its column cannot take: WHY". A row edited or
+// damaged in the store is neither reused, published nor compared with such a value.
+std::string stored_value_outside_range(const nlohmann::ordered_json& row);
+
 }  // namespace rl

@@ -95,17 +95,20 @@ std::string file_of(const ReliefImageSource& src) {
 
 // With normalize and no nodata given: a usual nodata value at an end of the file's values would
 // squeeze the terrain into a sliver of the depth and show its missing texels as pits.
-void refuse_unnamed_nodata(const ReliefImageSource& src, float file_lo, float file_hi,
-                           const std::vector<float>& values) {
+void refuse_unnamed_nodata(const ReliefImageSource& src, const Image& depth, int channel,
+                           float file_lo, float file_hi) {
   for (float sentinel : {file_lo, file_hi}) {
     if (!usual_nodata_value(sentinel)) continue;
     long count = 0;
     float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
-    for (float v : values)
-      if (v == sentinel)
-        ++count;
-      else
-        lo = std::min(lo, v), hi = std::max(hi, v);
+    for (int y = 0; y < depth.height; ++y)
+      for (int x = 0; x < depth.width; ++x) {
+        const float v = depth.at(x, y, channel);
+        if (v == sentinel)
+          ++count;
+        else
+          lo = std::min(lo, v), hi = std::max(hi, v);
+      }
     if (lo > hi) continue;  // every texel holds it: a flat map, nothing to squeeze
     char text[384];
     std::snprintf(text, sizeof text,
@@ -122,12 +125,9 @@ DepthRange depth_range(const Image& depth, int channel, const ReliefImageSource&
   DepthRange r{std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()};
   float file_lo = std::numeric_limits<float>::max(), file_hi = std::numeric_limits<float>::lowest();
   long outside = 0;
-  std::vector<float> values;
-  values.reserve(size_t(depth.width) * depth.height);
   for (int y = 0; y < depth.height; ++y)
     for (int x = 0; x < depth.width; ++x) {
       const float v = depth.at(x, y, channel);
-      values.push_back(v);
       if (v == float(src.nodata)) {  // never true for NaN (none given)
         ++r.nodata;
         continue;
@@ -139,13 +139,14 @@ DepthRange depth_range(const Image& depth, int channel, const ReliefImageSource&
       r.hi = std::max(r.hi, d);
       outside += d < -1e-6f || d > 1.0f + 1e-6f;
     }
-  if (r.nodata == long(values.size())) {
+  if (r.nodata == long(depth.width) * depth.height) {
     char text[128];
     std::snprintf(text, sizeof text, ": every texel holds the nodata value %.9g: no data",
                   src.nodata);
     throw ConfigError(file_of(src) + text);
   }
-  if (src.normalize && std::isnan(src.nodata)) refuse_unnamed_nodata(src, file_lo, file_hi, values);
+  if (src.normalize && std::isnan(src.nodata))
+    refuse_unnamed_nodata(src, depth, channel, file_lo, file_hi);
   if (outside && !src.normalize) {
     char range[96];
     std::snprintf(range, sizeof range, "%.6g to %.6g", file_lo, file_hi);

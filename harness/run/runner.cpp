@@ -88,11 +88,8 @@ std::string row_problem(const std::optional<nlohmann::ordered_json>& row, const 
     if (c.spec.kind == ColumnKind::Number ? !it->is_number() : flag && !it->is_boolean())
       return std::string("holds a non-") + (flag ? "boolean" : "number") + " in '" + c.spec.name +
              "'";
-    if (c.spec.kind == ColumnKind::Number)
-      if (const std::string why = value_outside_range(c.spec, it->get<double>()); !why.empty())
-        return "holds a value in '" + c.spec.name + "' its column cannot take: " + why;
   }
-  return "";
+  return stored_value_outside_range(*row);
 }
 
 // The stored row of `cell` when it can stand for it; else nothing, and `problem` says why. The

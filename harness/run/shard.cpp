@@ -210,11 +210,8 @@ void refuse_another_sweep(const std::string& out_dir, const nlohmann::json& shar
 // Columns that differ between two measurements of one cell without either being wrong: times
 // (and rates), texts (the renderer, file names) and whether a precompute came from the cache.
 bool varies_between_runs(const ColumnSpec& c) {
-  const std::string cached = "_cached";
-  const bool cache_flag =
-      c.name.size() > cached.size() &&
-      c.name.compare(c.name.size() - cached.size(), cached.size(), cached) == 0;
-  return c.unit == "ms" || c.unit == "1/s" || c.kind == ColumnKind::Text || cache_flag;
+  return c.unit == "ms" || c.unit == "1/s" || c.kind == ColumnKind::Text ||
+         c.name.ends_with("_cached");
 }
 
 // Two shards (or a shard and an earlier merge) that measured one cell must agree on it but for
