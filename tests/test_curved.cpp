@@ -37,8 +37,8 @@ TEST(DisplacedTruth, PlaneAgreesWithTheHeightfieldTruth) {
   const ReliefMap map = build_relief_asset(scene, 64);
   const HeightfieldTruth planar(map, 1e-3);
   const DisplacedTruth displaced(make_base_mesh(BaseDesc{"plane", "", 1}, scene.size, scene.tile),
-                                 map, scene.depth, 1e-3);
-  EXPECT_LE(displaced.tessellation_bound(), 1e-3);
+                                 map, scene.depth);
+  EXPECT_EQ(displaced.tessellation_bound(), 0.0);
   for (const View& view : {View{60, 30}, View{20, 10}}) {
     const Camera camera = make_camera(scene, view, 96, 96);
     const GBuffer a = render_truth(planar, map, scene, camera, {});
@@ -71,31 +71,6 @@ TEST(DisplacedTruth, PlaneAgreesWithTheHeightfieldTruth) {
     EXPECT_EQ(unexplained, 0) << "el=" << view.elevation_deg;
     EXPECT_LE(beyond, covered / 50) << "el=" << view.elevation_deg;
   }
-}
-
-TEST(DisplacedTruth, RefiningMovesHitsByLessThanTheStatedBound) {
-  const SceneDesc scene = curved_scene("sphere", "pyramids", 32, 0.08);
-  const ReliefMap map = build_relief_asset(scene, 32);
-  const BaseMesh base = make_base_mesh(scene.base, scene.size, scene.tile);
-  const DisplacedTruth coarse(base, map, scene.depth, 4e-3), fine(base, map, scene.depth, 5e-4);
-  EXPECT_GT(fine.subdivision(), coarse.subdivision());
-  EXPECT_LE(fine.tessellation_bound(), 5e-4);
-  const Camera camera = make_camera(scene, View{35, 20}, 128, 128);
-  const GBuffer a = render_truth(coarse, map, scene, camera, {});
-  const GBuffer b = render_truth(fine, map, scene, camera, {});
-  // Along the normal the surfaces are within the sum of the bounds; a ray meets them at
-  // least at 1/sin(angle to the surface) times that, so compare depths below the base.
-  long both = 0, beyond = 0;
-  for (size_t i = 0; i < a.size(); ++i) {
-    if (!(a.covered(i) && b.covered(i))) continue;
-    ++both;
-    const double d =
-        std::abs(glm::length(glm::dvec3(a.position[i])) - glm::length(glm::dvec3(b.position[i])));
-    if (d > (coarse.tessellation_bound() + fine.tessellation_bound()) * scene.depth + 1e-6)
-      ++beyond;
-  }
-  EXPECT_GT(both, 5000);
-  EXPECT_LE(beyond, both / 100);
 }
 
 TEST(Silhouette, BentRaysCutTheSilhouetteThePlanarSearchCannot) {

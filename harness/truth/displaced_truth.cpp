@@ -1,329 +1,364 @@
 #include "truth/displaced_truth.h"
 
-#include "relief/meta_relief.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <stdexcept>
+#include <limits>
 
 #include "core/elapsed.h"
 #include "core/embree_util.h"
-#include "core/parallel.h"
-#include "truth/heightfield_truth.h"
+#include "relief/heightfield_reference.h"
+#include "relief/meta_relief.h"
+#include "truth/meta_relief_truth.h"
 
 namespace rl {
 namespace {
 
-// Grid coordinates over [lo, hi]: both ends and every line (m + 0.5 + q / k) / texels inside,
-// so that texel-centre creases are grid lines and each cell lies in one bilinear patch.
-std::vector<double> grid_lines(double lo, double hi, int texels, int k) {
-  const double step = 1.0 / (double(texels) * k), offset = 0.5 / texels, eps = 1e-9 * step;
-  std::vector<double> out = {lo};
-  for (long i = long(std::floor((lo - offset) / step)) + 1;; ++i) {
-    const double x = offset + double(i) * step;
-    if (x >= hi - eps) break;
-    if (x > lo + eps) out.push_back(x);
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr int kMaxChords = 1 << 16;  // per walk: a guard, never reached on a sane base
+constexpr int kMaxEntries = 256;     // sheet entries per ray, likewise
+constexpr double kFirstStep = 4;     // the first chord's length, texels
+
+// The least depth of `map` (repeating, `tiling` times per unit of uv) over the bilinear cells
+// that reach into [lo, hi] padded by a texel.
+double least_texel(const ReliefMap& map, double tiling, const glm::dvec2& lo,
+                   const glm::dvec2& hi) {
+  const double sx = tiling * map.width, sy = tiling * map.height;
+  long x0 = long(std::floor(lo.x * sx - 0.5)) - 1, x1 = long(std::floor(hi.x * sx - 0.5)) + 2;
+  long y0 = long(std::floor(lo.y * sy - 0.5)) - 1, y1 = long(std::floor(hi.y * sy - 0.5)) + 2;
+  if (x1 - x0 >= map.width) x0 = 0, x1 = map.width - 1;
+  if (y1 - y0 >= map.height) y0 = 0, y1 = map.height - 1;
+  double least = std::numeric_limits<double>::infinity();
+  for (long y = y0; y <= y1; ++y)
+    for (long x = x0; x <= x1; ++x)
+      least =
+          std::min(least, double(map.depth_texel(int(x % map.width + map.width) % map.width,
+                                                 int(y % map.height + map.height) % map.height)));
+  return least;
+}
+
+// The largest depth step between neighbouring texels of a plain map (wrapping).
+double steepest_step(const ReliefMap& map) {
+  double steepest = 0;
+  for (int y = 0; y < map.height; ++y)
+    for (int x = 0; x < map.width; ++x) {
+      const double here = map.depth_texel(x, y);
+      steepest = std::max({steepest, std::abs(map.depth_texel((x + 1) % map.width, y) - here),
+                           std::abs(map.depth_texel(x, (y + 1) % map.height) - here)});
+    }
+  return steepest;
+}
+
+// Per texel of the finest grid (`finest` texels per unit of uv): a meta-relief's layers add
+// their shares of their own steps, each spread over its texels' share of the finest.
+double steepest_step(const ReliefMap& map, double finest) {
+  if (!map.meta) return steepest_step(map);
+  double steepest = 0;
+  for (size_t i = 0; i < map.meta->layers().size(); ++i) {
+    const MetaLayer& layer = map.meta->layers()[i];
+    const double texels = layer.tiling * std::max(layer.map.width, layer.map.height);
+    steepest +=
+        map.meta->depth_share(i) * steepest_step(layer.map) * std::min(1.0, texels / finest);
   }
-  out.push_back(hi);
-  return out;
+  return steepest;
 }
 
-glm::dvec3 displaced(const glm::dvec3& p, const glm::dvec3& n, const glm::dvec2& uv,
-                     const ReliefMap& map, double depth) {
-  return p - n * (depth * map.surface_depth(uv.x, uv.y));
+PrismPoint mix(const PrismPoint& a, const PrismPoint& b, double f) {
+  return {a.triangle, a.b1 + (b.b1 - a.b1) * f, a.b2 + (b.b2 - a.b2) * f, a.s + (b.s - a.s) * f};
 }
 
-// A point of the base mesh as the rasteriser sees it: triangle t at barycentrics (1 - b1 - b2,
-// b1, b2), positions, normals, uvs and mapping axes interpolated linearly.
-struct MeshPoint {
-  glm::dvec3 position, normal, dpdu, dpdv;
-  glm::dvec2 uv;
-};
-
-MeshPoint mesh_point(const BaseMesh& m, const glm::uvec3& t, double b1, double b2) {
-  const double b0 = 1 - b1 - b2;
-  auto mix = [&](const auto& a) { return b0 * a[t.x] + b1 * a[t.y] + b2 * a[t.z]; };
-  MeshPoint p{mix(m.position), mix(m.normal), mix(m.dpdu), mix(m.dpdv), mix(m.uv)};
-  p.normal = glm::length(p.normal) > 0 ? glm::normalize(p.normal) : m.normal[t.x];
-  return p;
-}
-
-// The displaced point and the unit shading frame there.
-void displaced_vertex(const MeshPoint& p, const ReliefMap& map, double depth, glm::vec3& position,
-                      glm::vec3& tangent, glm::vec3& bitangent) {
-  glm::dvec3 t, b;
-  uv_frame(p.normal, p.dpdu, p.dpdv, t, b);
-  position = glm::vec3(displaced(p.position, p.normal, p.uv, map, depth));
-  tangent = glm::vec3(t);
-  bitangent = glm::vec3(b);
-}
-
-// Where uv falls on a chart's segment grid (base/mesh_charts order: vertex (i, j) of chart c is
-// first + j * (segments_u + 1) + i, quads split along (i, j)-(i + 1, j + 1)): its triangle and
-// barycentrics.
-void locate_on_chart(const SurfaceChart& c, unsigned first, const glm::dvec2& uv, glm::uvec3& tri,
-                     double& b1, double& b2) {
-  const double fu = (uv.x - c.uv_min.x) / (c.uv_max.x - c.uv_min.x) * c.segments_u;
-  const double fv = (uv.y - c.uv_min.y) / (c.uv_max.y - c.uv_min.y) * c.segments_v;
-  const int i = std::clamp(int(std::floor(fu)), 0, c.segments_u - 1);
-  const int j = std::clamp(int(std::floor(fv)), 0, c.segments_v - 1);
-  const double a = fu - i, b = fv - j;
-  const unsigned row = unsigned(c.segments_u) + 1;
-  const unsigned v00 = first + unsigned(j) * row + unsigned(i), v10 = v00 + 1, v01 = v00 + row,
-                 v11 = v01 + 1;
-  if (a >= b) {
-    tri = {v00, v10, v11};  // (1 - a) P00 + (a - b) P10 + b P11
-    b1 = a - b;
-    b2 = b;
-  } else {
-    tri = {v00, v11, v01};  // (1 - b) P00 + a P11 + (b - a) P01
-    b1 = a;
-    b2 = b - a;
+// Where the chord a-b leaves its triangle: the fraction (1: it does not) and the edge (the
+// barycentric that reaches zero first). A point within rounding of an edge counts as inside,
+// so a ray along an edge (a view down the normals) does not hop to and fro across it.
+double exit_fraction(const PrismPoint& a, const PrismPoint& b, int& edge) {
+  constexpr double kSlack = 1e-9;
+  const double from[3] = {1 - a.b1 - a.b2, a.b1, a.b2}, to[3] = {1 - b.b1 - b.b2, b.b1, b.b2};
+  double fraction = 1;
+  edge = -1;
+  for (int e = 0; e < 3; ++e) {
+    if (to[e] >= -kSlack) continue;
+    const double f = from[e] > 0 ? from[e] / (from[e] - to[e]) : 0.0;
+    if (f < fraction || edge < 0) {
+      fraction = std::min(fraction, f);
+      edge = e;
+    }
   }
+  return fraction;
 }
 
 }  // namespace
 
-DisplacedTruth::DisplacedTruth(const BaseMesh& base, const ReliefMap& map, double depth,
-                               double tolerance, size_t max_triangles) {
-  const auto start = std::chrono::steady_clock::now();
-  // Chart grids run along one map's crease lines; a meta-relief's layers have several, so its
-  // base triangles are split uniformly and the deviation measured like a mesh base's.
-  if (!base.charts.empty() && !map.meta)
-    build_from_charts(base, map, depth, tolerance, max_triangles);
-  else
-    build_from_triangles(base, map, depth, tolerance, max_triangles);
+struct DisplacedTruth::Chord {
+  double t0, t1;
+  PrismPoint a, b;  // in one prism
+};
 
-  device_ = rtcNewDevice(nullptr);
-  if (!device_) throw std::runtime_error("cannot create an Embree device");
-  scene_ = rtcNewScene(device_);
-  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-  RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-  // Embree reads vertex positions straight out of Vertex (the uv that follows pads the last).
-  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, vertices_.data(),
-                             offsetof(Vertex, position), sizeof(Vertex), vertices_.size());
-  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices_.data(), 0,
-                             3 * sizeof(unsigned), indices_.size() / 3);
-  attach_and_commit(scene_, geom);
+DisplacedTruth::DisplacedTruth(const BaseMesh& base, const ReliefMap& map, double depth,
+                               double texels_per_sheet_edge, size_t max_sheet_triangles)
+    : depth_(depth) {
+  const auto start = std::chrono::steady_clock::now();
+  glm::dvec2 texels(map.width, map.height);
+  if (map.meta) {
+    meta_ = std::make_unique<MetaReliefTruth>(map.meta);
+    texels = glm::dvec2(map.meta->finest_texels());
+  } else {
+    map_.width = map.width;
+    map_.height = map.height;
+    map_.relief = map.relief;
+  }
+  max_slope_ = steepest_step(map, std::max(texels.x, texels.y));
+  prisms_ = std::make_unique<BasePrisms>(base, texels);
+  sheets_ = std::make_unique<ShellSheets>(
+      *prisms_, [this](const glm::dvec2& lo, const glm::dvec2& hi) { return least_depth(lo, hi); },
+      depth, texels_per_sheet_edge, max_sheet_triangles);
   build_ms_ = ms_since(start);
 }
 
-DisplacedTruth::~DisplacedTruth() {
-  if (scene_) rtcReleaseScene(scene_);
-  if (device_) rtcReleaseDevice(device_);
+DisplacedTruth::~DisplacedTruth() = default;
+
+double DisplacedTruth::least_depth(const glm::dvec2& lo, const glm::dvec2& hi) const {
+  if (!meta_) return least_texel(map_, 1.0, lo, hi);
+  // Eq. 2 is a sum with non-negative shares: its least is at least the shares' least parts.
+  const MetaRelief& meta = *meta_->meta();
+  double least = 0;
+  for (size_t i = 0; i < meta.layers().size(); ++i)
+    least +=
+        meta.depth_share(i) * least_texel(meta.layers()[i].map, meta.layers()[i].tiling, lo, hi);
+  return least;
 }
 
-// One chart's displaced grid at grid lines u x v, two triangles a cell, appended to vertices_
-// and indices_ (the chart's base vertices start at first_base); returns how far the surface's
-// centre of a cell lies from the middle of the diagonal it is split along, at most.
-double DisplacedTruth::tessellate_chart(const BaseMesh& base, const SurfaceChart& c,
-                                        unsigned first_base, const std::vector<double>& u,
-                                        const std::vector<double>& v, const ReliefMap& map,
-                                        double depth) {
-  const size_t nu = u.size(), nv = v.size(), first = vertices_.size();
-  vertices_.resize(first + nu * nv);
-  std::vector<double> row_worst(nv, 0.0);
-  auto at = [&](const glm::dvec2& uv) {
-    glm::uvec3 tri;
-    double b1, b2;
-    locate_on_chart(c, first_base, uv, tri, b1, b2);
-    return mesh_point(base, tri, b1, b2);
-  };
-  parallel_for(
-      nv,
-      [&](size_t begin, size_t end) {
-        for (size_t j = begin; j < end; ++j)
-          for (size_t i = 0; i < nu; ++i) {
-            const MeshPoint p = at({u[i], v[j]});
-            Vertex& out = vertices_[first + j * nu + i];
-            displaced_vertex(p, map, depth, out.position, out.tangent, out.bitangent);
-            out.uv = glm::vec2(p.uv);
-            out.normal = glm::vec3(p.normal);
-          }
-      },
-      8);
-  // The split along each cell's diagonal a-e meets the surface's centre at (a + e) / 2.
-  parallel_for(
-      nv - 1,
-      [&](size_t begin, size_t end) {
-        for (size_t j = begin; j < end; ++j)
-          for (size_t i = 0; i + 1 < nu; ++i) {
-            const MeshPoint p = at({0.5 * (u[i] + u[i + 1]), 0.5 * (v[j] + v[j + 1])});
-            const glm::dvec3 mid =
-                0.5 * (glm::dvec3(vertices_[first + j * nu + i].position) +
-                       glm::dvec3(vertices_[first + (j + 1) * nu + i + 1].position));
-            row_worst[j] = std::max(
-                row_worst[j], glm::length(displaced(p.position, p.normal, p.uv, map, depth) - mid));
-          }
-      },
-      8);
-  for (size_t j = 0; j + 1 < nv; ++j)
-    for (size_t i = 0; i + 1 < nu; ++i) {
-      const unsigned a = unsigned(first + j * nu + i), b = a + 1, d = unsigned(a + nu), e = d + 1;
-      indices_.insert(indices_.end(), {a, b, e, a, e, d});
-    }
-  return row_worst.empty() ? 0.0 : *std::max_element(row_worst.begin(), row_worst.end());
+glm::dvec3 DisplacedTruth::texture_point(const PrismPoint& p) const {
+  return glm::dvec3(prisms_->uv(p.triangle, p.b1, p.b2), p.s / depth_);
 }
 
-void DisplacedTruth::build_from_charts(const BaseMesh& base, const ReliefMap& map, double depth,
-                                       double tolerance, size_t max_triangles) {
-  // Grid lines: texel-centre creases (k per texel) and the base's segment edges, so each cell
-  // lies in one bilinear patch and one base quad.
-  auto lines = [&](double lo, double hi, int texels, int segments, int k) {
-    std::vector<double> out = grid_lines(lo, hi, texels, k);
-    for (int i = 1; i < segments; ++i) out.push_back(lo + (hi - lo) * i / segments);
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end(),
-                          [&](double x, double y) { return y - x < 1e-9 * (hi - lo); }),
-              out.end());
-    return out;
-  };
-  auto plan = [&](int k, std::vector<std::vector<double>>& us,
-                  std::vector<std::vector<double>>& vs) {
-    us.clear();
-    vs.clear();
-    size_t triangles = 0;
-    for (const SurfaceChart& c : base.charts) {
-      us.push_back(lines(c.uv_min.x, c.uv_max.x, map.width, c.segments_u, k));
-      vs.push_back(lines(c.uv_min.y, c.uv_max.y, map.height, c.segments_v, k));
-      triangles += 2 * (us.back().size() - 1) * (vs.back().size() - 1);
-    }
-    return triangles;
-  };
-  const double twist = max_twist(map);
-  int k = twist > 0 ? std::max(1, int(std::ceil(std::sqrt(twist / (4 * tolerance))))) : 1;
-  std::vector<std::vector<double>> us, vs;
-  // The budget wins over the tolerance; the achieved bound is reported.
-  for (size_t planned; k > 1 && (planned = plan(k, us, vs)) > max_triangles;)
-    k = std::max(1, std::min(k - 1, int(k * std::sqrt(double(max_triangles) / planned))));
-  for (;; k *= 2) {
-    plan(k, us, vs);
-    vertices_.clear();
-    indices_.clear();
-    double worst = 0;
-    unsigned first_base = 0;  // the chart's first vertex in the base mesh
-    for (size_t ci = 0; ci < base.charts.size(); ++ci) {
-      const SurfaceChart& c = base.charts[ci];
-      worst = std::max(worst, tessellate_chart(base, c, first_base, us[ci], vs[ci], map, depth));
-      first_base += unsigned(c.segments_u + 1) * unsigned(c.segments_v + 1);
-    }
-    subdivision_ = k;
-    bound_ = worst / depth;
-    if (bound_ <= tolerance || plan(2 * k, us, vs) > max_triangles || k >= 64) return;
+double DisplacedTruth::chord_crossing(const glm::dvec3& a, const glm::dvec3& b) const {
+  ++chords_;
+  if (meta_) return meta_->first_hit(a, b - a, 0.0, 1.0);
+  const ReferenceHit r = intersect_heightfield(map_, a, b - a, 1.0);
+  return r.hit ? r.t : kNaN;
+}
+
+double DisplacedTruth::chord_deviation(const glm::dvec3& o, const glm::dvec3& d,
+                                       const PrismPoint& a, const PrismPoint& b) const {
+  double worst = 0;
+  for (double f : {0.25, 0.5, 0.75}) {
+    const PrismPoint m = mix(a, b, f);
+    const glm::dvec3 w = prisms_->point(m.triangle, m.b1, m.b2, m.s) - o;
+    worst = std::max(worst, glm::length(w - glm::dot(w, d) * d));
   }
+  // Between the samples the stray of a smooth chord can only grow by a fraction of itself.
+  return 1.25 * worst;
 }
 
-void DisplacedTruth::build_from_triangles(const BaseMesh& base, const ReliefMap& map, double depth,
-                                          double tolerance, size_t max_triangles) {
-  double longest = 0;  // longest base edge, in texels (of a meta-relief's finest layer)
-  const glm::dvec2 texels =
-      map.meta ? glm::dvec2(map.meta->finest_texels()) : glm::dvec2(map.width, map.height);
-  for (const glm::uvec3& t : base.triangles)
-    for (int e = 0; e < 3; ++e) {
-      const glm::dvec2 d = base.uv[t[(e + 1) % 3]] - base.uv[t[e]];
-      longest = std::max(longest, glm::length(d * texels));
-    }
-  const size_t cap =
-      std::max<size_t>(1, max_triangles / std::max<size_t>(1, base.triangles.size()));
-  const int n_cap = std::max(1, int(std::sqrt(double(cap))));
-  int n = std::clamp(int(std::ceil(longest)), 1, n_cap);
-  for (;;) {
-    vertices_.clear();
-    indices_.clear();
-    const size_t per = size_t(n + 1) * (n + 2) / 2;
-    vertices_.resize(per * base.triangles.size());
-    std::vector<double> tri_worst(base.triangles.size(), 0.0);
-    auto local = [n](int i, int j) { return size_t(j) * (n + 1) - size_t(j) * (j - 1) / 2 + i; };
-    parallel_for(
-        base.triangles.size(),
-        [&](size_t begin, size_t end) {
-          for (size_t ti = begin; ti < end; ++ti) {
-            const glm::uvec3& t = base.triangles[ti];
-            for (int j = 0; j <= n; ++j)
-              for (int i = 0; i + j <= n; ++i) {
-                const MeshPoint p = mesh_point(base, t, double(i) / n, double(j) / n);
-                Vertex& out = vertices_[ti * per + local(i, j)];
-                displaced_vertex(p, map, depth, out.position, out.tangent, out.bitangent);
-                out.uv = glm::vec2(p.uv);
-                out.normal = glm::vec3(p.normal);
-              }
-            // Deviation at the centroid of every upward sub-triangle.
-            for (int j = 0; j < n; ++j)
-              for (int i = 0; i + j < n; ++i) {
-                const MeshPoint p = mesh_point(base, t, (i + 1.0 / 3) / n, (j + 1.0 / 3) / n);
-                const glm::dvec3 mid =
-                    (glm::dvec3(vertices_[ti * per + local(i, j)].position) +
-                     glm::dvec3(vertices_[ti * per + local(i + 1, j)].position) +
-                     glm::dvec3(vertices_[ti * per + local(i, j + 1)].position)) /
-                    3.0;
-                tri_worst[ti] =
-                    std::max(tri_worst[ti],
-                             glm::length(displaced(p.position, p.normal, p.uv, map, depth) - mid));
-              }
-          }
-        },
-        16);
-    for (size_t ti = 0; ti < base.triangles.size(); ++ti) {
-      const unsigned o = unsigned(ti * per);
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i + j < n; ++i) {
-          const unsigned a = o + unsigned(local(i, j)), b = o + unsigned(local(i + 1, j)),
-                         c = o + unsigned(local(i, j + 1));
-          indices_.insert(indices_.end(), {a, b, c});
-          if (i + j + 1 < n)
-            indices_.insert(indices_.end(), {b, o + unsigned(local(i + 1, j + 1)), c});
-        }
-    }
-    subdivision_ = n;
-    bound_ = *std::max_element(tri_worst.begin(), tri_worst.end()) / depth;
-    if (bound_ <= tolerance || 2 * n > n_cap) return;
-    n *= 2;
+DisplacedHit DisplacedTruth::hit_at(const glm::dvec3& o, const glm::dvec3& d, const PrismPoint& p,
+                                    double off_ray) const {
+  DisplacedHit h;
+  const unsigned t = p.triangle;
+  h.hit = true;
+  h.position = prisms_->point(t, p.b1, p.b2, p.s);
+  h.t = glm::dot(h.position - o, d);
+  h.uv = prisms_->uv(t, p.b1, p.b2);
+  h.normal = prisms_->unit_normal(t, p.b1, p.b2);
+  prisms_->frame(t, p.b1, p.b2, h.tangent, h.bitangent);
+  h.off_ray = off_ray;
+  h.base_triangle = int(t);
+  // The relief's own normal: central differences a thousandth of a texel wide.
+  const double step = 1e-3 * prisms_->texel_world(t);
+  auto surface = [&](double b1, double b2) {
+    const glm::dvec2 uv = prisms_->uv(t, b1, b2);
+    const double depth = meta_ ? meta_->meta()->depth(uv.x, uv.y) : map_.sample_depth(uv.x, uv.y);
+    return prisms_->point(t, b1, b2, depth_ * depth);
+  };
+  const glm::dvec3 e1 = prisms_->point(t, 1, 0, 0) - prisms_->point(t, 0, 0, 0);
+  const glm::dvec3 e2 = prisms_->point(t, 0, 1, 0) - prisms_->point(t, 0, 0, 0);
+  const double db1 = step / std::max(glm::length(e1), 1e-300);
+  const double db2 = step / std::max(glm::length(e2), 1e-300);
+  const glm::dvec3 n = glm::cross(surface(p.b1 + db1, p.b2) - surface(p.b1 - db1, p.b2),
+                                  surface(p.b1, p.b2 + db2) - surface(p.b1, p.b2 - db2));
+  if (glm::length(n) > 0)
+    h.geometric_normal = glm::dot(n, d) > 0 ? -glm::normalize(n) : glm::normalize(n);
+  return h;
+}
+
+// The first hit on the chord's stretch of the ray. The chord lies within `deviation` of the ray,
+// so where the chord pushed down by lift(deviation) passes above the relief, so does the ray;
+// otherwise the chord is halved (its stray quarters) until it lies within kHitDeviation texel
+// of the ray, and there the chord's own crossing is the answer.
+DisplacedHit DisplacedTruth::resolve(const glm::dvec3& o, const glm::dvec3& d, const Chord& c,
+                                     double deviation, int level) const {
+  const double texel = prisms_->texel_world(c.a.triangle);
+  const glm::dvec3 ta = texture_point(c.a), tb = texture_point(c.b);
+  const glm::dvec3 down(0, 0, lift(deviation, texel));
+  if (std::isnan(chord_crossing(ta + down, tb + down))) return {};
+  const double tm = 0.5 * (c.t0 + c.t1);
+  PrismPoint m;
+  if (deviation <= kHitDeviation * texel || level >= 48 || !(tm > c.t0 && tm < c.t1) ||
+      !prisms_->locate(o + tm * d, c.a.triangle, m)) {
+    const double crossing = chord_crossing(ta, tb);
+    return std::isnan(crossing) ? DisplacedHit{} : hit_at(o, d, mix(c.a, c.b, crossing), deviation);
   }
+  for (const Chord& half : {Chord{c.t0, tm, c.a, m}, Chord{tm, c.t1, m, c.b}}) {
+    const DisplacedHit h = resolve(o, d, half, chord_deviation(o, d, half.a, half.b), level + 1);
+    if (h.hit) return h;
+  }
+  return {};
+}
+
+// How far down (depth units) a chord that strays `deviation` (world) from the ray is pushed so
+// that it meets the relief wherever the ray does: the stray along the fibre, and across it times
+// the map's steepest slope.
+double DisplacedTruth::lift(double deviation, double texel_world) const {
+  return deviation / depth_ + max_slope_ * deviation / texel_world;
+}
+
+// Where the ray crosses edge `edge` of the prism (the barycentric opposite falls to 0) between
+// a (at t_in, inside) and b (at t_out, past it): the Illinois variant of regula falsi on that
+// barycentric, which is smooth along the ray within the prism. `at`: the prism point there.
+double DisplacedTruth::edge_crossing(const glm::dvec3& o, const glm::dvec3& d, int edge,
+                                     const PrismPoint& a, double t_in, const PrismPoint& b,
+                                     double t_out, PrismPoint& at) const {
+  auto barycentric = [&](const PrismPoint& p) {
+    return edge == 0 ? 1 - p.b1 - p.b2 : (edge == 1 ? p.b1 : p.b2);
+  };
+  double lo = t_in, hi = t_out, f_lo = barycentric(a), f_hi = barycentric(b);
+  at = b;
+  int side = 0;
+  for (int iteration = 0; iteration < 32 && f_lo > 0 && f_hi < 0; ++iteration) {
+    const double t = lo + (hi - lo) * f_lo / (f_lo - f_hi);
+    PrismPoint p;
+    if (!(t > lo && t < hi) || !prisms_->locate(o + t * d, a.triangle, p)) break;
+    at = p;
+    const double f = barycentric(p);
+    if (std::abs(f) <= 1e-12) return t;
+    if (f > 0) {
+      lo = t, f_lo = f;
+      if (side == 1) f_hi *= 0.5;  // the same end kept twice: halve the other's weight
+      side = 1;
+    } else {
+      hi = t, f_hi = f;
+      if (side == -1) f_lo *= 0.5;
+      side = -1;
+    }
+  }
+  return glm::dot(prisms_->point(at.triangle, at.b1, at.b2, at.s) - o, d);
+}
+
+DisplacedHit DisplacedTruth::walk(const glm::dvec3& o, const glm::dvec3& d, double t_min,
+                                  double t_max, unsigned from, bool any_hit, double& resume) const {
+  resume = kNaN;
+  double t = t_min;
+  PrismPoint a;
+  if (!prisms_->locate(o + t * d, from, a)) {
+    resume = t;
+    return {};
+  }
+  double step = kFirstStep * prisms_->texel_world(a.triangle);
+  int came_from = -1;  // the prism the walk last hopped from, and where
+  double hop_t = kNaN;
+  for (int chord = 0; chord < kMaxChords; ++chord) {
+    const double texel = prisms_->texel_world(a.triangle);
+    const double t1 = std::min(t + step, t_max);
+    PrismPoint b;
+    const bool located = prisms_->locate(o + t1 * d, a.triangle, b);
+    int edge = -1;
+    double fraction = located ? exit_fraction(a, b, edge) : 0.0;
+    // Where the base bends faster than the shell is deep, prisms fold and a point may lie in
+    // no prism: each sends it to the other. The walk then follows this prism's extension.
+    if (located && fraction == 0 && t == hop_t && prisms_->neighbour(a.triangle, edge) == came_from)
+      fraction = 1;
+    // A chord that leaves the prism ends where the ray itself crosses the edge, so that it
+    // hands over at the same point however long it was (a uv seam may leave a cliff there).
+    PrismPoint e = fraction > 0 ? b : a;
+    double t_e = fraction > 0 ? t1 : t;
+    if (located && fraction > 0 && fraction < 1) t_e = edge_crossing(o, d, edge, a, t, b, t1, e);
+    const double target = kWalkDeviation * texel;
+    const double deviation = located && fraction > 0 ? chord_deviation(o, d, a, e) : 0.0;
+    // A chord strays from the ray as its length squared: the next length aims just inside.
+    const double chord_length = t_e - t;
+    const double fitting =
+        deviation > 0 ? 0.9 * chord_length * std::sqrt(target / deviation) : 4 * step;
+    if (!located || deviation > target) {
+      if (step <= 1e-6 * texel) break;
+      step = located ? std::clamp(fitting, 0.1 * step, 0.5 * step) : 0.5 * step;
+      continue;
+    }
+    // (A chord of no length -- the start already past an edge -- only hands over.)
+    if (fraction > 0 && any_hit) {
+      if (!std::isnan(chord_crossing(texture_point(a), texture_point(e)))) {
+        DisplacedHit h;  // a shadow ray needs only that it is met, to the walk's stray
+        h.hit = true;
+        return h;
+      }
+    } else if (fraction > 0) {
+      const DisplacedHit h = resolve(o, d, Chord{t, t_e, a, e}, deviation, 0);
+      if (h.hit) return h;
+    }
+    t = t_e;
+    if (t >= t_max) return {};
+    if (fraction < 1) {
+      const int next = prisms_->neighbour(a.triangle, edge);
+      came_from = int(a.triangle);
+      hop_t = t;
+      if (next < 0 || !prisms_->locate(o + t * d, unsigned(next), a)) {
+        resume = t;
+        return {};
+      }
+    } else {
+      a = b;
+    }
+    if (sheets_->outside(o + t * d, a)) {
+      resume = t;
+      return {};
+    }
+    // Longer than its prism is wide, a chord is clipped anyway (and its far end hard to locate).
+    step = std::min({std::max(fitting, 0.5 * step), 4 * step, prisms_->extent(a.triangle)});
+  }
+  resume = t;
+  return {};
+}
+
+DisplacedHit DisplacedTruth::first_hit(const glm::dvec3& o, const glm::dvec3& d, double t_min,
+                                       double t_max, int from, bool any_hit) const {
+  double t = t_min;
+  if (from >= 0 && prisms_->usable(unsigned(from))) {
+    double resume;
+    const DisplacedHit h = walk(o, d, t, t_max, unsigned(from), any_hit, resume);
+    if (h.hit || std::isnan(resume)) return h;
+    t = resume;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  for (int entry = 0; entry < kMaxEntries && t < t_max; ++entry) {
+    ++embree_queries_;
+    RTCRayHit rh = embree_ray(o, d, t, t_max);
+    rtcIntersect1(sheets_->scene(), &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
+    const double at = rh.ray.tfar;
+    // Past the sheet triangle met, by more than Embree's float rounding of the ray.
+    const double past = std::max(at, t) * (1 + 1e-6) + 1e-7;
+    if (!sheets_->entering(rh.hit.primID, d)) {
+      t = past;
+      continue;
+    }
+    double resume;
+    const DisplacedHit h =
+        walk(o, d, at, t_max, sheets_->base_triangle(rh.hit.primID), any_hit, resume);
+    if (h.hit || std::isnan(resume)) return h;
+    t = std::max(resume, past);
+  }
+  return {};
 }
 
 DisplacedHit DisplacedTruth::intersect(const glm::dvec3& origin, const glm::dvec3& direction,
                                        double t_max) const {
   ++primary_rays_;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  DisplacedHit h;
-  // The relief is one-sided, as the shaders have it ("base seen from below: no relief"): a hit
-  // on the sheet from behind (through an open mesh's gaps) is passed through.
-  double t_min = 0;
-  for (int pass = 0; pass < 64; ++pass) {
-    RTCRayHit rh = embree_ray(origin, direction, t_min, t_max);
-    rtcIntersect1(scene_, &context, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
-    const unsigned* tri = &indices_[3 * size_t(rh.hit.primID)];
-    const double w1 = rh.hit.u, w2 = rh.hit.v, w0 = 1 - w1 - w2;
-    const Vertex &a = vertices_[tri[0]], &b = vertices_[tri[1]], &c = vertices_[tri[2]];
-    auto mix3 = [&](const glm::vec3& x, const glm::vec3& y, const glm::vec3& z) {
-      return glm::normalize(w0 * glm::dvec3(x) + w1 * glm::dvec3(y) + w2 * glm::dvec3(z));
-    };
-    h.normal = mix3(a.normal, b.normal, c.normal);
-    if (glm::dot(h.normal, direction) >= 0) {
-      t_min = double(rh.ray.tfar) * (1 + 1e-6) + 1e-7;
-      continue;
-    }
-    h.hit = true;
-    h.t = rh.ray.tfar;
-    h.position = origin + direction * h.t;
-    h.uv = w0 * glm::dvec2(a.uv) + w1 * glm::dvec2(b.uv) + w2 * glm::dvec2(c.uv);
-    h.tangent = mix3(a.tangent, b.tangent, c.tangent);
-    h.bitangent = mix3(a.bitangent, b.bitangent, c.bitangent);
-    const glm::dvec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
-    if (glm::length(ng) > 0)
-      h.geometric_normal = glm::dot(ng, direction) > 0 ? -glm::normalize(ng) : glm::normalize(ng);
-    return h;
-  }
-  return h;
+  return first_hit(origin, direction, 0.0, t_max, -1, false);
 }
 
 bool DisplacedTruth::occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_min,
-                              double t_max) const {
+                              double t_max, int from) const {
   ++shadow_rays_;
-  return embree_occluded(scene_, origin, direction, t_min, t_max);
+  return first_hit(origin, direction, t_min, t_max, from, true).hit;
 }
 
 }  // namespace rl

@@ -51,8 +51,7 @@ SceneTruth::SceneTruth(const SceneDesc& scene, const ReliefMap& map, double tole
         pattern, base ? *base : make_base_mesh(scene.base, scene.size, scene.tile), scene.depth);
   } else if (scene.base.curved()) {
     displaced_ = std::make_unique<DisplacedTruth>(
-        base ? *base : make_base_mesh(scene.base, scene.size, scene.tile), map, scene.depth,
-        tolerance);
+        base ? *base : make_base_mesh(scene.base, scene.size, scene.tile), map, scene.depth);
   } else {
     planar_ = make_truth(scene, map, tolerance);
   }

@@ -358,6 +358,17 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
 
 namespace {
 
+// A secondary ray from hit h: the displaced truth starts its walk in h's prism (the ray
+// starts under its sheet); a pattern's Embree scene needs no such start.
+bool occluded_from(const DisplacedTruth& truth, const DisplacedHit& h, const glm::dvec3& dir,
+                   double t_min, double t_max) {
+  return truth.occluded(h.position, dir, t_min, t_max, h.base_triangle);
+}
+bool occluded_from(const PatternBaseTruth& truth, const DisplacedHit& h, const glm::dvec3& dir,
+                   double t_min, double t_max) {
+  return truth.occluded(h.position, dir, t_min, t_max);
+}
+
 // A relief traced in world space (a displaced heightfield, or a pattern mapped onto the base).
 template <typename WorldTruth>
 GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const SceneDesc& scene,
@@ -388,7 +399,7 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
         in_shadow = true;  // light at or below the base's tangent plane, as the shaders
       } else {
         const double reach = glm::length(scene.light_position - h.position);
-        in_shadow = truth.occluded(h.position, to_light, 1e-4 * scene.depth, reach);
+        in_shadow = occluded_from(truth, h, to_light, 1e-4 * scene.depth, reach);
       }
     }
     AoEstimate ao;
@@ -402,14 +413,16 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
             ao_sampling(scene), ao_seed(i), h.normal, h.tangent, [&](const glm::dvec3& w) {
               const double rise = std::max(glm::dot(w, h.normal), 1e-6);
               ++counters.ao_traced;
-              return truth.occluded(h.position, w, 1e-4 * scene.depth, below_top / rise);
+              return occluded_from(truth, h, w, 1e-4 * scene.depth, below_top / rise);
             });
       });
       counters.ao_rays += uint64_t(ao.rays);
     }
+    const double off_ray = h.off_ray / std::max(std::abs(glm::dot(h.geometric_normal, dir)), 1e-9);
     write_relief_pixel(g, i, scene, albedo, n, h.position, to_light, dir, h.uv, in_shadow, ao,
                        truth_hit_bound(vertical_world, rounding_world, h.normal, h.geometric_normal,
-                                       n, dir, h.position));
+                                       n, dir, h.position) +
+                           off_ray);
   };
   return trace_pixels(truth, scene, camera, objects, ao_cache, stats, counters, trace);
 }
