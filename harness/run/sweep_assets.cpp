@@ -80,9 +80,6 @@ std::unique_ptr<Asset> build_asset(const SweepConfig& config, const SceneDesc& s
 // The run log's line for a built asset: its size, build time and what its truth is.
 std::string describe_asset(const SceneDesc& scene, const Asset& asset) {
   char buf[320];
-  const char* unit = scene.base.curved() && (!has_charts(scene.base) || scene.meta.active())
-                         ? "base triangle"
-                         : "texel";
   // A meta-relief's size is its layer 0's (its bake, `map`, may differ).
   const MapSize layer0_size = asset.map.meta ? MapSize{asset.map.meta->layers()[0].map.width,
                                                        asset.map.meta->layers()[0].map.height}
@@ -103,7 +100,19 @@ std::string describe_asset(const SceneDesc& scene, const Asset& asset) {
                   "%zu-layer meta-relief traced exactly)",
                   scene.name.c_str(), layer0_size.width, layer0_size.height, asset.map.width,
                   asset.map.height, asset.build_ms, scene.meta.layers.size() + 1);
-  else if (asset.truth->tessellation_bound() == 0 && !scene.base.curved())
+  else if (scene.base.curved())
+    std::snprintf(buf, sizeof buf,
+                  "relieflab: asset %s at %dx%d: built in %.0f ms (truth %.0f ms, exact to "
+                  "rounding on the curved base: %s; each trace states its bound in texels)",
+                  scene.name.c_str(), layer0_size.width, layer0_size.height, asset.build_ms,
+                  asset.truth->build_ms(),
+                  scene.relief.pattern_mesh()
+                      ? "the pattern mesh placed on every base triangle"
+                      : ("walked through the base's prisms behind a sheet of " +
+                         std::to_string(asset.truth->subdivision()) + "x" +
+                         std::to_string(asset.truth->subdivision()) + " per base triangle")
+                            .c_str());
+  else if (asset.truth->tessellation_bound() == 0)
     std::snprintf(buf, sizeof buf,
                   "relieflab: asset %s at %dx%d: built in %.0f ms (truth %.0f ms, exact to "
                   "rounding: each trace states its bound in texels)",
@@ -112,10 +121,10 @@ std::string describe_asset(const SceneDesc& scene, const Asset& asset) {
   else
     std::snprintf(buf, sizeof buf,
                   "relieflab: asset %s at %dx%d: built in %.0f ms (Embree truth %.0f ms, "
-                  "tessellation %dx%d per %s, deviation <= %.2g depth units)",
+                  "tessellation %dx%d per texel, deviation <= %.2g depth units)",
                   scene.name.c_str(), layer0_size.width, layer0_size.height, asset.build_ms,
                   asset.truth->build_ms(), asset.truth->subdivision(), asset.truth->subdivision(),
-                  unit, asset.truth->tessellation_bound());
+                  asset.truth->tessellation_bound());
   return buf;
 }
 

@@ -24,7 +24,8 @@ namespace {
 const ColumnDeclaration truth_columns(
     "truth",
     {ColumnSpec{"truth_subdivision", "",
-                "tessellation of a tessellated truth: k per texel, or n per base triangle"}
+                "the truth's Embree front end: k x k per texel of a heightfield's lifted "
+                "grid, n x n per base triangle of a curved base's sheet (speed, not accuracy)"}
          .neither_better(),
      ColumnSpec{
          "truth_bound", "depth units",
