@@ -246,6 +246,43 @@ TEST(Registry, AFetchBoundBrokenAtRunTimeIsNamedInTheRunLog) {
       << log;
 }
 
+// A describe() counts samples of the map; a meta-relief combined per fetch reads every layer's
+// texture for each sample, and the run-time check counts them so: relief keeps its promise on
+// a two-layer meta-relief at the floor (every step taken: twice the bound in fetches), and no
+// warning names it.
+TEST(Registry, AMetaReliefCombinedPerFetchKeepsTheFetchBound) {
+  const std::string dir = test::scratch_dir("fetch-bound-meta");
+  fs::create_directories(dir);
+  const std::string text = R"([sweep]
+name = "meta-fetches"
+elevations = [40]
+viewports = [48]
+images = false
+frames = 1
+warmup = 0
+
+[[scene]]
+name = "meta"
+relief = { procedural = "constant", resolution = 32, options = { value = 1 } }
+[scene.meta_relief]
+combine = "runtime"
+[[scene.meta_relief.layers]]
+relief = { procedural = "constant", resolution = 32, options = { value = 1 } }
+tiling = 2
+weight = 0.3
+
+[[technique]]
+name = "relief"
+linear_steps = [16]
+binary_steps = [4]
+)";
+  test::run_sweep_in(text, dir);
+  std::ifstream in(dir + "/out/run.log");
+  const std::string log((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(log.find("1 cells"), std::string::npos) << log;
+  EXPECT_EQ(log.find("its contract does not hold"), std::string::npos) << log;
+}
+
 TEST(Registry, ASharedParameterNameMeansOneQuantity) {
   // linear_steps is an int of relief's; a float of the same name would share its column.
   TechniqueInfo info = PairedSamples::describe();

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "gl/op_count_buffer.h"
 #include "gl/render_target.h"
+#include "relief/meta_relief.h"
 
 namespace rl {
 namespace {
@@ -87,9 +88,12 @@ namespace {
 
 // A promise is checked on every cell a sweep measures, not only by the contract suite: a
 // plugin whose fragments fetch more than its describe() declares is named in the run log.
+// A describe() counts samples of the map; a meta-relief combined per fetch reads every layer's
+// texture for each (`textures_per_sample`).
 std::string check_fetch_bound(const TechniqueInfo& info, const Cell& cell, const ReliefMap& map,
-                              const FragmentCost& cost) {
-  const double bound = info.contract.max_fetches(whole_frame_query(cell.params, map));
+                              int textures_per_sample, const FragmentCost& cost) {
+  const double bound =
+      textures_per_sample * info.contract.max_fetches(whole_frame_query(cell.params, map));
   if (!(cost.frag_fetches_max > bound)) return "";  // within it, or not counted (NaN)
   char line[160];
   std::snprintf(line, sizeof line, "a fragment paid %.0f fetches, over the %.0f",
@@ -125,7 +129,9 @@ CellMeasure measure_cell(const SweepConfig& config, const SceneDesc& scene, Asse
   // The bound is a plain render's: shadow rays and AO samples fetch on top of it.
   if (!frame.effects.has(Effect::SelfShadow) && !frame.effects.has(Effect::AmbientOcclusion))
     out.fetch_bound_warning = check_fetch_bound(
-        TechniqueRegistry::instance().find(cell.technique)->info, cell, asset.map, out.cost);
+        TechniqueRegistry::instance().find(cell.technique)->info, cell, asset.map,
+        scene.meta.runtime() && asset.map.meta ? int(asset.map.meta->layers().size()) : 1,
+        out.cost);
   add_model_cost(config, *technique, frame, cell, out);
   out.frame_columns = technique->frame_columns();
   for (const auto& [name, value] : out.frame_columns) {
