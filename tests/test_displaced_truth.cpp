@@ -27,6 +27,22 @@ SceneDesc curved_scene(const std::string& base, const std::string& relief, int r
   return s;
 }
 
+// A relief on a generated or shipped base, with its truth.
+struct CurvedCase {
+  SceneDesc scene;
+  ReliefMap map;
+  BaseMesh mesh;
+  std::unique_ptr<DisplacedTruth> truth;
+};
+
+CurvedCase curved_case(const std::string& base, const std::string& relief, int res) {
+  CurvedCase c{curved_scene(base, relief, res), {}, {}, nullptr};
+  c.map = build_relief_asset(c.scene, res);
+  c.mesh = make_base_mesh(c.scene.base, c.scene.size, c.scene.tile);
+  c.truth = std::make_unique<DisplacedTruth>(c.mesh, c.map, c.scene.depth);
+  return c;
+}
+
 // A sphere of radius `radius` about the origin: an octahedron's faces split n x n and pushed
 // onto it, normals radial, uvs the projection along z (0.5 + x, 0.5 + y) / (2 radius): no seam
 // and no pole, so the relief on it is continuous everywhere.
@@ -110,10 +126,12 @@ class RadialReference {
   // enters the sphere of radius `radius` (twenty times finer where it passes within four steps
   // of the surface, so a ray that only grazes a crest is not stepped over), then bisected; NaN
   // where it misses.
-  double first_hit(const glm::dvec3& o, const glm::dvec3& d, double radius, double step) const {
+  double first_hit(const glm::dvec3& o, const glm::dvec3& d, double radius, double step,
+                   double t_min = -1e300) const {
     const double b = glm::dot(o, d), c = glm::dot(o, o) - radius * radius, disc = b * b - c;
     if (disc <= 0) return std::nan("");
-    const double t0 = -b - std::sqrt(disc), t1 = -b + std::sqrt(disc);
+    const double t0 = std::max(t_min, -b - std::sqrt(disc)), t1 = -b + std::sqrt(disc);
+    if (at_or_below_at(o + t0 * d)) return t0;
     auto at_or_below = [&](double t) {
       const std::optional<double> g = below(o + t * d);
       return g && *g >= 0;
@@ -136,6 +154,10 @@ class RadialReference {
   }
 
  private:
+  bool at_or_below_at(const glm::dvec3& x) const {
+    const std::optional<double> g = below(x);
+    return g && *g >= 0;
+  }
   const BaseMesh& mesh_;
   const ReliefMap& map_;
   double depth_;
@@ -143,6 +165,7 @@ class RadialReference {
 };
 
 TEST(CurvedBaseTruth, MatchesAClosedFormOnARadialBaseFromOneToNinetyDegrees) {
+  // Primary rays: hit or miss as the closed form, and where; shadow rays: met or not.
   for (const char* relief : {"sines", "bricks"}) {
     const SceneDesc scene = curved_scene("sphere", relief, 32);
     const ReliefMap map = build_relief_asset(scene, 32);
@@ -152,8 +175,9 @@ TEST(CurvedBaseTruth, MatchesAClosedFormOnARadialBaseFromOneToNinetyDegrees) {
     const double texel = texel_world(mesh, MapSize{map.width, map.height});
     for (double elevation : {1.0, 5.0, 20.0, 45.0, 90.0}) {
       const Camera camera = make_camera(scene, View{elevation, 25}, 40, 40);
-      long hits = 0, disagree = 0;
+      long hits = 0, disagree = 0, shadows = 0, shadow_disagree = 0;
       double worst = 0;
+      const glm::dvec3 light = glm::normalize(glm::dvec3(0.3, -0.8, 0.5));
       for (int y = 0; y < camera.height; ++y)
         for (int x = 0; x < camera.width; ++x) {
           glm::dvec3 eye, dir;
@@ -167,12 +191,22 @@ TEST(CurvedBaseTruth, MatchesAClosedFormOnARadialBaseFromOneToNinetyDegrees) {
           if (!h.hit) continue;
           ++hits;
           worst = std::max(worst, glm::distance(h.position, eye + t * dir) / texel);
+          // A shadow ray from the hit, started in its prism: met or not, as the closed form.
+          const double t_min = 1e-4 * scene.depth;
+          const bool shadowed = truth.occluded(h.position, light, t_min, 2.0, h.base_triangle);
+          const double t_shadow =
+              reference.first_hit(h.position, light, 0.5 * scene.size + 1e-9, 0.01 * texel, t_min);
+          shadow_disagree += shadowed == std::isnan(t_shadow);
+          shadows += shadowed;
         }
-      std::printf("%s at %g degrees: %ld hits, worst %.2g texel\n", relief, elevation, hits, worst);
+      std::printf("%s at %g degrees: %ld hits, worst %.2g texel; %ld in shadow, %ld disagree\n",
+                  relief, elevation, hits, worst, shadows, shadow_disagree);
       SCOPED_TRACE(std::string(relief) + " at " + std::to_string(elevation) + " degrees");
       EXPECT_GT(hits, 100);
       EXPECT_EQ(disagree, 0);
       EXPECT_LE(worst, 0.05);
+      EXPECT_GT(shadows, 50);
+      EXPECT_LE(shadow_disagree, hits / 200);  // a shadow ray grazing the relief: either way
     }
   }
 }
@@ -196,20 +230,17 @@ glm::dvec3 relief_point(const BaseMesh& mesh, const ReliefMap& map, double depth
 // at random barycentrics (at least 64 per base triangle), on the steepest map (the bricks' walls).
 TEST(CurvedBaseTruth, TheSheetLiesOutsideTheReliefOnEveryBase) {
   for (const char* kind : {"sphere", "torus", "teapot", "cube"}) {
-    const SceneDesc scene = curved_scene(kind, "bricks", 64);
-    const ReliefMap map = build_relief_asset(scene, 64);
-    const BaseMesh mesh = make_base_mesh(scene.base, scene.size, scene.tile);
-    const DisplacedTruth truth(mesh, map, scene.depth);
+    const auto [scene, map, mesh, truth] = curved_case(kind, "bricks", 64);
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> unit(0, 1);
     long sampled = 0, outside = 0;
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-      if (!truth.prisms().usable(unsigned(t))) continue;
+      if (!truth->prisms().usable(unsigned(t))) continue;
       for (size_t k = 0; k < std::max<size_t>(64, 20000 / mesh.triangles.size()); ++k) {
         double b1 = unit(rng), b2 = unit(rng), s = 0;
         if (b1 + b2 > 1) b1 = 1 - b1, b2 = 1 - b2;
         const glm::dvec3 x = relief_point(mesh, map, scene.depth, t, b1, b2, s);
-        outside += truth.sheets().outside(x, PrismPoint{unsigned(t), b1, b2, s});
+        outside += truth->sheets().outside(x, PrismPoint{unsigned(t), b1, b2, s});
         ++sampled;
       }
     }
@@ -249,19 +280,58 @@ TEST(CurvedBaseTruth, TheSheetIsOnlyASpeedKnob) {
 // target on all but 0.1% of the covered pixels, so no row rests on a flagged truth.
 TEST(CurvedBaseTruth, StatesABoundWithinTheTargetOnEveryBase) {
   for (const char* kind : {"sphere", "torus", "teapot", "cube"}) {
-    const SceneDesc scene = curved_scene(kind, "pyramids", 64);
-    const ReliefMap map = build_relief_asset(scene, 64);
-    const BaseMesh mesh = make_base_mesh(scene.base, scene.size, scene.tile);
-    const DisplacedTruth truth(mesh, map, scene.depth);
+    const auto [scene, map, mesh, truth] = curved_case(kind, "pyramids", 64);
     const double texel = texel_world(mesh, MapSize{map.width, map.height});
     for (double elevation : {5.0, 45.0, 90.0}) {
       const GBuffer g =
-          render_truth(truth, map, scene, make_camera(scene, View{elevation, 30}, 48, 48), {});
+          render_truth(*truth, map, scene, make_camera(scene, View{elevation, 30}, 48, 48), {});
       const TruthBoundStats bound = truth_bound_stats(g, texel);
       EXPECT_GT(bound.covered, 200) << kind << " at " << elevation;
       EXPECT_LE(bound.uncertain * 1000, bound.covered) << kind << " at " << elevation;
     }
   }
+}
+
+// Secondary rays start under the sheet, where Embree alone would not see the relief: the walk
+// starts in the hit's prism. A relief of one depth on a flat base occludes no hemisphere ray;
+// on a sphere, no hit's ray back to the eye along the path that reached it is blocked. (On the
+// sphere a hemisphere ray may be: the flat triangles displaced along interpolated normals tilt
+// the surface by up to half the angle between neighbouring normals.)
+TEST(CurvedBaseTruth, SecondaryRaysFromAConstantReliefLeaveIt) {
+  SceneDesc scene = test::procedural_scene("constant", 32, 0.08, false, {{"value", 0.6}});
+  scene.effects.add(Effect::AmbientOcclusion);
+  scene.ao.samples = 16;
+  const ReliefMap map = build_relief_asset(scene, 32);
+  const DisplacedTruth flat(make_base_mesh(BaseDesc{"plane", "", 1}, scene.size, scene.tile), map,
+                            scene.depth);
+  TruthStats stats;
+  const GBuffer g = render_truth(flat, map, scene, make_camera(scene, View{35, 20}, 40, 40),
+                                 scene.effects, &stats);
+  long covered = 0, occluded = 0;
+  for (size_t i = 0; i < g.size(); ++i) {
+    covered += g.covered(i);
+    occluded += g.covered(i) && g.aux[i].x < 1.0f;
+  }
+  EXPECT_GT(covered, 300);
+  EXPECT_GT(stats.ao_rays, uint64_t(covered) * 8);
+  EXPECT_EQ(occluded, 0);
+
+  scene.base.kind = "sphere";
+  scene.base.segments = 16;
+  const DisplacedTruth sphere(make_base_mesh(scene.base, scene.size, scene.tile), map, scene.depth);
+  const Camera camera = make_camera(scene, View{35, 20}, 40, 40);
+  long hits = 0, blocked = 0;
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      glm::dvec3 eye, dir;
+      camera.pixel_ray(x, y, eye, dir);
+      const DisplacedHit h = sphere.intersect(eye, dir, camera.far_plane);
+      if (!h.hit) continue;
+      ++hits;
+      blocked += sphere.occluded(h.position, -dir, 1e-4 * scene.depth, h.t, h.base_triangle);
+    }
+  EXPECT_GT(hits, 500);
+  EXPECT_EQ(blocked, 0);
 }
 
 }  // namespace
