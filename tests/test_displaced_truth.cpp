@@ -14,6 +14,7 @@
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
 #include "truth/displaced_truth.h"
+#include "truth/min_pyramid.h"
 #include "truth/truth_render.h"
 
 namespace rl {
@@ -332,6 +333,34 @@ TEST(CurvedBaseTruth, SecondaryRaysFromAConstantReliefLeaveIt) {
     }
   EXPECT_GT(hits, 500);
   EXPECT_EQ(blocked, 0);
+}
+
+// The sheet's least depths: never above the least texel of the box (wrapping like GL_REPEAT),
+// exact for one texel, on a map whose sides are not powers of two.
+TEST(CurvedBaseTruth, TheMinPyramidNeverExceedsTheBoxsLeastTexel) {
+  ReliefMap map;
+  map.width = 37;
+  map.height = 23;
+  map.relief.resize(size_t(map.width) * size_t(map.height));
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> depth(0, 1);
+  for (glm::vec4& t : map.relief) t.a = depth(rng);
+  const MinPyramid pyramid(map);
+  std::uniform_int_distribution<long> start(-80, 80), extent(0, 50);
+  for (int k = 0; k < 2000; ++k) {
+    const long x0 = start(rng), y0 = start(rng), x1 = x0 + extent(rng), y1 = y0 + extent(rng);
+    double least = 1e9;
+    for (long y = y0; y <= y1; ++y)
+      for (long x = x0; x <= x1; ++x)
+        least = std::min(
+            least, double(map.depth_texel(int(((x % 37) + 37) % 37), int(((y % 23) + 23) % 23))));
+    ASSERT_LE(pyramid.least(x0, x1, y0, y1), least) << x0 << ".." << x1 << ", " << y0 << ".." << y1;
+    if (x0 == x1 && y0 == y1) {
+      ASSERT_EQ(pyramid.least(x0, x1, y0, y1), least);
+    }
+  }
+  for (long x = -40; x < 40; ++x)
+    ASSERT_EQ(pyramid.least(x, x, 5, 5), map.depth_texel(int(((x % 37) + 37) % 37), 5));
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "relief/heightfield_reference.h"
 #include "relief/meta_relief.h"
 #include "truth/meta_relief_truth.h"
+#include "truth/min_pyramid.h"
 
 namespace rl {
 namespace {
@@ -19,22 +20,14 @@ constexpr int kMaxChords = 1 << 16;  // per walk: a guard, never reached on a sa
 constexpr int kMaxEntries = 256;     // sheet entries per ray, likewise
 constexpr double kFirstStep = 4;     // the first chord's length, texels
 
-// The least depth of `map` (repeating, `tiling` times per unit of uv) over the bilinear cells
-// that reach into [lo, hi] padded by a texel.
-double least_texel(const ReliefMap& map, double tiling, const glm::dvec2& lo,
+// The least depth of a map (repeating, `tiling` times per unit of uv) over the bilinear cells
+// that reach into [lo, hi], padded by a texel.
+double least_texel(const MinPyramid& pyramid, double tiling, const glm::dvec2& lo,
                    const glm::dvec2& hi) {
-  const double sx = tiling * map.width, sy = tiling * map.height;
-  long x0 = long(std::floor(lo.x * sx - 0.5)) - 1, x1 = long(std::floor(hi.x * sx - 0.5)) + 2;
-  long y0 = long(std::floor(lo.y * sy - 0.5)) - 1, y1 = long(std::floor(hi.y * sy - 0.5)) + 2;
-  if (x1 - x0 >= map.width) x0 = 0, x1 = map.width - 1;
-  if (y1 - y0 >= map.height) y0 = 0, y1 = map.height - 1;
-  double least = std::numeric_limits<double>::infinity();
-  for (long y = y0; y <= y1; ++y)
-    for (long x = x0; x <= x1; ++x)
-      least =
-          std::min(least, double(map.depth_texel(int(x % map.width + map.width) % map.width,
-                                                 int(y % map.height + map.height) % map.height)));
-  return least;
+  const double sx = tiling * pyramid.width(), sy = tiling * pyramid.height();
+  return pyramid.least(long(std::floor(lo.x * sx - 0.5)) - 1, long(std::floor(hi.x * sx - 0.5)) + 2,
+                       long(std::floor(lo.y * sy - 0.5)) - 1,
+                       long(std::floor(hi.y * sy - 0.5)) + 2);
 }
 
 // The largest depth step between neighbouring texels of a plain map (wrapping).
@@ -107,6 +100,10 @@ DisplacedTruth::DisplacedTruth(const BaseMesh& base, const ReliefMap& map, doubl
     map_.relief = map.relief;
   }
   max_slope_ = steepest_step(map, std::max(texels.x, texels.y));
+  if (map.meta)
+    for (const MetaLayer& layer : map.meta->layers()) pyramids_.emplace_back(layer.map);
+  else
+    pyramids_.emplace_back(map);
   prisms_ = std::make_unique<BasePrisms>(base, texels);
   sheets_ = std::make_unique<ShellSheets>(
       *prisms_, [this](const glm::dvec2& lo, const glm::dvec2& hi) { return least_depth(lo, hi); },
@@ -117,13 +114,12 @@ DisplacedTruth::DisplacedTruth(const BaseMesh& base, const ReliefMap& map, doubl
 DisplacedTruth::~DisplacedTruth() = default;
 
 double DisplacedTruth::least_depth(const glm::dvec2& lo, const glm::dvec2& hi) const {
-  if (!meta_) return least_texel(map_, 1.0, lo, hi);
+  if (!meta_) return least_texel(pyramids_[0], 1.0, lo, hi);
   // Eq. 2 is a sum with non-negative shares: its least is at least the shares' least parts.
   const MetaRelief& meta = *meta_->meta();
   double least = 0;
   for (size_t i = 0; i < meta.layers().size(); ++i)
-    least +=
-        meta.depth_share(i) * least_texel(meta.layers()[i].map, meta.layers()[i].tiling, lo, hi);
+    least += meta.depth_share(i) * least_texel(pyramids_[i], meta.layers()[i].tiling, lo, hi);
   return least;
 }
 

@@ -36,6 +36,7 @@
 #include "relief/relief_map.h"
 #include "scene/base_mesh.h"
 #include "truth/base_prisms.h"
+#include "truth/min_pyramid.h"
 #include "truth/shell_sheets.h"
 #include "truth/truth_surface.h"
 
@@ -126,6 +127,7 @@ class DisplacedTruth {
 
   ReliefMap map_;  // a plain map's depths (no colour), or empty for a meta-relief
   std::unique_ptr<MetaReliefTruth> meta_;
+  std::vector<MinPyramid> pyramids_;  // the least depths of the map, or of each layer
   double depth_ = 1;
   double max_slope_ = 0;  // the map's largest depth step between neighbouring texels (finest)
   std::unique_ptr<BasePrisms> prisms_;
