@@ -253,7 +253,7 @@ const std::vector<BadCase>& bad_cases() {
        replace(kGood, "relief = { procedural = \"flat\", resolution = 8 }",
                "relief = { mesh = \"" RELIEFLAB_SOURCE_DIR
                "/assets/meshes/teapot.obj\", layers = 4, resolution = 8 }"),
-       {"technique 'relief' cannot render scene 'flat': it is a relief impostor"}},
+       {"technique 'relief' cannot render scene 'flat': the scene is a relief impostor"}},
       {"pom_min_above_max",
        replace(kGood, "name = \"relief\"\nlinear_steps = [4]",
                "name = \"pom\"\nmin_samples = 40\nmax_samples = 20"),

@@ -195,7 +195,7 @@ TEST(MetaReliefRender, TwinLayersCombinedAtRunTimeRenderTheSingleMapWithTwiceThe
 TEST(MetaReliefRender, EveryRuntimeTechniqueCombinesFractionalTilingsFinitely) {
   for (const std::string& name : TechniqueRegistry::instance().names()) {
     const TechniqueInfo& info = TechniqueRegistry::instance().find(name)->info;
-    if (!info.meta_relief) continue;
+    if (!info.draws.reads.has(Representation::MetaRuntime)) continue;
     SCOPED_TRACE(name);
     SceneDesc s = meta_scene("bricks", 20, 5.5, 0.3);
     if (info.effects.has(Effect::AmbientOcclusion)) s.effects.add(Effect::AmbientOcclusion);
@@ -255,7 +255,7 @@ TEST(MetaReliefRender, ScenesWithoutMetaReliefCompileNoLayerCombination) {
   for (const std::string& name : TechniqueRegistry::instance().names()) {
     auto t = TechniqueRegistry::instance().create(name, {}, "test");
     auto* shader = dynamic_cast<const ShaderTechnique*>(t.get());
-    if (!shader || !t->info().meta_relief) continue;
+    if (!shader || !t->info().draws.reads.has(Representation::MetaRuntime)) continue;
     SurfaceVariant meta;
     meta.meta_layers = 3;
     const auto target = RenderTarget::Kind::GBuffer;

@@ -283,6 +283,40 @@ binary_steps = [4]
   EXPECT_EQ(log.find("its contract does not hold"), std::string::npos) << log;
 }
 
+// What a technique draws is set inclusion over the scene's inputs, one axis at a time, and the
+// refusal is the first axis's own words.
+TEST(Registry, WhatATechniqueDrawsIsSetInclusionOverTheScenesInputs) {
+  SceneDesc scene;
+  scene.base.kind = "plane";
+  const Draws plain{};
+  EXPECT_EQ(cannot_draw(plain, scene), "");
+  scene.base.kind = "sphere";
+  EXPECT_EQ(cannot_draw(plain, scene), "");
+  const Draws planar{.bases = {BaseShape::Planar}};
+  EXPECT_NE(cannot_draw(planar, scene).find("planar base only"), std::string::npos);
+  scene.proxy = Proxy::Box;
+  EXPECT_NE(cannot_draw(plain, scene).find("proxy = \"box\""), std::string::npos);
+  const Draws boxed{.proxies = {Proxy::Base, Proxy::Box}};
+  EXPECT_EQ(cannot_draw(boxed, scene), "");
+  scene.relief.layers = 4;
+  EXPECT_EQ(scene_inputs(scene).relief, Representation::Layers);
+  const Draws single{.reads = {Representation::Heightfield}, .proxies = {Proxy::Box}};
+  EXPECT_NE(cannot_draw(single, scene).find("no multilayer map"), std::string::npos);
+  scene.relief.cells.active = true;  // the representation decides first
+  EXPECT_EQ(scene_inputs(scene).relief, Representation::CellComplex);
+  EXPECT_NE(cannot_draw(boxed, scene).find("the scene is a cell complex"), std::string::npos);
+  const Draws cells{.reads = {Representation::CellComplex}, .proxies = {Proxy::Base, Proxy::Box}};
+  EXPECT_EQ(cannot_draw(cells, scene), "");
+  EXPECT_TRUE(cells.reads.only(Representation::CellComplex));
+  EXPECT_EQ(reads_in_words(plain), "heightfield, layers");
+  EXPECT_EQ(draws_on_in_words(boxed), "planar or curved base, or the relief's box proxy");
+  // Every registered technique answers through the same declaration.
+  for (const std::string& name : TechniqueRegistry::instance().names()) {
+    const TechniqueInfo& info = TechniqueRegistry::instance().find(name)->info;
+    EXPECT_EQ(cannot_render(info, scene), cannot_draw(info.draws, scene)) << name;
+  }
+}
+
 TEST(Registry, ASharedParameterNameMeansOneQuantity) {
   // linear_steps is an int of relief's; a float of the same name would share its column.
   TechniqueInfo info = PairedSamples::describe();

@@ -30,7 +30,8 @@ class IntervalMapping final : public Described<IntervalMapping, ShaderTechnique>
                     .min_value = 0,
                     .max_value = 32,
                     .doc = "regula falsi refinements of the bracket the linear search found"}},
-        .meta_relief = true,
+        .draws = {.reads = {Representation::Heightfield, Representation::Layers,
+                            Representation::MetaRuntime}},
         .contract = {.answer = Answer::Converging,
                      .max_fetches =
                          [](const RayQuery& q) {

@@ -46,21 +46,8 @@ void print_list() {
                 info.citation.c_str(), rl::join_effects(info.effects).c_str());
     if (const std::string& plugin = registry.find(name)->plugin; !plugin.empty())
       std::printf("  plugin:   %s\n", plugin.c_str());
-    if (info.cell_complex) {
-      std::printf("  draws:    cell-complex reliefs only (relief = { cells = \"mesh.obj\" })\n");
-    } else if (info.heightfield_object_only) {
-      std::printf(
-          "  draws:    objects from several heightfields only (relief = { mesh = "
-          "\"mesh.obj\", faces = N })\n");
-    } else {
-      std::printf("  proxies:  %s%s%s%s\n",
-                  info.planar_only         ? "planar base"
-                  : info.single_layer_only ? "base (single layer)"
-                                           : "base",
-                  info.box_proxy ? ", box" : "", info.impostor ? ", impostor" : "",
-                  info.heightfield_object ? ", heightfield object" : "");
-      std::printf("  meta-relief: %s\n", info.meta_relief ? "runtime or baked" : "baked");
-    }
+    std::printf("  reads:    %s\n  draws on: %s\n", rl::reads_in_words(info.draws).c_str(),
+                rl::draws_on_in_words(info.draws).c_str());
     if (info.params.empty()) std::printf("  parameters: none\n");
     for (const rl::ParamSpec& p : info.params) {
       std::printf("  %-16s %-5s default %s", p.name.c_str(), rl::param_kind_name(p.kind).c_str(),

@@ -51,7 +51,7 @@ SurfaceVariant ShaderTechnique::variant_of(const SceneDesc& scene) {
 bool ShaderTechnique::draws_back_faces(const SurfaceVariant& variant) const {
   // Only a technique that searches upward too draws back faces; the others keep their
   // one-sided search (and miss the far side through the gaps, as a heightfield would).
-  return variant.two_sided && info().impostor;
+  return variant.two_sided && info().draws.reads.has(Representation::Impostor);
 }
 
 ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Kind target,

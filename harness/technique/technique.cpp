@@ -189,33 +189,7 @@ std::string cannot_render(const TechniqueInfo& info, const SceneDesc& s) {
     return "it does not support effect(s) " +
            join_effects(info.effects.missing_from(s.drawn_effects())) +
            " (it supports: " + join_effects(info.effects) + "); drop the effect";
-  if (s.cell_complex() != info.cell_complex)
-    return info.cell_complex ? "it renders cell-complex reliefs (relief = { cells = ... }) only"
-                             : "the scene is a cell complex (relief = { cells = ... }), which "
-                               "only the cell-complex techniques read";
-  if (s.cell_complex()) return "";
-  if (s.heightfield_object() && !info.heightfield_object)
-    return "the scene is an object from several heightfields (relief = { mesh = ..., faces = N "
-           "}), which only techniques that read every face's map draw";
-  if (s.heightfield_object()) return "";
-  if (info.heightfield_object_only)
-    return "it renders objects from several heightfields (relief = { mesh = ..., faces = N }) "
-           "only";
-  if (info.planar_only && (s.base.curved() || s.relief.layers > 0 || s.projection.active()))
-    return "it slices a single heightfield in its box on the planar base (no curved base, "
-           "multilayer map or reverse perspective)";
-  if (info.single_layer_only && (s.relief.layers > 0 || s.projection.active()))
-    return "it reads a single heightfield (no multilayer map or reverse perspective)";
-  if (s.impostor() && !info.impostor)
-    return "it is a relief impostor (a mesh baked into layers, seen from both sides)";
-  if (s.meta.runtime() && !info.meta_relief)
-    return "it cannot combine the meta-relief layers at run time (its search needs one map); "
-           "set combine = \"baked\" in the scene's meta_relief";
-  if (info.box_proxy_only && s.proxy != Proxy::Box)
-    return "it draws the relief as the closed solid in its box; set proxy = \"box\"";
-  if (s.proxy == Proxy::Box && !info.box_proxy)
-    return "proxy = \"box\" (it only shades the base surface)";
-  return "";
+  return cannot_draw(info.draws, s);
 }
 
 }  // namespace rl

@@ -25,6 +25,7 @@
 #include "relief/relief_map.h"
 #include "scene/scene.h"
 #include "technique/contract.h"
+#include "technique/draws.h"
 #include "technique/gpu_scene.h"
 #include "technique/object_pass.h"
 
@@ -36,45 +37,23 @@ struct TechniqueInfo {
   std::string citation;  // paper and section
   EffectSet effects;     // effects it can simulate when a scene asks for them
   std::vector<ParamSpec> params;
-  bool box_proxy = false;  // can render a scene's bounding-box proxy (Proxy::Box)
-  // Searches upward as well as downward: renders relief impostors (SceneDesc::impostor()) and
-  // the back faces of a pattern on a closed curved base seen through its gaps.
-  bool impostor = false;
-  // Reads the relief only through rl_relief_texel / rl_relief_depth (relief_common.glsl), so
-  // it runs on a meta-relief whose layers are combined per fetch (MetaReliefDesc::Runtime).
-  bool meta_relief = false;
-  // Renders a mesh encoded as a cubic cell complex (SceneDesc::cell_complex(), Apaza & Andujar)
-  // -- and only that: the other techniques search a heightfield map.
-  bool cell_complex = false;
-  // Renders a mesh as an object from several heightfields (SceneDesc::heightfield_object(),
-  // relief/heightfield_faces.h), reading every face's map.
-  bool heightfield_object = false;
-  // ... and nothing else: not a heightfield on a base (the multi-heightfield ray caster).
-  bool heightfield_object_only = false;
-  // Draws a single-layer heightfield on the planar base only (no curved base, multilayer map or
-  // reverse-perspective box): depth slicing, whose slices are planes across the relief's box.
-  bool planar_only = false;
-  // Draws a single-layer heightfield only, on any base (no multilayer map or reverse-perspective
-  // box): omni-directional displacement maps, whose 4D map holds one surface's hits.
-  bool single_layer_only = false;
-  // Draws the relief as the closed solid in its box only (proxy = "box"): a rasterised mesh,
-  // whose sides are the box's (on a base with no box, rays could not enter through them).
-  bool box_proxy_only = false;
+  // What it reads and draws on (technique/draws.h): a heightfield or layers on any base, on
+  // the base surface, unless it declares otherwise.
+  Draws draws{};
   // What it promises (technique/contract.h), held to by the contract suite.
   TechniqueContract contract;
   // The columns its frame_columns() writes (core/columns.h), declared when it registers.
   std::vector<ColumnSpec> columns{};
-  // Why one of its settings cannot draw `scene` ("" when it can), beyond what the flags above
-  // say for every setting (relief's mip-mapped reads on a meta-relief combined per fetch, whose
+  // Why one of its settings cannot draw `scene` ("" when it can), beyond what `draws` says
+  // for every setting (relief's mip-mapped reads on a meta-relief combined per fetch, whose
   // layers have no mip levels). Asked for every setting and scene when the config is read.
   std::function<std::string(const ParamValues& setting, const SceneDesc& scene)>
       setting_cannot_render{};
 };
 
-// Why a technique cannot render `scene` ("" when it can): effects it does not simulate, a
-// relief impostor, a meta-relief combined at run time, a box proxy or a cell complex it does
-// not support (or, for a cell-complex technique, any other scene). Config checks and the tests
-// that iterate the registry ask the same question.
+// Why a technique cannot render `scene` ("" when it can): effects it does not simulate, or a
+// scene input outside what it declares it draws (technique/draws.h). Config checks and the
+// tests that iterate the registry ask the same question.
 std::string cannot_render(const TechniqueInfo& info, const SceneDesc& scene);
 
 // Throws std::logic_error naming the technique when its metadata is inconsistent: an empty or

@@ -121,55 +121,23 @@ std::string columns_markdown(DocsScope scope) {
 
 std::string techniques_markdown(DocsScope scope) {
   std::string out =
-      "| technique | what | source | effects | proxies | meta-relief |\n"
+      "| technique | what | source | effects | reads | draws on |\n"
       "| --- | --- | --- | --- | --- | --- |\n";
   const auto& registry = TechniqueRegistry::instance();
   for (const std::string& name : registry.names()) {
     if (!in_scope(*registry.find(name), scope)) continue;
     const TechniqueInfo& info = registry.find(name)->info;
-    const std::string proxies = info.cell_complex ? "cell complex"
-                                : info.heightfield_object_only
-                                    ? "heightfield object"
-                                    : std::string("base") + (info.box_proxy ? ", box" : "") +
-                                          (info.impostor ? ", impostor" : "") +
-                                          (info.heightfield_object ? ", heightfield object" : "");
-    const std::string meta = info.cell_complex || info.heightfield_object_only
-                                 ? "-"
-                                 : (info.meta_relief ? "runtime or baked" : "baked");
     out += "| [`" + name + "`](techniques/" + name + "/README.md) | " + cell(info.title) + " | " +
-           cell(info.citation) + " | " + effects_cell(info.effects) + " | " + proxies + " | " +
-           meta + " |\n";
+           cell(info.citation) + " | " + effects_cell(info.effects) + " | " +
+           reads_in_words(info.draws) + " | " + draws_on_in_words(info.draws) + " |\n";
   }
   return out;
 }
 
 std::string interface_markdown(const TechniqueInfo& info) {
-  const std::string objects =
-      info.heightfield_object
-          ? "objects from several heightfields (relief = { mesh = \"mesh.obj\", faces = N }), "
-            "in their bounding cube"
-          : "";
-  std::string out =
-      info.cell_complex
-          ? "Effects it can simulate: " + effects_cell(info.effects) +
-                ". Draws: cell-complex reliefs only (relief = { cells = \"mesh.obj\" }), in "
-                "their bounding cube.\n\n"
-      : info.heightfield_object_only ? "Effects it can simulate: " + effects_cell(info.effects) +
-                                           ". Draws: " + objects + " only.\n\n"
-      : info.box_proxy_only
-          ? "Effects it can simulate: " + effects_cell(info.effects) +
-                ". Draws: the relief's box proxy only, on a planar base (the relief as the "
-                "closed solid in its box; single-layer heightfields).\n\n"
-          : "Effects it can simulate: " + effects_cell(info.effects) + ". Draws: the " +
-                (info.planar_only         ? "planar base (single-layer heightfields)"
-                 : info.single_layer_only ? "base, planar or curved (single-layer heightfields)"
-                                          : "base") +
-                (info.box_proxy ? " or the relief's box proxy" : "") +
-                (info.impostor ? "; relief impostors, from both sides" : "") +
-                (objects.empty() ? "" : "; " + objects) + ". Meta-reliefs: " +
-                (info.meta_relief ? "its layers combined per fetch, or their bake"
-                                  : "their bake (its search needs one map)") +
-                ".\n\n";
+  std::string out = "Effects it can simulate: " + effects_cell(info.effects) +
+                    ". Reads: " + reads_in_words(info.draws) +
+                    ". Draws on: " + draws_on_in_words(info.draws) + ".\n\n";
   out += contract_markdown(info);
   for (size_t i = 0; i < info.columns.size(); ++i) {
     const ColumnSpec& c = info.columns[i];

@@ -54,7 +54,7 @@ class CellComplexRaycast final : public Described<CellComplexRaycast, TextureSpa
                         .min_value = 0,
                         .max_value = 32,
                         .doc = "binary search refinements after the linear search"}},
-            .cell_complex = true,
+            .draws = {.reads = {Representation::CellComplex}, .proxies = {Proxy::Base, Proxy::Box}},
             .contract = {
                 .answer = Answer::Converging,
                 .max_fetches =

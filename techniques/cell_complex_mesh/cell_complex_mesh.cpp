@@ -78,7 +78,7 @@ class CellComplexMesh final : public Described<CellComplexMesh, CellTriangles> {
                                "is dropped: it would join two sheets across a depth discontinuity "
                                "(at least 1.5: below the diagonal of a texel, sqrt 2, every "
                                "triangle went and nothing was drawn)"}},
-            .cell_complex = true,
+            .draws = {.reads = {Representation::CellComplex}, .proxies = {Proxy::Base, Proxy::Box}},
             .contract = {.answer = Answer::Approximation,
                          .max_fetches = [](const RayQuery&) { return 0; },
                          .max_fetches_formula = "0: rasterised triangles, shaded from vertices",
@@ -107,7 +107,7 @@ class CellSourceMesh final : public Described<CellSourceMesh, CellTriangles> {
         .citation = "Apaza & Andujar, Section 4 (rendering the input model, Table 2's comparison)",
         .effects = {Effect::DepthCorrect},
         .params = {},
-        .cell_complex = true,
+        .draws = {.reads = {Representation::CellComplex}, .proxies = {Proxy::Base, Proxy::Box}},
         .contract = {.answer = Answer::Exact,
                      .max_fetches = [](const RayQuery&) { return 0; },
                      .max_fetches_formula = "0: rasterised triangles",

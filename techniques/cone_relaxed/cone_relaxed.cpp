@@ -44,7 +44,7 @@ class ConeRelaxed final : public Described<ConeRelaxed, ShaderTechnique> {
                         .min_value = 4,
                         .max_value = 256,
                         .doc = "azimuths the cone map precompute scans per texel"}},
-            .box_proxy = true,
+            .draws = {.proxies = {Proxy::Base, Proxy::Box}},
             .contract = {.answer = Answer::Converging,
                          .max_fetches =
                              [](const RayQuery& q) {

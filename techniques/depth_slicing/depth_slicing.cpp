@@ -148,9 +148,10 @@ class DepthSlicing final : public Described<DepthSlicing, Technique> {
                         .doc = "slices normal to the view direction across the volume (one set "
                                "for all faces) instead of parallel to each relief texture "
                                "(Figure 5.8)"}},
-            .box_proxy = true,
-            .heightfield_object = true,
-            .planar_only = true,
+            .draws = {.reads = {Representation::Heightfield, Representation::HeightfieldObject},
+                      .bases = {BaseShape::Planar},
+                      .proxies = {Proxy::Base, Proxy::Box},
+                      .projections = {Projection::Plain}},
             .contract = {
                 .answer = Answer::Converging,
                 .max_fetches =

@@ -57,9 +57,10 @@ class HeightfieldMesh final : public Described<HeightfieldMesh, Technique> {
                     .max_value = 8,
                     .doc = "quads per side of each bilinear cell (two triangles each): the mesh "
                            "approaches the bilinear surface as it grows"}},
-        .box_proxy = true,
-        .planar_only = true,
-        .box_proxy_only = true,
+        .draws = {.reads = {Representation::Heightfield},
+                  .bases = {BaseShape::Planar},
+                  .proxies = {Proxy::Box},
+                  .projections = {Projection::Plain}},
         .contract = {.answer = Answer::Converging,
                      .max_fetches = [](const RayQuery&) { return 0; },
                      .max_fetches_formula = "0: rasterised triangles",

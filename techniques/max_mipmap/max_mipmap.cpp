@@ -14,7 +14,7 @@ class MaxMipmap final : public Described<MaxMipmap, QuadtreeTechnique> {
                 "Dynamic Height Field Rendering', I3D 2008",
             .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
             .params = {},
-            .box_proxy = true,
+            .draws = {.proxies = {Proxy::Base, Proxy::Box}},
             .contract = {
                 .answer = Answer::Approximation,
                 .max_fetches = [](const RayQuery& q) { return quadtree_nodes(q) + 2; },

@@ -31,8 +31,8 @@ class MultiHeightfield final : public Described<MultiHeightfield, TextureSpaceTe
                         .min_value = 0,
                         .max_value = 32,
                         .doc = "binary search refinements after the linear search"}},
-            .heightfield_object = true,
-            .heightfield_object_only = true,
+            .draws = {.reads = {Representation::HeightfieldObject},
+                      .proxies = {Proxy::Base, Proxy::Box}},
             .contract = {
                 .answer = Answer::Converging,
                 .max_fetches =

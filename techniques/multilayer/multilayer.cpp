@@ -70,7 +70,8 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
                     .max_value = 1,
                     .doc = "pattern on a closed curved base: draw front faces, then back faces "
                            "(Section 5's 2-pass rendering), not all faces in one pass"}},
-        .impostor = true,
+        .draws = {.reads = {Representation::Heightfield, Representation::Layers,
+                            Representation::Impostor}},
         .contract = {.answer = Answer::Converging,
                      .surface = Surface::TexelColumns,
                      .max_fetches =

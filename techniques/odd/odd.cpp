@@ -47,7 +47,7 @@ class OmniDirectionalDisplacement final : public Described<OmniDirectionalDispla
                         .doc = "blend the four nearest cells of the floored pair too (4 "
                                "fetches): directions in (a, b, x, y), super pixels in "
                                "(x, y, a, b)"}},
-            .single_layer_only = true,
+            .draws = {.reads = {Representation::Heightfield}, .projections = {Projection::Plain}},
             .contract = {.answer = Answer::Approximation,
                          .max_fetches =
                              [](const RayQuery& q) {

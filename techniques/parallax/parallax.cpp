@@ -29,7 +29,8 @@ class ParallaxMapping final : public Described<ParallaxMapping, ShaderTechnique>
               .doc =
                   "depth subtracted before shifting (Listing 5.1 uses half the scale because its "
                   "polygon sits mid-relief; ReliefLab's base is the top, so 0)"}},
-        .meta_relief = true,
+        .draws = {.reads = {Representation::Heightfield, Representation::Layers,
+                            Representation::MetaRuntime}},
         .contract = {.answer = Answer::Approximation,
                      .max_fetches = [](const RayQuery&) { return 1 + 2; },
                      .max_fetches_formula = "1, + 2 to shade (1 more in a probe: the depth there)",

@@ -26,7 +26,8 @@ class ParallaxOcclusion final : public Described<ParallaxOcclusion, ShaderTechni
                         .min_value = 2,
                         .max_value = 1024,
                         .doc = "linear search samples at grazing views"}},
-            .meta_relief = true,
+            .draws = {.reads = {Representation::Heightfield, Representation::Layers,
+                                Representation::MetaRuntime}},
             .contract = {
                 .answer = Answer::Converging,
                 .max_fetches = [](const RayQuery& q) { return 1 + q.param("max_samples") + 2; },

@@ -42,8 +42,9 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
                      "(chapter 5, 'Texture filtering and mip-mapping'); 0: level 0, the surface "
                      "the truth reconstructs",
               .neutral_default = true}},
-        .box_proxy = true,
-        .meta_relief = true,
+        .draws = {.reads = {Representation::Heightfield, Representation::Layers,
+                            Representation::MetaRuntime},
+                  .proxies = {Proxy::Base, Proxy::Box}},
         .contract = {.answer = Answer::Converging,
                      .max_fetches =
                          [](const RayQuery& q) {

@@ -14,7 +14,7 @@ class ReliefExact final : public Described<ReliefExact, ShaderTechnique> {
                 "(2D Amanatides & Woo 1987)",
             .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
             .params = {},
-            .box_proxy = true,
+            .draws = {.proxies = {Proxy::Base, Proxy::Box}},
             .contract = {
                 .answer = Answer::Approximation,
                 .max_fetches = [](const RayQuery& q) { return 1 + walk_cells(q) + 2; },

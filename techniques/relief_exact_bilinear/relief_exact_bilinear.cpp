@@ -15,7 +15,7 @@ class ReliefExactBilinear final : public Described<ReliefExactBilinear, ShaderTe
             "Figure 3 exactly",
         .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
         .params = {},
-        .box_proxy = true,
+        .draws = {.proxies = {Proxy::Base, Proxy::Box}},
         .contract = {.answer = Answer::Exact,
                      .max_fetches = [](const RayQuery& q) { return walk_cells(q) + 2; },
                      .max_fetches_formula = "cells walked (centerlines crossed + 1, at most "

@@ -40,7 +40,7 @@ class ReliefHierarchicalExact final : public Described<ReliefHierarchicalExact, 
                     .doc = "1: on 8-bit maps node bounds are read 4 x 4 nodes at a time, 8 bits "
                            "each, with their parents' bounds derived from them: one fetch serves "
                            "two levels of the descent"}},
-        .box_proxy = true,
+        .draws = {.proxies = {Proxy::Base, Proxy::Box}},
         .contract = {.answer = Answer::Exact,
                      .max_fetches = [](const RayQuery& q) { return quadtree_nodes(q) + 2; },
                      .max_fetches_formula = "quadtree nodes entered (2 x cells crossed + 4 per "

@@ -68,7 +68,7 @@ class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
               .max_value = 1,
               .doc = "Section 3.5's words: keep the largest radius over the sampled directions "
                      "(safe for one direction only); 0 = the smallest, safe for all"}},
-        .box_proxy = true,
+        .draws = {.proxies = {Proxy::Base, Proxy::Box}},
         .contract = {.answer = Answer::Converging,
                      .max_fetches =
                          [](const RayQuery& q) {

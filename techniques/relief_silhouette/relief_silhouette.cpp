@@ -45,8 +45,8 @@ class ReliefSilhouette final : public Described<ReliefSilhouette, ShaderTechniqu
               .doc = "1: Equation 5.2 (whatever exact_distance says) with its linear "
                      "coefficient as the chapter prints it, b = 2 A Px Ux + 2 B Py Uy, without the "
                      "-Uz that substituting R = P + U s into Equation 5.1 gives"}},
-        .box_proxy = false,
-        .meta_relief = true,
+        .draws = {.reads = {Representation::Heightfield, Representation::Layers,
+                            Representation::MetaRuntime}},
         .contract = {.answer = Answer::Converging,
                      .max_fetches = linear_binary_fetches_shaded,
                      .max_fetches_formula = "linear_steps + binary_steps, + 2 to shade",

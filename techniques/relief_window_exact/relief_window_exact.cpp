@@ -38,7 +38,7 @@ class ReliefWindowExact final : public Described<ReliefWindowExact, ShaderTechni
                     .doc = "steps taken at a level before the search tries the next one up "
                            "(1: after every step, as maximum-mipmap traversals do; more saves "
                            "the failing tries of a ray that runs close to the surface)"}},
-        .box_proxy = true,
+        .draws = {.proxies = {Proxy::Base, Proxy::Box}},
         .contract = {.answer = Answer::Exact,
                      .max_fetches = [](const RayQuery& q) { return window_steps(q) + 2; },
                      .max_fetches_formula = "5 x (texels crossed along the faster axis + 2) + "

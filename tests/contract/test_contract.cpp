@@ -44,13 +44,14 @@ constexpr double kMismatchTexels = 64;
 // A ray search on a single heightfield map (cell complexes and heightfield objects read other
 // maps; a rasteriser has no ray to probe).
 bool probes_heightfields(const TechniqueInfo& info) {
-  return info.contract.ray_probe && !info.cell_complex && !info.heightfield_object_only;
+  return info.contract.ray_probe && info.draws.reads.has(Representation::Heightfield);
 }
 
 // Rays that start inside the depth range are its to answer when it draws a box proxy's sides
 // or an impostor.
 std::vector<ProbeRay> rays_for(const TechniqueInfo& info) {
-  return hard_rays(info.box_proxy || info.impostor);
+  return hard_rays(info.draws.proxies.has(Proxy::Box) ||
+                   info.draws.reads.has(Representation::Impostor));
 }
 
 bool searches(const TechniqueInfo& info) {
@@ -426,7 +427,8 @@ std::vector<double> output_stage(const std::string& technique, const ParamValues
   const TechniqueInfo& info = info_of(technique);
   if (stage == 0) {
     if (!probes_heightfields(info)) return out;
-    std::vector<ProbeRay> rays = hard_rays(info.box_proxy || info.impostor);
+    std::vector<ProbeRay> rays = hard_rays(info.draws.proxies.has(Proxy::Box) ||
+                                           info.draws.reads.has(Representation::Impostor));
     const std::vector<ProbeRay> curved = curved_rays();
     rays.insert(rays.end(), curved.begin(), curved.end());
     for (const ProbeHit& h : probe(technique, params, probe_maps()[3].map, rays))
