@@ -2,7 +2,8 @@
 // plane (multilayer, double depth and a heightfield compared), with an object sitting in it,
 // on closed curved bases (the far side through the gaps, two passes, silhouettes, the teapot
 // whose uvs overlap), relief impostors seen from every side, and every registered technique
-// on the weave. The layer bake and the search itself: tests/test_multilayer.cpp.
+// on the weave. The layer bake: tests/test_layer_bake.cpp; the search itself:
+// techniques/multilayer/test_multilayer.cpp.
 #include <cmath>
 #include <cstdio>
 

@@ -141,6 +141,28 @@ TriangleMesh uv_sphere(glm::dvec3 c, double r, int slices, int stacks) {
   return m;
 }
 
+TriangleMesh layer_boxes(const std::vector<std::tuple<double, double, double, double>>& spans,
+                         bool flip) {
+  TriangleMesh m;
+  for (const auto& [lo, hi, top, bottom] : spans) {
+    const uint32_t b = uint32_t(m.positions.size());
+    for (int k = 0; k < 8; ++k)
+      m.positions.emplace_back(k & 1 ? hi : lo, k & 2 ? hi : lo, k & 4 ? -top : -bottom);
+    // Faces as quads (a, b, c, d) counter-clockwise seen from outside.
+    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                             {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& q : quads) {
+      glm::uvec3 t0(b + q[0], b + q[1], b + q[2]), t1(b + q[0], b + q[2], b + q[3]);
+      if (flip) std::swap(t0.y, t0.z), std::swap(t1.y, t1.z);
+      m.triangles.push_back(t0);
+      m.triangles.push_back(t1);
+    }
+  }
+  m.lo = glm::dvec3(0, 0, -1);
+  m.hi = glm::dvec3(1, 1, 0);
+  return m;
+}
+
 TriangleMesh hollow_ball() {
   TriangleMesh shell = uv_sphere({0.5, 0.5, 0.5}, 0.4, 64, 32);
   const TriangleMesh inner = uv_sphere({0.5, 0.5, 0.5}, 0.2, 64, 32);

@@ -4,6 +4,8 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -63,6 +65,12 @@ TriangleMesh uv_sphere(glm::dvec3 c, double r, int slices, int stacks);
 // Two concentric UV spheres about (0.5, 0.5, 0.5), radii 0.4 and 0.2, the inner one turned
 // inside out: a hollow ball, whose every line from the centre crosses two sheets.
 TriangleMesh hollow_ball();
+
+// Axis-aligned boxes in a pattern's mesh space (x = u, y = v, z = -depth), outward-wound
+// unless `flip`; each box spans u, v in [lo, hi] and depth [top, bottom]: layers with known
+// crossings.
+TriangleMesh layer_boxes(const std::vector<std::tuple<double, double, double, double>>& spans,
+                         bool flip = false);
 
 // Writes `mesh` as an OBJ file at `path` (its folder created); returns the path.
 std::string write_obj(const TriangleMesh& mesh, const std::string& path);

@@ -1,8 +1,6 @@
-// Non-height-field relief (Policarpo & Oliveira 2006): the layer bake on meshes with known
-// crossings, the procedural patterns' closedness and orientation, the multilayer search
-// against the exact truth of its own layers (probe rays and hard cases; in a scene its search
-// error, the skins of linear filtering and its shadows). Scenes against the mesh itself:
-// tests/test_multilayer_scenes.cpp.
+// The multilayer search (Policarpo & Oliveira 2006) against the exact truth of its own layers:
+// probe rays and hard cases, eight layers in two groups; in a scene its search error, the skins
+// of linear filtering and its shadows.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -24,136 +22,6 @@
 
 namespace rl {
 namespace {
-
-// Axis-aligned boxes in a pattern's mesh space (x = u, y = v, z = -depth), outward-wound
-// unless `flip`; each box spans u, v in [lo, hi] and depth [top, bottom].
-TriangleMesh boxes(const std::vector<std::tuple<double, double, double, double>>& spans,
-                   bool flip = false) {
-  TriangleMesh m;
-  for (const auto& [lo, hi, top, bottom] : spans) {
-    const uint32_t b = uint32_t(m.positions.size());
-    for (int k = 0; k < 8; ++k)
-      m.positions.emplace_back(k & 1 ? hi : lo, k & 2 ? hi : lo, k & 4 ? -top : -bottom);
-    // Faces as quads (a, b, c, d) counter-clockwise seen from outside.
-    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                             {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    for (const auto& q : quads) {
-      glm::uvec3 t0(b + q[0], b + q[1], b + q[2]), t1(b + q[0], b + q[2], b + q[3]);
-      if (flip) std::swap(t0.y, t0.z), std::swap(t1.y, t1.z);
-      m.triangles.push_back(t0);
-      m.triangles.push_back(t1);
-    }
-  }
-  m.lo = glm::dvec3(0, 0, -1);
-  m.hi = glm::dvec3(1, 1, 0);
-  return m;
-}
-
-TEST(LayerBake, AFloatingSlabHasTwoExactLayersFacingOut) {
-  for (bool flip : {false, true}) {
-    SCOPED_TRACE(flip ? "wound inward" : "wound outward");
-    const ReliefMap map =
-        bake_layers(boxes({{0.25, 0.75, 0.3, 0.6}}, flip), pattern_frame(), 16, 16, 4, {1, 1, 1});
-    const LayerStack& L = map.layers;
-    const size_t texels = 256;
-    ASSERT_EQ(L.count, 4);
-    EXPECT_EQ(L.max_crossings, 2);
-    EXPECT_EQ(L.overflow_texels, 0);
-    EXPECT_EQ(L.misoriented_crossings, flip ? 2 * 8 * 8 : 0);
-    for (int y = 0; y < 16; ++y)
-      for (int x = 0; x < 16; ++x) {
-        const size_t i = size_t(y) * 16 + x;
-        const bool inside = x >= 4 && x < 12 && y >= 4 && y < 12;
-        ASSERT_EQ(L.used(i), inside ? 2 : 0) << x << "," << y;
-        EXPECT_EQ(map.relief[i].a, inside ? L.depth[i] : 1.0f);
-        if (!inside) continue;
-        EXPECT_NEAR(L.depth[i], 0.3, 1e-5);
-        EXPECT_NEAR(L.depth[texels + i], 0.6, 1e-5);
-        EXPECT_EQ(L.depth[2 * texels + i], 1.0f);         // unused: the paper's 1.0
-        EXPECT_NEAR(L.normal[i].z, 1.0, 1e-6);            // top: out of the solid, up
-        EXPECT_NEAR(L.normal[texels + i].z, -1.0, 1e-6);  // bottom: down
-      }
-  }
-}
-
-TEST(LayerBake, CrossingsBeyondTheLayersAreCountedAndTheTopOnesKept) {
-  // Three stacked slabs: depth complexity 6 (the 8-layer case).
-  const TriangleMesh stack =
-      boxes({{0.25, 0.75, 0.1, 0.2}, {0.25, 0.75, 0.4, 0.5}, {0.25, 0.75, 0.7, 0.8}});
-  const ReliefMap four = bake_layers(stack, pattern_frame(), 8, 8, 4, {1, 1, 1});
-  const ReliefMap eight = bake_layers(stack, pattern_frame(), 8, 8, 8, {1, 1, 1});
-  EXPECT_EQ(four.layers.max_crossings, 6);
-  EXPECT_EQ(four.layers.overflow_texels, 4 * 4);
-  EXPECT_EQ(eight.layers.overflow_texels, 0);
-  const size_t centre = 4 * 8 + 4;
-  EXPECT_EQ(four.layers.used(centre), 4);
-  EXPECT_EQ(eight.layers.used(centre), 6);
-  EXPECT_NEAR(four.layers.depth[3 * 64 + centre], 0.5, 1e-5);  // the 4th crossing is kept
-  EXPECT_NEAR(eight.layers.depth[5 * 64 + centre], 0.8, 1e-5);
-}
-
-// Figure 5 stores a layer's normal as x and y in 8 bits and rebuilds z on the layer's side;
-// quantize_8bit does the same and says what it cost. Three texels of two layers: an up normal,
-// one leaning 36.9 degrees on the back layer, and one 2.56 degrees off the base plane, whose x
-// rounds to 1 and leaves z = 0 (the worst case of the representation: z is ill-conditioned near
-// the plane); a texel with no surface on a layer does not count. 0 is not among the stored
-// values (0.5 x 255 = 127.5 rounds to 128, 0.0039 after decoding), so even an up normal leans
-// 0.32 degrees.
-TEST(LayerStorage, QuantizingReportsTheAngleThe8BitNormalsCost) {
-  ReliefMap m;
-  m.width = 3;
-  m.height = 1;
-  m.relief.assign(3, glm::vec4(0.5f, 0.5f, 1.0f, 0.0f));
-  m.color.assign(3, glm::vec4(1.0f));
-  LayerStack& l = m.layers;
-  l.count = 2;
-  l.depth = {0.2f, 0.3f, 0.4f, 0.6f, 0.7f, 1.0f};
-  const double off_plane = std::sin(2.56 * M_PI / 180);
-  l.normal = {{0, 0, 1},
-              {0.6f, 0, 0.8f},
-              {float(std::sqrt(1 - off_plane * off_plane)), 0, float(off_plane)},
-              {0, 0, -1},
-              {0.6f, 0, -0.8f},
-              {1, 0, 0}};
-  l.color.assign(6, glm::vec3(1.0f));
-  quantize_8bit(m);
-  EXPECT_NEAR(l.normal_storage_err_max_deg, 2.56, 0.01);
-  // The other four: each component moves by at most 1 / 255 (at most 0.33 degrees here).
-  EXPECT_GT(l.normal_storage_err_mean_deg, (2.56 + 4 * 0.1) / 5);
-  EXPECT_LT(l.normal_storage_err_mean_deg, (2.56 + 4 * 0.33) / 5);
-  EXPECT_EQ(l.normal[2].x, 1.0f);
-  EXPECT_EQ(l.normal[2].z, 0.0f);
-  EXPECT_NEAR(l.normal[0].x, 1.0 / 255, 1e-6);  // 0 stored as 128 / 255
-}
-
-TEST(PatternMesh, TilesCloseUpAndAreWoundOutward) {
-  for (const char* kind : {"weave", "helix"}) {
-    SCOPED_TRACE(kind);
-    const TriangleMesh mesh = make_pattern_mesh(kind, {}, "test");
-    // Every directed edge has its opposite once, with positions compared modulo the tile:
-    // the tubes' open ends on the tile border meet the next tile's.
-    auto key = [&](uint32_t v) {
-      const glm::dvec3 p(mesh.positions[v]);
-      auto wrap = [](double x) { return long(std::lround((x - std::floor(x + 1e-6)) * 1e5)); };
-      return std::make_tuple(wrap(p.x), wrap(p.y), long(std::lround(p.z * 1e5)));
-    };
-    std::map<std::pair<decltype(key(0)), decltype(key(0))>, int> edges;
-    for (const glm::uvec3& t : mesh.triangles)
-      for (int k = 0; k < 3; ++k) ++edges[{key(t[k]), key(t[(k + 1) % 3])}];
-    long unmatched = 0;
-    for (const auto& [e, n] : edges) unmatched += n != 1 || edges.count({e.second, e.first}) != 1;
-    EXPECT_EQ(unmatched, 0);
-    const ReliefMap map =
-        bake_layers(with_neighbour_tiles(mesh), pattern_frame(), 64, 64, 4, {1, 1, 1});
-    EXPECT_EQ(map.layers.misoriented_crossings, 0);
-    EXPECT_EQ(map.layers.odd_texels, 0);  // closed across the tiles
-    EXPECT_EQ(map.layers.overflow_texels, 0);
-    EXPECT_EQ(map.layers.max_crossings, 4);
-  }
-  EXPECT_THROW(make_pattern_mesh("weave", {{"amplitude", 0.05}}, "test"), ConfigError);
-  EXPECT_THROW(make_pattern_mesh("helix", {{"radius", 0.4}}, "test"), ConfigError);
-  EXPECT_THROW(make_pattern_mesh("weave", {{"knots", 1}}, "test"), ConfigError);
-}
 
 struct ProbeSetup {
   ReliefMap map;
@@ -256,7 +124,7 @@ TEST(MultilayerProbe, EightLayersFindTheSixthSurfaceFourLayersLoseIt) {
   // layers were kept.
   GlContext::shared();
   const TriangleMesh stack =
-      boxes({{0.25, 0.75, 0.1, 0.2}, {0.25, 0.75, 0.4, 0.5}, {0.25, 0.75, 0.7, 0.8}});
+      test::layer_boxes({{0.25, 0.75, 0.1, 0.2}, {0.25, 0.75, 0.4, 0.5}, {0.25, 0.75, 0.7, 0.8}});
   const ParamValues params = {{"linear_steps", 64}, {"binary_steps", 8}};
   std::vector<ProbeRay> rays;
   for (int k = 0; k < 64; ++k) {  // start between slabs 2 and 3, slanting a little
