@@ -16,9 +16,10 @@ namespace rl {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr int kMaxChords = 1 << 16;  // per walk: a guard, never reached on a sane base
-constexpr int kMaxEntries = 256;     // sheet entries per ray, likewise
-constexpr double kFirstStep = 4;     // the first chord's length, texels
+constexpr int kMaxChords = 1 << 16;      // per walk: a guard, never reached on a sane base
+constexpr int kMaxEntries = 256;         // sheet entries per ray, likewise
+constexpr double kFirstStep = 4;         // the first chord's length, texels
+constexpr double kFirstShadowStep = 16;  // a shadow or hemisphere ray's first chord, texels
 
 // The least depth of a map (repeating, `tiling` times per unit of uv) over the bilinear cells
 // that reach into [lo, hi], padded by a texel.
@@ -248,7 +249,8 @@ DisplacedHit DisplacedTruth::walk(const glm::dvec3& o, const glm::dvec3& d, doub
     resume = t;
     return {};
   }
-  double step = kFirstStep * prisms_->texel_world(a.triangle);
+  // A shadow or hemisphere ray is short and starts on the relief: a longer first chord.
+  double step = (any_hit ? kFirstShadowStep : kFirstStep) * prisms_->texel_world(a.triangle);
   int came_from = -1;  // the prism the walk last hopped from, and where
   double hop_t = kNaN;
   for (int chord = 0; chord < kMaxChords; ++chord) {
