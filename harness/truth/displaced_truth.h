@@ -22,10 +22,10 @@
 // The relief is solid below its surface, as the heightfield truth's is: a ray meets it where it
 // first goes at or below d (a shadow ray starting inside is occluded at once). Shadow and
 // hemisphere rays only ask whether it is met, and take the walk's chords' answer (to 1e-2
-// texel) without halving them. The sheet is
-// entered only from outside, so a ray reaching the shell from within the object (through an open
-// mesh) passes; at an edge where the normals split (a cube's), the two faces' shells overlap or
-// part, as the techniques' do.
+// texel) without halving them. The sheet is entered only from outside, so a ray reaching the
+// shell from within the object (through an open mesh) passes; at an edge where the normals
+// split (a cube's), the two faces' shells overlap or part, as the techniques' do. Where the base
+// bends faster than the shell is deep, prisms fold and the walk follows one prism's extension.
 #include <cstdint>
 #include <memory>
 #include <vector>
