@@ -169,7 +169,12 @@ void BM_DisplacedTruthGBuffer(benchmark::State& state) {
   scene.base.kind = "sphere";
   const ReliefMap map = build_relief_asset(scene, 256);
   const DisplacedTruth truth(make_base_mesh(scene.base, scene.size, scene.tile), map, scene.depth);
-  time_truth_gbuffers(state, truth, map, scene, make_camera(scene, View{30, 30}, 512, 512));
+  const uint64_t rays =
+      time_truth_gbuffers(state, truth, map, scene, make_camera(scene, View{30, 30}, 512, 512));
+  // The two stages' work per ray: sheet entries found by Embree, chords solved against the map.
+  state.counters["embree_queries_per_ray"] =
+      double(truth.embree_queries()) / double(std::max<uint64_t>(rays, 1));
+  state.counters["chords_per_ray"] = double(truth.chords()) / double(std::max<uint64_t>(rays, 1));
 }
 
 // The reference AO of the default sweep's AO scenes (the rock wall on Embree, and its

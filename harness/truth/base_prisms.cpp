@@ -51,7 +51,6 @@ std::vector<unsigned> weld(const BaseMesh& base) {
 
 BasePrisms::BasePrisms(const BaseMesh& base, const glm::dvec2& texels) {
   const std::vector<unsigned> welded_of = weld(base);
-  welded_count_ = welded_of.empty() ? 0 : *std::max_element(welded_of.begin(), welded_of.end()) + 1;
   prisms_.resize(base.triangles.size());
   for (size_t t = 0; t < base.triangles.size(); ++t) {
     const glm::uvec3& tri = base.triangles[t];
@@ -83,8 +82,6 @@ BasePrisms::BasePrisms(const BaseMesh& base, const glm::dvec2& texels) {
     p.usable = area > 1e-12 * scale * scale && std::abs(glm::determinant(flat)) > 1e-14 * area;
     if (!p.usable) continue;
     p.flat_inverse = glm::inverse(flat);
-    const glm::dmat2 uv_map(p.duv1, p.duv2);
-    if (std::abs(glm::determinant(uv_map)) > 0) p.uv_inverse = glm::inverse(uv_map);
     double shortest = 0;
     const glm::dvec3 world[3] = {p.e1, p.e2, p.e2 - p.e1};
     const glm::dvec2 tex[3] = {p.duv1, p.duv2, p.duv2 - p.duv1};
@@ -141,10 +138,6 @@ void BasePrisms::frame(unsigned t, double b1, double b2, glm::dvec3& tangent,
   const double b0 = 1 - b1 - b2;
   uv_frame(unit_normal(t, b1, b2), b0 * p.dpdu[0] + b1 * p.dpdu[1] + b2 * p.dpdu[2],
            b0 * p.dpdv[0] + b1 * p.dpdv[1] + b2 * p.dpdv[2], tangent, bitangent);
-}
-
-glm::dvec2 BasePrisms::barycentrics_at(unsigned t, const glm::dvec2& uv) const {
-  return prisms_[t].uv_inverse * (uv - prisms_[t].uv0);
 }
 
 bool BasePrisms::locate(const glm::dvec3& x, unsigned t, PrismPoint& out) const {

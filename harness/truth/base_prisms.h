@@ -38,8 +38,6 @@ class BasePrisms {
   // The shading frame there, as the shaders build it (uv_frame of the interpolated normal and
   // mapping axes).
   void frame(unsigned t, double b1, double b2, glm::dvec3& tangent, glm::dvec3& bitangent) const;
-  // The barycentrics at which triangle t's uvs reach `uv` (its affine uv map inverted).
-  glm::dvec2 barycentrics_at(unsigned t, const glm::dvec2& uv) const;
   // World point x in triangle t's parameters (Newton's method from the flat prism's solution,
   // to double rounding); false when it does not converge (x far outside the shell).
   bool locate(const glm::dvec3& x, unsigned t, PrismPoint& p) const;
@@ -58,14 +56,12 @@ class BasePrisms {
   const glm::dvec3& corner_normal(unsigned t, int c) const { return prisms_[t].corner_normal[c]; }
   // +1 where the triangle winds counter-clockwise seen from its normals' side, else -1.
   double winding(unsigned t) const { return prisms_[t].winding; }
-  size_t welded_vertices() const { return welded_count_; }
 
  private:
   struct Prism {
     glm::dvec3 p0{0}, e1{0}, e2{0};  // P(b) = p0 + b1 e1 + b2 e2
     glm::dvec3 n0{0}, m1{0}, m2{0};  // N(b) = n0 + b1 m1 + b2 m2 (unnormalised)
     glm::dvec2 uv0{0}, duv1{0}, duv2{0};
-    glm::dmat2 uv_inverse{1.0};    // (b1, b2) from uv - uv0, where the uv triangle has area
     glm::dmat3 flat_inverse{1.0};  // (b1, b2, s) of the prism with N = n0, from x - p0
     glm::uvec3 welded{0};
     glm::dvec3 corner[3], corner_normal[3], dpdu[3], dpdv[3];
@@ -77,7 +73,6 @@ class BasePrisms {
   void link_neighbours();
 
   std::vector<Prism> prisms_;
-  size_t welded_count_ = 0;
 };
 
 }  // namespace rl
