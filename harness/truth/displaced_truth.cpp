@@ -92,6 +92,7 @@ DisplacedTruth::DisplacedTruth(const BaseMesh& base, const ReliefMap& map, doubl
     : depth_(depth) {
   const auto start = std::chrono::steady_clock::now();
   glm::dvec2 texels(map.width, map.height);
+  map_.meta = map.meta;  // surface_depth() then reads the layers' combination
   if (map.meta) {
     meta_ = std::make_unique<MetaReliefTruth>(map.meta);
     texels = glm::dvec2(map.meta->finest_texels());
@@ -117,7 +118,7 @@ DisplacedTruth::~DisplacedTruth() = default;
 double DisplacedTruth::least_depth(const glm::dvec2& lo, const glm::dvec2& hi) const {
   if (!meta_) return least_texel(pyramids_[0], 1.0, lo, hi);
   // Eq. 2 is a sum with non-negative shares: its least is at least the shares' least parts.
-  const MetaRelief& meta = *meta_->meta();
+  const MetaRelief& meta = *map_.meta;
   double least = 0;
   for (size_t i = 0; i < meta.layers().size(); ++i)
     least += meta.depth_share(i) * least_texel(pyramids_[i], meta.layers()[i].tiling, lo, hi);
@@ -163,8 +164,7 @@ DisplacedHit DisplacedTruth::hit_at(const glm::dvec3& o, const glm::dvec3& d, co
   const double step = 1e-3 * prisms_->texel_world(t);
   auto surface = [&](double b1, double b2) {
     const glm::dvec2 uv = prisms_->uv(t, b1, b2);
-    const double depth = meta_ ? meta_->meta()->depth(uv.x, uv.y) : map_.sample_depth(uv.x, uv.y);
-    return prisms_->point(t, b1, b2, depth_ * depth);
+    return prisms_->point(t, b1, b2, depth_ * map_.surface_depth(uv.x, uv.y));
   };
   const glm::dvec3 e1 = prisms_->point(t, 1, 0, 0) - prisms_->point(t, 0, 0, 0);
   const glm::dvec3 e2 = prisms_->point(t, 0, 1, 0) - prisms_->point(t, 0, 0, 0);

@@ -125,7 +125,7 @@ class DisplacedTruth {
                       double off_ray) const;
   double least_depth(const glm::dvec2& lo, const glm::dvec2& hi) const;
 
-  ReliefMap map_;  // a plain map's depths (no colour), or empty for a meta-relief
+  ReliefMap map_;  // a plain map's depths (no colour), or a meta-relief's layers alone
   std::unique_ptr<MetaReliefTruth> meta_;
   std::vector<MinPyramid> pyramids_;  // the least depths of the map, or of each layer
   double depth_ = 1;

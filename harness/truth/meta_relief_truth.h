@@ -33,7 +33,6 @@ class MetaReliefTruth final : public TruthSurface {
   double tessellation_bound() const override { return 0.0; }
   double rounding_bound() const override { return kDoubleRounding; }
   double build_ms() const override { return 0.0; }
-  const MetaRelief* meta() const { return meta_.get(); }
 
   // The first t in [t_min, t_max] where the ray is at or below the surface, or NaN; `cells`
   // counts the union cells visited.

@@ -215,10 +215,9 @@ bool ShellSheets::outside(const glm::dvec3& x, const PrismPoint& p) const {
   if (i + j > n_ - 1) i = n_ - 1 - j;
   const bool up = (u - i) + (v - j) <= 1.0 || i + j + 1 > n_ - 1;
   const size_t per_triangle = size_t(n_) * size_t(n_);
-  // Sub-triangle index in the order number_vertices() emits them.
-  size_t k = 0;
-  for (int row = 0; row < j; ++row) k += size_t(2 * (n_ - row) - 1);
-  k += size_t(2 * i) + (up ? 0 : 1);
+  // Sub-triangle index in the order number_vertices() emits them: row r holds 2 (n - r) - 1,
+  // so the rows before j hold j (2 n - j).
+  const size_t k = size_t(j) * size_t(2 * n_ - j) + size_t(2 * i) + (up ? 0 : 1);
   const glm::uvec3& tri = indices_[p.triangle * per_triangle + k];
   const glm::dvec3 n = outward(tri, glm::dvec3(prisms_.winding(p.triangle)));
   const double length = glm::length(n);
