@@ -43,13 +43,18 @@ vec4 rl_cell_corners(ivec2 cell) {
 // (the cell's own coordinates, both in [0, 1]: no cancellation between large coordinates on
 // long, grazing rays) and depth z at tau = 0, and moves by dir (texel units) and by 1 in depth
 // per unit tau.
-float rl_patch_first_hit(vec4 corners, vec2 local, vec2 dir, float z, float tau_max) {
+// (ray depth - patch depth) = a tau^2 + b tau + c, as vec3(a, b, c).
+vec3 rl_patch_quadratic(vec4 corners, vec2 local, vec2 dir, float z) {
   float d00 = corners.x, d10 = corners.y, d01 = corners.z, d11 = corners.w;
   float A = d10 - d00, B = d01 - d00, C = d00 - d10 - d01 + d11;
-  float qa = -C * dir.x * dir.y;
-  float qb = 1.0 - A * dir.x - B * dir.y - C * (local.x * dir.y + local.y * dir.x);
-  float qc = z - d00 - A * local.x - B * local.y - C * local.x * local.y;
-  return qc >= 0.0 ? 0.0 : rl_smallest_root(qa, qb, qc, 0.0, tau_max);
+  return vec3(-C * dir.x * dir.y,
+              1.0 - A * dir.x - B * dir.y - C * (local.x * dir.y + local.y * dir.x),
+              z - d00 - A * local.x - B * local.y - C * local.x * local.y);
+}
+
+float rl_patch_first_hit(vec4 corners, vec2 local, vec2 dir, float z, float tau_max) {
+  vec3 q = rl_patch_quadratic(corners, local, dir, z);
+  return q.z >= 0.0 ? 0.0 : rl_smallest_root(q.x, q.y, q.z, 0.0, tau_max);
 }
 
 // First t in [t0, t1] where the ray p + t s (s.z = 1) is at or below the bilinear surface;

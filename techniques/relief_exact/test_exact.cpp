@@ -118,26 +118,40 @@ TEST(ExactBilinear, MatchesTheReferenceOnRandomAndProceduralMaps) {
 }
 
 // Every value of the window pyramid bounds, from above, every cell a step of at most b texels
-// from any point of its block can reach: brute force over the points' possible cells.
+// from any point of its block can reach, for each way of moving along each axis (0: either):
+// brute force over the points' possible cells, the window's edges given half a texel to spare.
 TEST(WindowPyramid, EveryValueBoundsTheCellsAStepCanReach) {
   const int W = 32, H = 16;
   std::vector<float> cells(size_t(W) * H);
   uint32_t state = 12345;
   for (float& c : cells) c = float((state = state * 1664525u + 1013904223u) >> 8) / 16777216.0f;
-  for (int b : {1, 2, 4, 8}) {
-    SCOPED_TRACE(b);
-    const std::vector<float> level = window_level(cells, W, H, b);
-    ASSERT_EQ(level.size(), size_t(W / b) * (H / b));
-    for (int J = 0; J < H / b; ++J)
-      for (int I = 0; I < W / b; ++I) {
-        // X = u W - 0.5 over the block, +- b: cells floor(X) from I b - 1 - b to (I + 1) b - 1 + b.
-        float least = 2.0f;
-        for (int y = J * b - 1 - b; y <= (J + 1) * b - 1 + b; ++y)
-          for (int x = I * b - 1 - b; x <= (I + 1) * b - 1 + b; ++x)
-            least = std::min(least, cells[size_t((y % H + H) % H) * W + size_t((x % W + W) % W)]);
-        EXPECT_LE(level[size_t(J) * (W / b) + I], least) << I << "," << J;
+  // Cells floor(X) a step can reach from X = u W - 0.5 in block I (X in [I b - 0.5, (I + 1) b
+  // - 0.5)), half a texel further each side.
+  auto reach = [](int I, int b, int way) {
+    const double lo = I * b - 0.5 - 0.5 - (way > 0 ? 0 : b);
+    const double hi = (I + 1) * b - 0.5 + 0.5 + (way < 0 ? 0 : b);
+    return std::pair<int, int>(int(std::floor(lo)), int(std::ceil(hi)) - 1);
+  };
+  for (int way_x : {0, 1, -1})
+    for (int way_y : {0, 1, -1})
+      for (int b : {1, 2, 4, 8}) {
+        SCOPED_TRACE(testing::Message() << "b " << b << " ways " << way_x << "," << way_y);
+        const std::vector<float> level = window_level(cells, W, H, b, way_x, way_y);
+        ASSERT_EQ(level.size(), size_t(W / b) * (H / b));
+        for (int J = 0; J < H / b; ++J)
+          for (int I = 0; I < W / b; ++I) {
+            const auto [x0, x1] = reach(I, b, way_x);
+            const auto [y0, y1] = reach(J, b, way_y);
+            float least = 2.0f;
+            for (int y = y0; y <= y1; ++y)
+              for (int x = x0; x <= x1; ++x)
+                least =
+                    std::min(least, cells[size_t((y % H + H) % H) * W + size_t((x % W + W) % W)]);
+            EXPECT_LE(level[size_t(J) * (W / b) + I], least) << I << "," << J;
+          }
       }
-  }
+  // A window for one way is tighter than the one for either: on this map, strictly so somewhere.
+  EXPECT_NE(window_level(cells, W, H, 4, 1, 1), window_level(cells, W, H, 4, 0, 0));
 }
 
 TEST(Exact, MissesSaddlesThatTheBilinearWalkFinds) {

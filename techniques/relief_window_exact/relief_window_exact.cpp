@@ -37,7 +37,15 @@ class ReliefWindowExact final : public Described<ReliefWindowExact, ShaderTechni
                     .max_value = 4,
                     .doc = "steps taken at a level before the search tries the next one up "
                            "(1: after every step, as maximum-mipmap traversals do; more saves "
-                           "the failing tries of a ray that runs close to the surface)"}},
+                           "the failing tries of a ray that runs close to the surface)"},
+                   {.name = "windows_by_way",
+                    .kind = ParamKind::Int,
+                    .default_value = 1,
+                    .min_value = 0,
+                    .max_value = 1,
+                    .doc = "1: a window per quadrant of the ray's direction, two blocks wide "
+                           "per axis (4x the memory); 0: one window for any direction, three "
+                           "blocks wide, so steps are turned away more often"}},
         .draws = {.proxies = {Proxy::Base, Proxy::Box}},
         .contract = {.answer = Answer::Exact,
                      .max_fetches = [](const RayQuery& q) { return window_steps(q) + 2; },
@@ -65,15 +73,22 @@ class ReliefWindowExact final : public Described<ReliefWindowExact, ShaderTechni
     const std::vector<float> cells = build_min_depth_pyramid(map).level[0];
     top_ = quadtree_levels(map.width, map.height) - 1;
     if (texture_) glDeleteTextures(1, &texture_);
-    glCreateTextures(GL_TEXTURE_2D, 1, &texture_);
-    glTextureStorage2D(texture_, top_ + 1, GL_R32F, map.width, map.height);
+    // Layer = the ray's way along x (1: negative) + 2 x its way along y; one layer for either.
+    const int layers = param("windows_by_way") != 0 ? 4 : 1;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture_);
+    glTextureStorage3D(texture_, top_ + 1, GL_R32F, map.width, map.height, layers);
     bytes_ = 0;
     for (int k = 0; k <= top_; ++k) {
       const int b = 1 << k;
-      const std::vector<float> level = window_level(cells, map.width, map.height, b);
-      glTextureSubImage2D(texture_, k, 0, 0, map.width / b, map.height / b, GL_RED, GL_FLOAT,
-                          level.data());
-      bytes_ += level.size() * sizeof(float);
+      for (int layer = 0; layer < layers; ++layer) {
+        const int way_x = layers == 1 ? 0 : layer & 1 ? -1 : 1;
+        const int way_y = layers == 1 ? 0 : layer & 2 ? -1 : 1;
+        const std::vector<float> level =
+            window_level(cells, map.width, map.height, b, way_x, way_y);
+        glTextureSubImage3D(texture_, k, 0, 0, layer, map.width / b, map.height / b, 1, GL_RED,
+                            GL_FLOAT, level.data());
+        bytes_ += level.size() * sizeof(float);
+      }
     }
     glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
     glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -86,7 +101,8 @@ class ReliefWindowExact final : public Described<ReliefWindowExact, ShaderTechni
   }
   Defines parameter_defines() const override {
     return {{"RL_START_LEVEL", std::to_string(static_cast<int>(param("start_level")))},
-            {"RL_CLIMB_AFTER", std::to_string(static_cast<int>(param("climb_after")))}};
+            {"RL_CLIMB_AFTER", std::to_string(static_cast<int>(param("climb_after")))},
+            {"RL_WINDOWS_BY_WAY", std::to_string(static_cast<int>(param("windows_by_way")))}};
   }
   void bind_resources(GLuint program) const override {
     glBindTextureUnit(4, texture_);

@@ -1,7 +1,7 @@
 // Window-pyramid exact search (ReliefLab, beyond the published work): empty-space skipping with
 // float arithmetic only. Level k of rl_window holds, per texel of a 2^k-texel block, the least
-// depth of every bilinear cell that a step of 2^k texels from anywhere in the block can reach
-// (harness/relief/window_pyramid.h). So from any point one fetch tells whether the ray may
+// depth of every bilinear cell that a step of 2^k texels from anywhere in the block can reach,
+// one layer per quadrant of the ray's direction (harness/relief/window_pyramid.h). So from any point one fetch tells whether the ray may
 // advance 2^k texels along its faster axis: if its depth at the step's end is still above that
 // bound, nothing in reach can be hit. No node alignment, no integer cell arithmetic: a step
 // succeeds and the search climbs a level, or fails and it descends; where even a one-texel step
@@ -9,14 +9,16 @@
 // solves every cell it walks.
 #include "harness/glsl/bilinear_walk.glsl"
 
-layout(binding = 4) uniform sampler2D rl_window;  // R32F mip chain, nearest
-uniform float rl_window_top;                      // its coarsest level
+// R32F mip chains, nearest; layer = the ray's way along x (1 if negative) + 2 x its way along y,
+// or one layer for any way (RL_WINDOWS_BY_WAY 0).
+layout(binding = 4) uniform sampler2DArray rl_window;
+uniform float rl_window_top;  // their coarsest level
 
 // Hard cap on steps per ray: loops stay bounded whatever the view (a ray that reaches it
 // reports no hit). Each step advances, or descends a level that a later step climbed.
 #define RL_WINDOW_MAX_STEPS (4 * RL_MAX_CELLS)
 
-#define RL_FETCH_WINDOW(uv, lod) (rl_fetches++, textureLod(rl_window, uv, lod).r)
+#define RL_FETCH_WINDOW(uv, layer, lod) (rl_fetches++, textureLod(rl_window, vec3(uv, layer), lod).r)
 
 // The ray in texel-centre coordinates (centerline_walk.glsl's frame, set up once per ray):
 // X(t) = start + dir t, cell c spans [c, c + 1] per axis; per axis the t between crossings
@@ -36,6 +38,19 @@ RlCellRay rl_cell_ray(vec3 p, vec3 s) {
   return r;
 }
 
+// rl_patch_first_hit with the common case first: a ray above the patch at both ends of its
+// interval meets it only where (ray depth - patch depth) peaks inside the interval at or above
+// zero, which takes no root to rule out. Only then, or where the ray ends at or below the
+// patch, are the roots solved -- by rl_smallest_root, so a hit is the exact walk's.
+float rl_window_patch_hit(vec4 corners, vec2 local, vec2 dir, float z, float tau_max) {
+  vec3 q = rl_patch_quadratic(corners, local, dir, z);
+  if (q.z >= 0.0) return 0.0;
+  bool ends_below = (q.x * tau_max + q.y) * tau_max + q.z >= 0.0;
+  bool may_peak = q.x < 0.0 && q.y > 0.0 && q.y < -2.0 * q.x * tau_max &&
+                  q.y * q.y - 4.0 * q.x * q.z >= -1e-6 * q.y * q.y;
+  return ends_below || may_peak ? rl_smallest_root(q.x, q.y, q.z, 0.0, tau_max) : -1.0;
+}
+
 // The first hit on the cells the ray crosses between t0 and t1 (about a texel of travel:
 // at most three cells, a fourth for rounding), each solved exactly unless the ray's depth at
 // the cell's exit is still above all four corners. Else false, with the t it got to.
@@ -49,7 +64,7 @@ bool rl_solve_cells(RlCellRay r, float z0, float t0, float t1, out float t_out) 
     vec4 corners = rl_cell_corners(ivec2(cell));
     if (z0 + t_exit >= min(min(corners.x, corners.y), min(corners.z, corners.w))) {
       vec2 local = r.start + r.dir * t_enter - cell;
-      float tau = rl_patch_first_hit(corners, local, r.dir, z0 + t_enter, t_exit - t_enter);
+      float tau = rl_window_patch_hit(corners, local, r.dir, z0 + t_enter, t_exit - t_enter);
       if (tau >= 0.0) {
         t_out = t_enter + tau;
         return true;
@@ -73,10 +88,15 @@ RlHit rl_intersect(vec3 p, vec3 s) {
   float lod = min(float(RL_START_LEVEL), rl_window_top);
   float t = 0.0;
   float successes = 0.0;  // steps taken at this level since the last descent
+#if RL_WINDOWS_BY_WAY
+  float layer = (s.x < 0.0 ? 1.0 : 0.0) + (s.y < 0.0 ? 2.0 : 0.0);  // the ray's window
+#else
+  const float layer = 0.0;
+#endif
   for (int n = 0; n < RL_WINDOW_MAX_STEPS; n++) {
     RL_ITERATE;
     float t_next = min(t + exp2(lod) * t_texel, t_end);
-    if (p.z + t_next < RL_FETCH_WINDOW(p.xy + s.xy * t, lod)) {
+    if (p.z + t_next < RL_FETCH_WINDOW(p.xy + s.xy * t, layer, lod)) {
       // Above everything the step can reach: take it, and try a longer one next.
       t = t_next;
       successes += 1.0;
