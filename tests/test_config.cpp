@@ -196,6 +196,16 @@ const std::vector<BadCase>& bad_cases() {
                "relief = { mesh = \"" RELIEFLAB_SOURCE_DIR
                "/assets/meshes/teapot.obj\", reverse_perspective = 0.5 }\nproxy = \"box\""),
        {"'reverse_perspective'", "must be > 1"}},
+      {"open_gap_without_layers",
+       replace(kGood, "relief = { procedural = \"flat\", resolution = 8 }",
+               "relief = { mesh = \"" RELIEFLAB_SOURCE_DIR
+               "/assets/meshes/perforated_sheet.obj\", up = \"z\", open_surface_gap = 0 }"),
+       {"'open_surface_gap' applies to a mesh baked into 'layers'"}},
+      {"open_gap_negative",
+       replace(kGood, "relief = { procedural = \"flat\", resolution = 8 }",
+               "relief = { mesh = \"" RELIEFLAB_SOURCE_DIR
+               "/assets/meshes/perforated_sheet.obj\", layers = 4, open_surface_gap = -1 }"),
+       {"'open_surface_gap' is a depth in [0, 0.5]", "got -1"}},
       {"silhouette_unsupported",
        replace(kGood, "[[technique]]",
                "base = \"sphere\"\neffects = [\"silhouette\"]\n[[technique]]"),

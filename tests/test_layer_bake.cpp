@@ -51,6 +51,36 @@ TEST(LayerBake, AFloatingSlabHasTwoExactLayersFacingOut) {
   }
 }
 
+// Section 7: a surface with a boundary bounds no solid; it is kept as two layers, entered and
+// left, `open_surface_gap` apart. Beside it a closed slab keeps its two crossings as they are.
+TEST(LayerBake, AnOpenSurfaceBecomesTwoLayersAndAClosedOneStaysAsItIs) {
+  TriangleMesh mesh = test::layer_boxes({{0.25, 0.75, 0.6, 0.8}});  // closed, under the sheet
+  const uint32_t first = uint32_t(mesh.positions.size());
+  for (glm::vec2 c : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)})
+    mesh.positions.push_back({c.x, c.y, -0.3f});  // a flat open sheet at depth 0.3
+  mesh.triangles.push_back({first, first + 1, first + 2});
+  mesh.triangles.push_back({first, first + 2, first + 3});
+  const size_t texels = 256, slab = size_t(8) * 16 + 8, sheet_only = 0;
+  for (double gap : {0.0, 0.05}) {
+    SCOPED_TRACE(gap);
+    const ReliefMap map = bake_layers(mesh, pattern_frame(), 16, 16, 4, {1, 1, 1}, false, gap);
+    const LayerStack& L = map.layers;
+    EXPECT_EQ(L.odd_texels, 0);
+    ASSERT_EQ(L.used(sheet_only), 2);
+    EXPECT_NEAR(L.depth[sheet_only], 0.3, 1e-5);
+    EXPECT_NEAR(L.depth[texels + sheet_only], 0.3 + gap, 1e-5);
+    EXPECT_NEAR(L.normal[sheet_only].z, 1.0, 1e-6);            // entered from above
+    EXPECT_NEAR(L.normal[texels + sheet_only].z, -1.0, 1e-6);  // left at once, facing down
+    ASSERT_EQ(L.used(slab), 4);  // the sheet's two, then the slab's own two
+    EXPECT_NEAR(L.depth[2 * texels + slab], 0.6, 1e-5);
+    EXPECT_NEAR(L.depth[3 * texels + slab], 0.8, 1e-5);
+  }
+  // Without it the sheet is one crossing per texel: odd, and dropped where close_open asks.
+  const ReliefMap single = bake_layers(mesh, pattern_frame(), 16, 16, 4, {1, 1, 1}, true);
+  EXPECT_EQ(single.layers.odd_texels, 256);
+  EXPECT_EQ(single.layers.used(sheet_only), 0);
+}
+
 TEST(LayerBake, CrossingsBeyondTheLayersAreCountedAndTheTopOnesKept) {
   // Three stacked slabs: depth complexity 6 (the 8-layer case).
   const TriangleMesh stack =

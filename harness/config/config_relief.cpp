@@ -19,7 +19,8 @@ void parse_layers(const toml::table& t, const Src& src, ReliefSourceDesc& r,
   }
 }
 
-// relief = { mesh = "file", up, resolution, reverse_perspective, layers, faces }.
+// relief = { mesh = "file", up, resolution, reverse_perspective, layers, faces,
+// open_surface_gap }.
 void parse_mesh_relief(const toml::table& t, const toml::node& node, const Src& src,
                        const std::string& base_dir, ReliefSourceDesc& r, nlohmann::json& canon) {
   for (const char* k : {"color", "convention", "flip_green", "normalize", "nodata", "options"})
@@ -51,6 +52,17 @@ void parse_mesh_relief(const toml::table& t, const toml::node& node, const Src& 
   parse_layers(t, src, r, canon);
   if (r.layers > 0 && r.reverse_cop > 1)
     fail(src.at(node), "'layers' and 'reverse_perspective' cannot be combined yet");
+  if (auto* n = t.get("open_surface_gap")) {
+    // Open surfaces as two layers this far apart in depth (relief/layer_bake.h).
+    if (r.layers == 0) fail(src.at(*n), "'open_surface_gap' applies to a mesh baked into 'layers'");
+    const double gap = number(*n, src, "open_surface_gap");
+    if (!(gap >= 0) || !(gap <= 0.5))
+      fail(src.at(*n),
+           "'open_surface_gap' is a depth in [0, 0.5] (0: two coincident layers), got " +
+               format_number(gap));
+    r.open_surface_gap = gap;
+    canon["open_surface_gap"] = gap;
+  }
   if (auto* n = t.get("faces")) {
     // An object from several heightfields (Baboud & Decoret, Section 4.2).
     r.faces = positive_int(*n, src, "faces", 1, 6);
@@ -160,11 +172,11 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
     parse_cells_relief(*t, src, base_dir, r, canon);
     return r;
   }
-  check_keys(
-      *t,
-      {"procedural", "resolution", "options", "normal", "depth", "color", "convention",
-       "flip_green", "normalize", "nodata", "mesh", "up", "reverse_perspective", "layers", "faces"},
-      src, "relief");
+  check_keys(*t,
+             {"procedural", "resolution", "options", "normal", "depth", "color", "convention",
+              "flip_green", "normalize", "nodata", "mesh", "up", "reverse_perspective", "layers",
+              "faces", "open_surface_gap"},
+             src, "relief");
   const bool procedural = t->contains("procedural");
   const bool images = t->contains("normal") || t->contains("depth");
   const bool mesh = t->contains("mesh");

@@ -1,7 +1,9 @@
 #include "relief/layer_bake.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
+#include <map>
 #include <stdexcept>
 
 #include <embree3/rtcore.h>
@@ -43,6 +45,39 @@ struct Crossing {
   glm::vec3 color;
 };
 
+// Per triangle: whether its connected component has a boundary (an edge only one triangle
+// uses) -- part of an open surface. Vertices are welded by position, as a mesh file may repeat
+// them per face.
+std::vector<bool> open_triangles(const TriangleMesh& mesh) {
+  std::map<std::array<float, 3>, uint32_t> welded;
+  std::vector<uint32_t> id(mesh.positions.size());
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    const glm::vec3& p = mesh.positions[v];
+    id[v] =
+        welded.emplace(std::array<float, 3>{p.x, p.y, p.z}, uint32_t(welded.size())).first->second;
+  }
+  std::vector<uint32_t> parent(mesh.triangles.size());
+  for (uint32_t t = 0; t < parent.size(); ++t) parent[t] = t;
+  auto root = [&](uint32_t t) {
+    while (parent[t] != t) t = parent[t] = parent[parent[t]];
+    return t;
+  };
+  std::map<std::pair<uint32_t, uint32_t>, std::pair<uint32_t, int>> edges;  // first user, uses
+  for (uint32_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int e = 0; e < 3; ++e) {
+      uint32_t a = id[mesh.triangles[t][e]], b = id[mesh.triangles[t][(e + 1) % 3]];
+      auto [it, fresh] = edges.try_emplace({std::min(a, b), std::max(a, b)}, t, 0);
+      ++it->second.second;
+      if (!fresh) parent[root(t)] = root(it->second.first);
+    }
+  std::vector<bool> open_root(mesh.triangles.size(), false);
+  for (const auto& [edge, use] : edges)
+    if (use.second == 1) open_root[root(use.first)] = true;
+  std::vector<bool> open(mesh.triangles.size());
+  for (uint32_t t = 0; t < open.size(); ++t) open[t] = open_root[root(t)];
+  return open;
+}
+
 }  // namespace
 
 BakeFrame pattern_frame() {
@@ -57,12 +92,15 @@ BakeFrame pattern_frame() {
 }
 
 ReliefMap bake_layers(const TriangleMesh& mesh, const BakeFrame& frame, int width, int height,
-                      int layers, const glm::dvec3& world_scale, bool close_open) {
+                      int layers, const glm::dvec3& world_scale, bool close_open,
+                      std::optional<double> open_surface_gap) {
   if (layers < 1 || layers > LayerStack::kMaxLayers)
     throw std::invalid_argument("bake_layers: 1 to 8 layers");
   RTCDevice device = rtcNewDevice(nullptr);
   RTCScene scene = embree_triangle_scene(device, mesh);
   const size_t texels = size_t(width) * height;
+  const std::vector<bool> open =
+      open_surface_gap ? open_triangles(mesh) : std::vector<bool>(mesh.triangles.size(), false);
 
   ReliefMap map;
   map.name = mesh.name;
@@ -113,6 +151,12 @@ ReliefMap bake_layers(const TriangleMesh& mesh, const BakeFrame& frame, int widt
         const glm::vec3 color =
             mesh.triangle_colors.empty() ? kNeutral : mesh.triangle_colors[rh.hit.primID];
         found.push_back({depth, glm::vec3(n), color});
+        // An open surface as two layers (Policarpo & Oliveira 2006, Section 7): it is entered
+        // and left at once, `open_surface_gap` deeper, facing down there.
+        if (open[rh.hit.primID]) {
+          found.push_back({depth + *open_surface_gap, glm::vec3(-n), color});
+          last_entering = !entering;
+        }
       }
       if (found.size() % 2) {
         ++odd;

@@ -4,6 +4,8 @@
 // every crossing is kept -- depth, outward normal, colour -- up to `layers` per texel, sorted
 // top to bottom, unused layers at depth 1. The map's single-layer view (`relief`, `color`) is
 // the top layer, so heightfield techniques draw the same scene from its first surface.
+#include <optional>
+
 #include "relief/mesh_bake.h"
 #include "relief/relief_map.h"
 
@@ -17,8 +19,13 @@ namespace rl {
 // oriented by the order (even layers enter the solid, odd ones leave it). `close_open`: a
 // texel with an odd number of crossings (an open mesh) drops its deepest one, so its column
 // gets a hole instead of a solid curtain down to the bottom (objects in a box, impostors).
+// `open_surface_gap`: a crossing of an open surface (a connected part of the mesh with a
+// boundary) is kept as two layers, entered and left this far apart in depth -- 0 for the
+// paper's two coincident layers (Policarpo & Oliveira 2006, Section 7); without it such a
+// surface is one crossing, which close_open drops.
 ReliefMap bake_layers(const TriangleMesh& mesh, const BakeFrame& frame, int width, int height,
-                      int layers, const glm::dvec3& world_scale, bool close_open = false);
+                      int layers, const glm::dvec3& world_scale, bool close_open = false,
+                      std::optional<double> open_surface_gap = std::nullopt);
 
 // The frame of a pattern mesh (relief/pattern_mesh.h), which is built in texture space.
 BakeFrame pattern_frame();

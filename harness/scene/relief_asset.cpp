@@ -115,7 +115,8 @@ ReliefMap build_map(const SceneDesc& scene, const ReliefSourceDesc& relief, int 
       map.faces = std::move(faces);
     } else if (relief.layers > 0)
       map = bake_layers(mesh, frame, resolution, resolution, relief.layers,
-                        {glm::length(base.dpdu()), glm::length(base.dpdv()), scene.depth}, true);
+                        {glm::length(base.dpdu()), glm::length(base.dpdv()), scene.depth}, true,
+                        relief.open_surface_gap);
     else
       map = bake_mesh(mesh, frame, resolution, scene.projection);
   } else if (relief.pattern_mesh()) {

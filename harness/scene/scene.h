@@ -4,6 +4,7 @@
 // plain triangle-mesh objects standing in it.
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,9 @@ struct ReliefSourceDesc {
   // footprint box.
   int faces = 0;
   int layers = 0;  // > 0: baked into that many depth layers (a mesh or a pattern)
+  // A mesh's open surfaces baked as two layers this far apart in depth (relief/layer_bake.h);
+  // without it, a texel whose ray crosses an odd number of times drops its deepest crossing.
+  std::optional<double> open_surface_gap;
   // The mesh encoded as a cubic cell complex instead of baked into a map (Apaza & Andujar,
   // relief/cell_complex.h): `native` is each domain face's map size.
   struct Cells {
