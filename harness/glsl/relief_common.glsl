@@ -41,6 +41,16 @@ vec2 rl_uv_dx = vec2(0.0), rl_uv_dy = vec2(0.0);
 #define RL_FETCH_GRAD(tex, uv) (rl_fetches++, textureGrad(tex, uv, rl_uv_dx, rl_uv_dy))
 #endif
 
+#ifdef RL_COLOR_MIPMAP
+// The colour from its own mip chain at the pixel's footprint (Baboud & Decoret 2006, Section 6:
+// "mipmapping for the color texture can be a solution" to geometric aliasing); the geometry
+// stays at level 0. Needs RL_MIPMAP's footprint.
+layout(binding = 19) uniform sampler2D rl_color_mipmapped;
+#define RL_FETCH_COLOR(uv) RL_FETCH_GRAD(rl_color_mipmapped, uv)
+#else
+#define RL_FETCH_COLOR(uv) RL_FETCH(rl_color, uv)
+#endif
+
 #ifdef RL_META_LAYERS
 // A meta-relief combined per fetch (Limberger, Schetinger & Oliveira, Eqs. 1-2; the CPU's
 // relief/meta_relief.cpp evaluates the same): layer i is sampled at its own tiling and
@@ -100,7 +110,7 @@ void rl_floor_attributes(vec2 uv, out vec3 tn, out vec3 albedo) {
   albedo = RL_LAYERED_FLOOR;
 #else
   tn = rl_decode_normal(rl_relief_texel(uv));
-  albedo = RL_FETCH(rl_color, uv).rgb;
+  albedo = RL_FETCH_COLOR(uv).rgb;
 #endif
 }
 

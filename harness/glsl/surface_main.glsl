@@ -159,7 +159,7 @@ void main() {
   rl_hit_attributes(h, tn, albedo);
 #else
   vec3 tn = rl_decode_normal(rl_relief_texel(h.uv));
-  vec3 albedo = RL_FETCH(rl_color, h.uv).rgb;
+  vec3 albedo = RL_FETCH_COLOR(h.uv).rgb;
 #endif
   vec3 n = normalize(tn.x * normalize(v_dpdu) + tn.y * normalize(v_dpdv) + tn.z * N);
   vec3 to_light = normalize(rl_light - hit_world);

@@ -23,22 +23,24 @@ MipmappedRelief::~MipmappedRelief() {
 
 void MipmappedRelief::upload(const ReliefMap& map) {
   if (texture_) glDeleteTextures(1, &texture_);
-  levels_ = mip_levels(map.width, map.height);
+  const bool color = channel_ == Channel::Color;
+  const int width = color ? map.color_w() : map.width, height = color ? map.color_h() : map.height;
+  levels_ = mip_levels(width, height);
   const GLenum format = map.quantized ? GL_RGBA8 : GL_RGBA32F;
   glCreateTextures(GL_TEXTURE_2D, 1, &texture_);
-  glTextureStorage2D(texture_, levels_, format, map.width, map.height);
-  glTextureSubImage2D(texture_, 0, 0, 0, map.width, map.height, GL_RGBA, GL_FLOAT,
-                      map.relief.data());
+  glTextureStorage2D(texture_, levels_, format, width, height);
+  glTextureSubImage2D(texture_, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT,
+                      color ? map.color.data() : map.relief.data());
   glGenerateTextureMipmap(texture_);
   glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTextureParameteri(texture_, GL_TEXTURE_WRAP_S, GL_REPEAT);
   glTextureParameteri(texture_, GL_TEXTURE_WRAP_T, GL_REPEAT);
-  bytes_ = mip_chain_bytes(map.width, map.height, map.quantized ? 4 : 16);
+  bytes_ = mip_chain_bytes(width, height, map.quantized ? 4 : 16);
 }
 
 void MipmappedRelief::bind() const {
-  glBindTextureUnit(kUnit, texture_);
+  glBindTextureUnit(channel_ == Channel::Color ? kColorUnit : kUnit, texture_);
 }
 
 }  // namespace rl

@@ -41,6 +41,15 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
               .doc = "1: normals and depths read from mip-mapped copies at the pixel's footprint "
                      "(chapter 5, 'Texture filtering and mip-mapping'); 0: level 0, the surface "
                      "the truth reconstructs",
+              .neutral_default = true},
+             {.name = "color_mipmap",
+              .kind = ParamKind::Bool,
+              .default_value = 0,
+              .min_value = 0,
+              .max_value = 1,
+              .doc = "1: the colour alone read from its mip chain at the pixel's footprint, the "
+                     "geometry at level 0 (Baboud & Decoret 2006, Section 6); 0: level 0, as the "
+                     "truth shades it",
               .neutral_default = true}},
         .draws = {.reads = {Representation::Heightfield, Representation::Layers,
                             Representation::MetaRuntime},
@@ -70,27 +79,30 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
   }
   void prepare(const ReliefMap& map) override {
     if (mipmapped()) mipmaps_.upload(map);
+    if (color_mipmapped()) color_mips_.upload(map);
   }
-  size_t memory_bytes() const override { return mipmaps_.bytes(); }
+  size_t memory_bytes() const override { return mipmaps_.bytes() + color_mips_.bytes(); }
 
  protected:
   std::string intersect_file() const override { return "techniques/relief/relief.glsl"; }
   Defines parameter_defines() const override {
     Defines d = {{"RL_LINEAR_STEPS", std::to_string(static_cast<int>(param("linear_steps")))},
                  {"RL_BINARY_STEPS", std::to_string(static_cast<int>(param("binary_steps")))}};
-    if (mipmapped()) {
-      d["RL_MIPMAP"] = "1";
-      d["RL_MIPMAPPED_RELIEF"] = "1";
-    }
+    if (mipmapped() || color_mipmapped()) d["RL_MIPMAP"] = "1";
+    if (mipmapped()) d["RL_MIPMAPPED_RELIEF"] = "1";
+    if (color_mipmapped()) d["RL_COLOR_MIPMAP"] = "1";
     return d;
   }
   void bind_resources(GLuint) const override {
     if (mipmapped()) mipmaps_.bind();
+    if (color_mipmapped()) color_mips_.bind();
   }
 
  private:
   bool mipmapped() const { return param("mipmap") != 0; }
+  bool color_mipmapped() const { return param("color_mipmap") != 0; }
   MipmappedRelief mipmaps_;
+  MipmappedRelief color_mips_{MipmappedRelief::Channel::Color};
 };
 
 RL_REGISTER_TECHNIQUE(ReliefMapping);
