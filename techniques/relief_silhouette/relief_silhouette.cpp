@@ -44,7 +44,16 @@ class ReliefSilhouette final : public Described<ReliefSilhouette, ShaderTechniqu
               .max_value = 1,
               .doc = "1: Equation 5.2 (whatever exact_distance says) with its linear "
                      "coefficient as the chapter prints it, b = 2 A Px Ux + 2 B Py Uy, without the "
-                     "-Uz that substituting R = P + U s into Equation 5.1 gives"}},
+                     "-Uz that substituting R = P + U s into Equation 5.1 gives"},
+             {.name = "plane_t_max",
+              .kind = ParamKind::Bool,
+              .default_value = 0,
+              .min_value = 0,
+              .max_value = 1,
+              .doc = "1: the samples spread over the tangent plane's [0, 1 / s_z] (depth 1 on a "
+                     "flat base); 0: over Listing 5.7's t_max, the nearer of where the bent ray "
+                     "reaches depth 1 and where it returns to depth 0 (Figure 5.25's cases)",
+              .neutral_default = true}},
         .draws = {.reads = {Representation::Heightfield, Representation::Layers,
                             Representation::MetaRuntime}},
         .contract = {.answer = Answer::Converging,
@@ -69,7 +78,8 @@ class ReliefSilhouette final : public Described<ReliefSilhouette, ShaderTechniqu
             {"RL_BINARY_STEPS", std::to_string(static_cast<int>(param("binary_steps")))},
             {"RL_QUADRIC_EXACT", std::to_string(static_cast<int>(param("exact_distance") != 0 ||
                                                                  param("eq52_as_printed") != 0))},
-            {"RL_EQ52_AS_PRINTED", std::to_string(static_cast<int>(param("eq52_as_printed")))}};
+            {"RL_EQ52_AS_PRINTED", std::to_string(static_cast<int>(param("eq52_as_printed")))},
+            {"RL_PLANE_T_MAX", std::to_string(static_cast<int>(param("plane_t_max")))}};
   }
 };
 

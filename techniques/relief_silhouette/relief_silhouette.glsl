@@ -42,9 +42,13 @@ RlHit rl_intersect_curved(vec3 p, vec3 s, vec2 quadric, vec3 metric) {
   // Listing 5.7: approximate depth(t) = s.z t - f t^2.
   float f = (quadric.x * Vw.x * Vw.x + quadric.y * Vw.y * Vw.y) / metric.z;
   float disc = s.z * s.z - 4.0 * f;
+#if RL_PLANE_T_MAX
+  float t_max = 1.0 / s.z;  // the tangent plane's depth 1, whatever the curvature
+#else
   float t_max = 3.0e38;
   if (disc >= 0.0) t_max = 2.0 / (s.z + sqrt(disc));  // depth 1; stable at f = 0
   if (f > 0.0) t_max = min(t_max, s.z / f);           // back to depth 0 (convex base)
+#endif
   // U: perpendicular to the ray, in its plane with the normal, pointing out of the surface.
   vec3 v_unit = normalize(Vw);
   vec3 u_dir = vec3(0.0, 0.0, -1.0) + v_unit * v_unit.z;
