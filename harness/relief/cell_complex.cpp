@@ -46,6 +46,18 @@ const ColumnDeclaration cell_complex_columns(
       "(Section 3.3.3's occluded fragments)"},
      {"multi_crossing_pct", "% of texels",
       "domain-face texels whose projection line crosses the surface more than once"},
+     {"texels_perspective_pct", "% of texels",
+      "domain-face texels of cells with a perspective projection (Figure 2)"},
+     {"texels_axial_pct", "% of texels", "the same, axial projection"},
+     {"texels_planar_pct", "% of texels", "the same, planar projection"},
+     {"texels_parallel_pct", "% of texels", "the same, parallel projection"},
+     {"multi_crossing_perspective_pct", "% of texels",
+      "of the texels of cells with a perspective projection, those whose line crosses the "
+      "surface more than once (where the projection does not make the cell's surface a "
+      "height field)"},
+     {"multi_crossing_axial_pct", "% of texels", "the same, axial projection"},
+     {"multi_crossing_planar_pct", "% of texels", "the same, planar projection"},
+     {"multi_crossing_parallel_pct", "% of texels", "the same, parallel projection"},
      {"grid_trials", "", "each grid an automatic choice tried, N:occluded %", ColumnKind::Text},
      ColumnSpec{"intersections_per_s", "1/s", "covered pixels per second of frame time"}
          .higher_is_better()});

@@ -1,6 +1,7 @@
 #include "run/sweep_stages.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -18,6 +19,28 @@ namespace rl {
 namespace {
 
 namespace fs = std::filesystem;
+
+// Per projection type (Apaza & Andujar, Figure 2): its share of the domain-face texels, and the
+// share of those whose line crosses the surface more than once -- where the type fails to make
+// its cell's surface a height field and one distance per texel loses a sheet.
+void add_projection_columns(Row& row, const CellComplex& cc) {
+  std::array<double, 4> texels{}, multi{};
+  const size_t per_face = size_t(cc.resolution()) * cc.resolution();
+  for (size_t f = 0; f < cc.domain_faces().size(); ++f) {
+    const auto type = size_t(cc.cells()[size_t(cc.domain_faces()[f].cell)].config.projection.type);
+    texels[type] += double(per_face);
+    for (size_t t = f * per_face; t < (f + 1) * per_face; ++t) multi[type] += cc.crossings()[t] > 1;
+  }
+  double all = 0;
+  for (double n : texels) all += n;
+  for (size_t type = 0; type < 4; ++type) {
+    const std::string name =
+        projection_type_name(CellProjection::Type(type));  // "perspective", "axial", ...
+    row["texels_" + name + "_pct"] = all > 0 ? 100.0 * texels[type] / all : 0.0;
+    row["multi_crossing_" + name + "_pct"] =
+        texels[type] > 0 ? 100.0 * multi[type] / texels[type] : 0.0;
+  }
+}
 
 // A cell complex's construction (Apaza & Andujar, Table 1) and ray throughput (Table 2):
 // intersections per second are the pixels the technique covers over the median frame time.
@@ -37,6 +60,7 @@ void add_cell_columns(Row& row, const CellComplex& cc, const GBuffer& g, double 
   row["occluded_fragment_pct"] = 100.0 * st.occluded_ratio();
   const double texels = double(st.domain_faces) * cc.resolution() * cc.resolution();
   row["multi_crossing_pct"] = texels > 0 ? 100.0 * double(st.multi_crossing_texels) / texels : 0.0;
+  add_projection_columns(row, cc);
   std::string trials;
   for (const GridTrial& t : st.trials) {
     char buf[48];
