@@ -28,12 +28,15 @@ cp "$run"/*.md "$run"/rows.csv "$run"/outputs.json "$dest/"
 # LaTeX tables (format = "latex"), where the config asks for them.
 for tex in "$run"/*.tex; do [ -e "$tex" ] && cp "$tex" "$dest/"; done
 # The HTML report (its pictures are those of images/, so complete with --images). The results
-# tree keeps one copy of its script (results/report_assets/), which every folder's report loads.
+# tree keeps one copy of its style and scripts (results/report_assets/), which every folder's
+# report loads.
 cp "$run"/report.html "$dest/" && rm -rf "$dest/report_assets"
-if [ -f "$run"/report_assets/d3.min.js ]; then
-  mkdir -p results/report_assets && cp "$run"/report_assets/d3.min.js results/report_assets/
-  sed -i 's|<script src="report_assets/d3.min.js"></script>|<script src="../report_assets/d3.min.js"></script>|' "$dest/report.html"
-fi
+mkdir -p results/report_assets
+for asset in report.css report.js d3.min.js; do
+  [ -f "$run/report_assets/$asset" ] || continue
+  cp "$run/report_assets/$asset" results/report_assets/
+  sed -i "s|\"report_assets/$asset\"|\"../report_assets/$asset\"|" "$dest/report.html"
+done
 cp -r "$run"/plots "$dest/"
 cp "$run"/run.log "$dest/run.log"
 if $images; then rm -rf "$dest/images" && cp -r "$run"/images "$dest/"; fi

@@ -7,6 +7,7 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -171,21 +172,30 @@ TEST(Docs, TheFrontPagesExampleIsTheCommittedConfig) {
   EXPECT_LE(std::count(readme.begin(), readme.end(), '\n'), 200) << "README.md grew past 200 lines";
 }
 
-// The results tree keeps one copy of the reports' script (results/report_assets/), which every
-// committed report loads; a copy per folder was 46 identical files.
-TEST(Docs, CommittedReportsShareOneCopyOfTheirScript) {
-  int copies = 0, reports = 0;
+// The results tree keeps one copy of the reports' style and scripts (results/report_assets/),
+// which every committed report loads; a copy per folder was 46 identical d3 files and 59
+// identical page scripts.
+TEST(Docs, CommittedReportsShareOneCopyOfTheirStyleAndScripts) {
+  std::map<std::string, int> copies;
+  int reports = 0;
   for (const auto& e : fs::recursive_directory_iterator(kRepo / "results")) {
-    copies += e.path().filename() == "d3.min.js";
+    for (const char* asset : {"d3.min.js", "report.js", "report.css"})
+      copies[asset] += e.path().filename() == asset;
     if (e.path().filename() != "report.html") continue;
     ++reports;
-    EXPECT_NE(read_text(e.path()).find("<script src=\"../report_assets/d3.min.js\">"),
-              std::string::npos)
-        << e.path();
+    const std::string page = read_text(e.path());
+    for (const char* tag : {"<script src=\"../report_assets/d3.min.js\">",
+                            "<script src=\"../report_assets/report.js\">",
+                            "<link rel=\"stylesheet\" href=\"../report_assets/report.css\">"})
+      EXPECT_NE(page.find(tag), std::string::npos) << e.path() << " lacks " << tag;
+    EXPECT_EQ(page.find("<style>"), std::string::npos) << e.path() << " embeds its style";
+    EXPECT_EQ(page.find("<script>"), std::string::npos) << e.path() << " embeds its script";
   }
   EXPECT_GT(reports, 40);
-  EXPECT_EQ(copies, 1);
-  EXPECT_TRUE(fs::exists(kRepo / "results" / "report_assets" / "d3.min.js"));
+  for (const auto& [asset, n] : copies) {
+    EXPECT_EQ(n, 1) << asset;
+    EXPECT_TRUE(fs::exists(kRepo / "results" / "report_assets" / asset)) << asset;
+  }
 }
 
 }  // namespace

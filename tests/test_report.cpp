@@ -92,6 +92,8 @@ values = ["psnr_db"]
   const std::string html = out + "/report.html";
   ASSERT_TRUE(std::filesystem::exists(html));
   ASSERT_TRUE(std::filesystem::exists(out + "/report_assets/d3.min.js"));
+  ASSERT_TRUE(std::filesystem::exists(out + "/report_assets/report.js"));
+  ASSERT_TRUE(std::filesystem::exists(out + "/report_assets/report.css"));
   // One picture taken away, as from a committed reproduction (which keeps no images/): its cell
   // must say so instead of showing a broken image. Done before the one page load that checks
   // everything (each Chromium start is seconds); a tall window puts every lazy picture in view.

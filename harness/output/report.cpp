@@ -118,20 +118,11 @@ nlohmann::json report_data(const SweepConfig& config, const std::vector<Row>& ro
   return data;
 }
 
+// The page: its data and verdicts inline, its style and script in report_assets/ beside it, one
+// copy for every report of a results tree (scripts/reproduce.sh).
 const char* kPage = R"HTML(<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><title>ReliefLab report</title>
-<style>
-body{font:14px/1.4 sans-serif;margin:1.5em;color:#222}h1{font-size:1.5em}h2{margin-top:1.6em}
-table.rl-table{border-collapse:collapse;font-size:12px}table.rl-table td,table.rl-table th{border:1px solid #ccc;padding:2px 6px;text-align:right}
-table.rl-table th{cursor:pointer;background:#f3f3f3;position:sticky;top:0}.rl-table-box{max-height:36em;max-width:100%;width:fit-content;overflow:auto;margin-top:4px}.rl-lone{font-size:12px;color:#555}.rl-footnote{font-size:12px;color:#555}.rl-flagged{background:#fff3cd}table.rl-table td:first-child{text-align:left}
-.rl-plots{display:flex;flex-wrap:wrap;gap:1em}.rl-plot{border:1px solid #ddd;padding:4px}
-.rl-plot .domain{fill:none;stroke:#444}.rl-plot .tick line{stroke:#444}.rl-plot text{font-size:11px}
-.rl-series{font-size:11px;max-width:380px}.rl-series span{margin-right:8px;white-space:nowrap}.rl-point{cursor:pointer;stroke:#fff;stroke-width:0.5}.rl-front{fill:none;stroke:#222;stroke-dasharray:4 3}
-.rl-cell{border-top:1px solid #ddd;padding-top:.5em}.rl-cell img{width:256px;image-rendering:pixelated;margin-right:6px;border:1px solid #ccc}
-.rl-missing{display:inline-block;width:248px;min-height:3em;word-break:break-all;margin-right:6px;padding:4px;border:1px dashed #bbb;color:#777;font-size:11px;vertical-align:top}
-.rl-legend{height:12px;width:256px;background:linear-gradient(to right,#30123b,#4686fb,#1be5b5,#a4fc3c,#fbb938,#e4460a,#7a0403)}
-pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px}
-</style>
+<link rel="stylesheet" href="report_assets/report.css">
 <script src="report_assets/d3.min.js"></script></head>
 <body><h1 id="rl-title"></h1><p id="rl-source"></p>
 <div id="rl-verdicts-box" hidden><h2>Verdicts</h2><p>Generated from the result folder's claims.toml with the numbers of rows.csv (<code>relieflab verify</code>).</p><ol id="rl-verdicts-list"></ol></div>
@@ -141,8 +132,23 @@ pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px
 <h2>Config</h2><pre id="rl-config"></pre><h2>run.log</h2><pre id="rl-log"></pre>
 <script type="application/json" id="rl-data">@DATA@</script>
 <script type="application/json" id="rl-verdicts">[]</script>
-<script>
-(function () {
+<script src="report_assets/report.js"></script></body></html>
+)HTML";
+
+const char* kStyle =
+    R"CSS(body{font:14px/1.4 sans-serif;margin:1.5em;color:#222}h1{font-size:1.5em}h2{margin-top:1.6em}
+table.rl-table{border-collapse:collapse;font-size:12px}table.rl-table td,table.rl-table th{border:1px solid #ccc;padding:2px 6px;text-align:right}
+table.rl-table th{cursor:pointer;background:#f3f3f3;position:sticky;top:0}.rl-table-box{max-height:36em;max-width:100%;width:fit-content;overflow:auto;margin-top:4px}.rl-lone{font-size:12px;color:#555}.rl-footnote{font-size:12px;color:#555}.rl-flagged{background:#fff3cd}table.rl-table td:first-child{text-align:left}
+.rl-plots{display:flex;flex-wrap:wrap;gap:1em}.rl-plot{border:1px solid #ddd;padding:4px}
+.rl-plot .domain{fill:none;stroke:#444}.rl-plot .tick line{stroke:#444}.rl-plot text{font-size:11px}
+.rl-series{font-size:11px;max-width:380px}.rl-series span{margin-right:8px;white-space:nowrap}.rl-point{cursor:pointer;stroke:#fff;stroke-width:0.5}.rl-front{fill:none;stroke:#222;stroke-dasharray:4 3}
+.rl-cell{border-top:1px solid #ddd;padding-top:.5em}.rl-cell img{width:256px;image-rendering:pixelated;margin-right:6px;border:1px solid #ccc}
+.rl-missing{display:inline-block;width:248px;min-height:3em;word-break:break-all;margin-right:6px;padding:4px;border:1px dashed #bbb;color:#777;font-size:11px;vertical-align:top}
+.rl-legend{height:12px;width:256px;background:linear-gradient(to right,#30123b,#4686fb,#1be5b5,#a4fc3c,#fbb938,#e4460a,#7a0403)}
+pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px}
+)CSS";
+
+const char* kScript = R"JS((function () {
   var data = JSON.parse(document.getElementById('rl-data').textContent);
   var el = function (tag, attrs, text) {
     var e = document.createElement(tag);
@@ -320,8 +326,7 @@ pre{background:#f7f7f7;padding:.6em;max-height:24em;overflow:auto;font-size:12px
   });
   document.body.setAttribute('data-ready', '1');
 })();
-</script></body></html>
-)HTML";
+)JS";
 
 }  // namespace
 
@@ -374,11 +379,11 @@ bool write_report(const SweepConfig& config, const std::vector<Row>& rows,
   const std::string json = script_json(report_data(config, rows, parameter_columns, out_dir));
   std::string page = kPage;
   page.replace(page.find("@DATA@"), 6, json);
+  fs::create_directories(out_dir + "/report_assets");
+  write_text_atomic(out_dir + "/report_assets/report.css", kStyle);
+  write_text_atomic(out_dir + "/report_assets/report.js", kScript);
   bool have_d3 = fs::exists(d3_script_path());
-  if (have_d3) {
-    fs::create_directories(out_dir + "/report_assets");
-    write_text_atomic(out_dir + "/report_assets/d3.min.js", read_text(d3_script_path()));
-  }
+  if (have_d3) write_text_atomic(out_dir + "/report_assets/d3.min.js", read_text(d3_script_path()));
   write_text_atomic(out_dir + "/report.html", page);
   return have_d3;
 }
