@@ -206,6 +206,12 @@ const std::vector<BadCase>& bad_cases() {
                "relief = { mesh = \"" RELIEFLAB_SOURCE_DIR
                "/assets/meshes/perforated_sheet.obj\", layers = 4, open_surface_gap = -1 }"),
        {"'open_surface_gap' is a depth in [0, 0.5]", "got -1"}},
+      {"clip_frustum_without_reverse_perspective",
+       replace(kGood, "[[technique]]", "clip_frustum = true\n[[technique]]"),
+       {"clip_frustum cuts a reverse-perspective frustum"}},
+      {"clip_frustum_not_a_bool",
+       replace(kGood, "[[technique]]", "clip_frustum = 1\n[[technique]]"),
+       {"'clip_frustum' must be true"}},
       {"silhouette_unsupported",
        replace(kGood, "[[technique]]",
                "base = \"sphere\"\neffects = [\"silhouette\"]\n[[technique]]"),

@@ -1,4 +1,5 @@
 // Meshes as heightfields: an analytic pyramid mesh baked and traced.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -7,6 +8,7 @@
 #include "core/error.h"
 #include "core/triangle_mesh.h"
 #include "relief/mesh_bake.h"
+#include "scene/clipped_frustum.h"
 #include "support/test_support.h"
 #include "truth/mesh_truth.h"
 
@@ -187,6 +189,91 @@ TEST(ReverseProjection, CapturesMoreOfTheTeapotThanAnOrthographicBake) {
   std::printf("false coverage against the mesh: orthographic %.2f%%, reverse perspective %.2f%%\n",
               ortho.metrics.false_pct, reverse.metrics.false_pct);
   EXPECT_LT(reverse.metrics.false_pct, 0.6 * ortho.metrics.false_pct);
+}
+
+}  // namespace
+}  // namespace rl
+
+namespace rl {
+namespace {
+
+using Faces = std::vector<std::vector<glm::dvec3>>;
+
+// Volume and area-weighted normal sum of a polyhedron given by its faces (wound inward in affine
+// space, as the proxy is: scene/clipped_frustum.h): a closed surface
+// sums to zero; the volume comes from the divergence theorem over fan triangles.
+void measure(const Faces& faces, double& volume, glm::dvec3& normal_sum) {
+  volume = 0;
+  normal_sum = glm::dvec3(0);
+  for (const auto& f : faces)
+    for (size_t k = 1; k + 1 < f.size(); ++k) {
+      volume -= glm::dot(f[0], glm::cross(f[k], f[k + 1])) / 6.0;  // inward: minus
+      normal_sum += glm::cross(f[k] - f[0], f[k + 1] - f[0]) / 2.0;
+    }
+}
+
+// Baboud & Decoret, Section 4.1: the frustum cut to a box is a closed solid, outward wound, no
+// larger than either; a box inside the frustum comes back whole, and a box around it leaves
+// the frustum as it was.
+TEST(ClippedFrustum, IsTheClosedIntersectionOfFrustumAndBox) {
+  const ReverseProjection p{3.0};
+  Faces whole = clipped_frustum_faces(p, AffineBox{glm::dvec3(-1), glm::dvec3(2)});
+  double frustum_volume = 0, v = 0;
+  glm::dvec3 sum;
+  measure(whole, frustum_volume, sum);
+  EXPECT_EQ(whole.size(), 6u);
+  EXPECT_LT(glm::length(sum), 1e-10);
+  // The frustum: a truncated pyramid from the unit top down to (1 - 1/3)^2 at depth 1.
+  const double bottom = std::pow(1.0 - 1.0 / 3.0, 2);
+  EXPECT_NEAR(frustum_volume, (1.0 + bottom + std::sqrt(bottom)) / 3.0, 1e-12);
+
+  const AffineBox inside{glm::dvec3(0.4, 0.3, 0.2), glm::dvec3(0.6, 0.5, 0.5)};
+  measure(clipped_frustum_faces(p, inside), v, sum);
+  EXPECT_NEAR(v, 0.2 * 0.2 * 0.3, 1e-12);
+  EXPECT_LT(glm::length(sum), 1e-10);
+
+  // A box poking out of a side and through the bottom: closed, smaller than both.
+  const AffineBox across{glm::dvec3(0.5, 0.1, 0.5), glm::dvec3(1.5, 0.9, 1.5)};
+  const Faces cut = clipped_frustum_faces(p, across);
+  measure(cut, v, sum);
+  EXPECT_LT(glm::length(sum), 1e-10);
+  EXPECT_GT(v, 0.0);
+  EXPECT_LT(v, frustum_volume);
+  EXPECT_LT(v, 1.0 * 0.8 * 1.0);
+  for (const auto& f : cut)
+    for (const glm::dvec3& a : f) {
+      const glm::dvec3 t = p.texture_from_affine(a);
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_GE(t[k], -1e-9);
+        EXPECT_LE(t[k], 1 + 1e-9);
+        EXPECT_GE(a[k], across.lo[k] - 1e-9);
+        EXPECT_LE(a[k], across.hi[k] + 1e-9);
+      }
+    }
+}
+
+// The bounds hold every column that can stop a ray: one solid texel's column from its surface
+// to the floor, a texel wider each way; an empty floor holds nothing.
+TEST(ClippedFrustum, BoundsHoldTheColumnsThatCanStopARay) {
+  const ReverseProjection p{3.0};
+  ReliefMap map = test::map_from_depths(8, 8, std::vector<float>(64, 1.0f));
+  AffineBox box;
+  EXPECT_FALSE(relief_affine_bounds(map, p, true, box));
+  map.relief[size_t(3) * 8 + 4].a = 0.25f;
+  ASSERT_TRUE(relief_affine_bounds(map, p, true, box));
+  for (double u : {3.0 / 8, 6.0 / 8})
+    for (double v : {2.0 / 8, 5.0 / 8})
+      for (double d : {0.25, 1.0}) {
+        const glm::dvec3 a = p.affine_from_texture({u, v, d});
+        for (int k = 0; k < 3; ++k) {
+          EXPECT_GE(a[k], box.lo[k] - 1e-12);
+          EXPECT_LE(a[k], box.hi[k] + 1e-12);
+        }
+      }
+  EXPECT_NEAR(box.lo.z, p.affine_from_texture({0.5, 0.5, 0.25}).z, 1e-12);
+  // A solid floor: every texel stands, at least at depth 1.
+  ASSERT_TRUE(relief_affine_bounds(map, p, false, box));
+  EXPECT_NEAR(box.hi.x - box.lo.x, 1.0 - 1.0 / 3.0, 1e-12);  // the frustum's floor
 }
 
 }  // namespace

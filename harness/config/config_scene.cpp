@@ -152,6 +152,10 @@ void check_scene_combinations(const SceneDesc& s, const Src& src, const toml::no
   if (s.projection.active() && s.proxy != Proxy::Box)
     fail(src.at(node), "scene '" + s.name +
                            "': reverse_perspective needs proxy = \"box\" (the frustum is drawn)");
+  if (s.clip_frustum && (!s.projection.active() || s.tile != 1.0))
+    fail(src.at(node), "scene '" + s.name +
+                           "': clip_frustum cuts a reverse-perspective frustum (relief key "
+                           "reverse_perspective, tile 1) to the relief's bounding box");
   if (s.projection.active() && s.effects.has(Effect::SelfShadow))
     fail(src.at(node),
          "scene '" + s.name + "': self_shadow is not supported with reverse_perspective yet");
@@ -204,6 +208,7 @@ void describe_scene(const SceneDesc& s, nlohmann::json& canon) {
   canon["tile"] = s.tile;
   canon["depth"] = s.depth;
   canon["quantize"] = s.quantize;
+  if (s.clip_frustum) canon["clip_frustum"] = true;  // absent: keys as before the option
   canon["effects"] = join_effects(s.effects);
   canon["light"] = {s.light_position.x, s.light_position.y, s.light_position.z};
   canon["fov"] = s.fov_deg;
@@ -229,6 +234,7 @@ const std::set<std::string> kSceneKeys = {
     "tile",
     "depth",
     "quantize",
+    "clip_frustum",
     "effects",
     "light",
     "fov",
@@ -271,6 +277,13 @@ void parse_numbers(const toml::table& t, const Src& src, SceneDesc& s) {
   in_range("distance", s.distance, 0, 1e3);  // 0 = fit the quad
   in_range("shadow_bias", s.shadow_bias, 0, 1);
   in_range("shadow_intensity", s.material.shadow_intensity, 0, 1);
+  if (auto* n = t.get("clip_frustum")) {
+    if (!n->is_boolean())
+      fail(src.at(*n),
+           "'clip_frustum' must be true (the frustum cut to the relief's bounding "
+           "box, Baboud & Decoret 2006, Section 4.1) or false");
+    s.clip_frustum = n->value<bool>().value();
+  }
   if (auto* n = t.get("quantize")) {
     if (!n->is_boolean()) fail(src.at(*n), "'quantize' must be true (8-bit) or false (float)");
     s.quantize = n->value<bool>().value();

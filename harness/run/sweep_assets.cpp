@@ -59,7 +59,7 @@ std::unique_ptr<Asset> build_asset(const SweepConfig& config, const SceneDesc& s
                                   : asset->truth_source();
     asset->metric_texel = texel_world(mesh, MapSize{truth0.width, truth0.height});
   } else {
-    asset->base = std::make_unique<GpuBase>(make_base_geometry(scene));
+    asset->base = std::make_unique<GpuBase>(make_base_geometry(scene, &asset->map));
     asset->truth =
         std::make_unique<SceneTruth>(scene, asset->truth_source(), config.truth_tolerance);
     asset->texel_world = texel_world(scene, cell.texture_res);

@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "scene/base_mesh.h"
+#include "scene/clipped_frustum.h"
 
 namespace rl {
 
@@ -56,7 +57,7 @@ double scene_radius(const SceneDesc& scene) {
                    scene.depth * scene.depth);
 }
 
-BaseGeometry make_base_geometry(const SceneDesc& scene) {
+BaseGeometry make_base_geometry(const SceneDesc& scene, const ReliefMap* map) {
   BaseGeometry g;
   if (scene.base.curved()) return base_geometry(make_base_mesh(scene.base, scene.size, scene.tile));
   const PlanarBase base = planar_base(scene);
@@ -70,6 +71,18 @@ BaseGeometry make_base_geometry(const SceneDesc& scene) {
     v.entry_depth = float(uvd.z);
     return v;
   };
+  AffineBox box;
+  if (scene.proxy == Proxy::Box && scene.clip_frustum && map &&
+      relief_affine_bounds(*map, scene.projection, scene.empty_floor, box)) {
+    // Faces in affine coordinates, which interpolate correctly across each (planar) face.
+    for (const std::vector<glm::dvec3>& face : clipped_frustum_faces(scene.projection, box)) {
+      const unsigned first = unsigned(g.vertices.size());
+      for (const glm::dvec3& a : face) g.vertices.push_back(vertex(a));
+      for (unsigned k = 1; k + 1 < face.size(); ++k)
+        for (unsigned c : {0u, k, k + 1}) g.indices.push_back(first + c);
+    }
+    return g;
+  }
   if (scene.proxy == Proxy::Box) {
     // Corners in texture space (u, v, depth); depth grows downward (world -z).
     const double t = scene.tile;

@@ -14,6 +14,10 @@
 #include "relief/reverse_projection.h"
 
 namespace rl {
+struct ReliefMap;
+}
+
+namespace rl {
 
 struct View {
   double elevation_deg = 45;  // 90 = looking straight down on the base
@@ -206,6 +210,8 @@ struct SceneDesc {
   // floor, or leave the box.
   bool empty_floor = false;
   ReverseProjection projection;  // a baked mesh's reverse perspective (Section 4), or none
+  // Draw the frustum cut to the relief's bounding box (Baboud & Decoret, Section 4.1).
+  bool clip_frustum = false;
   ReliefSourceDesc relief;
   double size = 1.0;     // world side of the quad
   double tile = 1.0;     // texture repeats across the quad
@@ -288,8 +294,9 @@ struct BaseGeometry {
 };
 
 // The base quad, or for Proxy::Box the closed box [0, tile]^2 x [0, 1] in texture space with
-// outward faces (counter-clockwise seen from outside), or a curved base's mesh.
-BaseGeometry make_base_geometry(const SceneDesc& scene);
+// outward faces (counter-clockwise seen from outside), or a curved base's mesh. With
+// clip_frustum, `map` gives the relief the frustum is cut to (scene/clipped_frustum.h).
+BaseGeometry make_base_geometry(const SceneDesc& scene, const ReliefMap* map = nullptr);
 
 // Radius of a sphere around the origin holding the base and its relief (camera fitting).
 double scene_radius(const SceneDesc& scene);
