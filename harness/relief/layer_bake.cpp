@@ -91,6 +91,63 @@ BakeFrame pattern_frame() {
   return f;
 }
 
+namespace {
+
+// One texel's bake ray straight down through the mesh: its crossings, top to bottom.
+struct CrossingWalk {
+  RTCScene scene;
+  const TriangleMesh& mesh;
+  const BakeFrame& frame;
+  glm::dvec3 world_scale;
+  const std::vector<bool>& open;  // per triangle: part of an open surface
+  double open_gap;
+
+  // The crossings of the ray through texture point a0 (depth just above 0) into `found`;
+  // returns how many entered where the order says they leave, or the other way round.
+  long walk(const glm::dvec3& a0, std::vector<Crossing>& found) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    const glm::dvec3 o = frame.mesh_from_texture(a0);
+    const glm::dvec3 d = frame.mesh_from_texture(a0 + glm::dvec3(0, 0, 1)) - o;
+    found.clear();
+    long misoriented = 0;
+    double t0 = 0;
+    bool last_entering = false;
+    while (found.size() < size_t(kMaxCrossings)) {
+      RTCRayHit rh = embree_ray(o, d, t0, 1.0 + 2e-6);
+      rtcIntersect1(scene, &ctx, &rh);
+      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+      const double t = rh.ray.tfar, depth = a0.z + t;  // t counts depth units
+      t0 = t + 1e-7;
+      const glm::dvec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+      const bool entering = glm::dot(ng, d) < 0;
+      // A ray through a shared edge may report both triangles at one depth: one crossing.
+      if (!found.empty() && depth - found.back().depth < 1e-6 && entering == last_entering)
+        continue;
+      last_entering = entering;
+      const glm::dvec3 nt = frame.texture_normal(ng);  // (u, v, depth) space
+      glm::dvec3 n = glm::normalize(
+          glm::dvec3(nt.x / world_scale.x, nt.y / world_scale.y, -nt.z / world_scale.z));
+      // Outward by the crossing order: up where the ray enters (even), down where it leaves.
+      const bool even = found.size() % 2 == 0;
+      if (entering != even) ++misoriented;
+      if ((even && n.z < 0) || (!even && n.z > 0)) n = -n;
+      const glm::vec3 color =
+          mesh.triangle_colors.empty() ? kNeutral : mesh.triangle_colors[rh.hit.primID];
+      found.push_back({depth, glm::vec3(n), color});
+      // An open surface as two layers (Policarpo & Oliveira 2006, Section 7): it is entered
+      // and left at once, `open_gap` deeper, facing down there.
+      if (open[rh.hit.primID]) {
+        found.push_back({depth + open_gap, glm::vec3(-n), color});
+        last_entering = !entering;
+      }
+    }
+    return misoriented;
+  }
+};
+
+}  // namespace
+
 ReliefMap bake_layers(const TriangleMesh& mesh, const BakeFrame& frame, int width, int height,
                       int layers, const glm::dvec3& world_scale, bool close_open,
                       std::optional<double> open_surface_gap) {
@@ -101,6 +158,7 @@ ReliefMap bake_layers(const TriangleMesh& mesh, const BakeFrame& frame, int widt
   const size_t texels = size_t(width) * height;
   const std::vector<bool> open =
       open_surface_gap ? open_triangles(mesh) : std::vector<bool>(mesh.triangles.size(), false);
+  const CrossingWalk walk{scene, mesh, frame, world_scale, open, open_surface_gap.value_or(0.0)};
 
   ReliefMap map;
   map.name = mesh.name;
@@ -119,45 +177,10 @@ ReliefMap bake_layers(const TriangleMesh& mesh, const BakeFrame& frame, int widt
   std::atomic<long> odd{0};
 
   parallel_for(texels, [&](size_t begin, size_t end) {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
     std::vector<Crossing> found;
     for (size_t i = begin; i < end; ++i) {
-      const glm::dvec3 a0((i % width + 0.5) / width, (i / width + 0.5) / height, -1e-6);
-      const glm::dvec3 o = frame.mesh_from_texture(a0);
-      const glm::dvec3 d = frame.mesh_from_texture(a0 + glm::dvec3(0, 0, 1)) - o;
-      found.clear();
-      double t0 = 0;
-      bool last_entering = false;
-      while (found.size() < size_t(kMaxCrossings)) {
-        RTCRayHit rh = embree_ray(o, d, t0, 1.0 + 2e-6);
-        rtcIntersect1(scene, &ctx, &rh);
-        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
-        const double t = rh.ray.tfar, depth = a0.z + t;  // t counts depth units
-        t0 = t + 1e-7;
-        const glm::dvec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
-        const bool entering = glm::dot(ng, d) < 0;
-        // A ray through a shared edge may report both triangles at one depth: one crossing.
-        if (!found.empty() && depth - found.back().depth < 1e-6 && entering == last_entering)
-          continue;
-        last_entering = entering;
-        const glm::dvec3 nt = frame.texture_normal(ng);  // (u, v, depth) space
-        glm::dvec3 n = glm::normalize(
-            glm::dvec3(nt.x / world_scale.x, nt.y / world_scale.y, -nt.z / world_scale.z));
-        // Outward by the crossing order: up where the ray enters (even), down where it leaves.
-        const bool even = found.size() % 2 == 0;
-        if (entering != even) ++misoriented;
-        if ((even && n.z < 0) || (!even && n.z > 0)) n = -n;
-        const glm::vec3 color =
-            mesh.triangle_colors.empty() ? kNeutral : mesh.triangle_colors[rh.hit.primID];
-        found.push_back({depth, glm::vec3(n), color});
-        // An open surface as two layers (Policarpo & Oliveira 2006, Section 7): it is entered
-        // and left at once, `open_surface_gap` deeper, facing down there.
-        if (open[rh.hit.primID]) {
-          found.push_back({depth + *open_surface_gap, glm::vec3(-n), color});
-          last_entering = !entering;
-        }
-      }
+      misoriented +=
+          walk.walk({(i % width + 0.5) / width, (i / width + 0.5) / height, -1e-6}, found);
       if (found.size() % 2) {
         ++odd;
         if (close_open) found.pop_back();
