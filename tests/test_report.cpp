@@ -9,6 +9,7 @@
 #include <regex>
 #include <set>
 
+#include "core/atomic_write.h"
 #include "output/report.h"
 #include "support/test_support.h"
 
@@ -94,6 +95,11 @@ values = ["psnr_db"]
   ASSERT_TRUE(std::filesystem::exists(out + "/report_assets/d3.min.js"));
   ASSERT_TRUE(std::filesystem::exists(out + "/report_assets/report.js"));
   ASSERT_TRUE(std::filesystem::exists(out + "/report_assets/report.css"));
+  // The results tree's shared copies are this build's (scripts/reproduce.sh copies them there).
+  for (const char* asset : {"report.js", "report.css"})
+    EXPECT_EQ(read_text(out + "/report_assets/" + asset),
+              read_text(std::string(RELIEFLAB_SOURCE_DIR "/results/report_assets/") + asset))
+        << asset << ": results/report_assets/ holds another version; regenerate a folder";
   // One picture taken away, as from a committed reproduction (which keeps no images/): its cell
   // must say so instead of showing a broken image. Done before the one page load that checks
   // everything (each Chromium start is seconds); a tall window puts every lazy picture in view.
