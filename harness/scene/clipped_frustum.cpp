@@ -36,7 +36,7 @@ glm::dvec3 newell_normal(const Polygon& p) {
 }
 
 // The six faces of a hexahedron given its 8 corners (bit 0: x, bit 1: y, bit 2: z), each as a
-// polygon, and its six bounding half-spaces (outward normals).
+// polygon.
 std::array<Polygon, 6> hexahedron_faces(const std::array<glm::dvec3, 8>& c) {
   const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
                            {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
@@ -46,6 +46,7 @@ std::array<Polygon, 6> hexahedron_faces(const std::array<glm::dvec3, 8>& c) {
   return out;
 }
 
+// The half-spaces the faces bound, normals pointing away from `inside`.
 std::array<HalfSpace, 6> half_spaces(const std::array<Polygon, 6>& faces,
                                      const glm::dvec3& inside) {
   std::array<HalfSpace, 6> out;
