@@ -237,10 +237,9 @@ TEST(Registry, AFetchBoundBrokenAtRunTimeIsNamedInTheRunLog) {
   registry.add(original);
   std::ifstream in(dir + "/out/run.log");
   const std::string log((std::istreambuf_iterator<char>(in)), {});
-  EXPECT_NE(
-      log.find(
-          "warning: relief binary_steps=5 color_mipmap=0 linear_steps=8 mipmap=0: a fragment paid"),
-      std::string::npos)
+  EXPECT_NE(log.find("warning: relief ao_packed=0 binary_steps=5 color_mipmap=0 linear_steps=8 "
+                     "mipmap=0: a fragment paid"),
+            std::string::npos)
       << log;
   EXPECT_NE(log.find("fetches, over the 3 its describe() declares (3): its contract does not "
                      "hold on this cell"),
@@ -407,9 +406,11 @@ binary_steps = [0, 4, 8]
       "product.toml", ".");
   const std::vector<ParamValues> grid = parameter_settings(product.techniques[0]);
   ASSERT_EQ(grid.size(), 6u);
-  EXPECT_EQ(
-      grid[1],
-      (ParamValues{{"linear_steps", 8}, {"binary_steps", 4}, {"mipmap", 0}, {"color_mipmap", 0}}));
+  EXPECT_EQ(grid[1], (ParamValues{{"linear_steps", 8},
+                                  {"binary_steps", 4},
+                                  {"mipmap", 0},
+                                  {"color_mipmap", 0},
+                                  {"ao_packed", 0}}));
 }
 
 // A parameter added later with a neutral default (ParamSpec::neutral_default) leaves the keys of

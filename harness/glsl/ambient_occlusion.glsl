@@ -33,6 +33,9 @@ float rl_stored_ao(vec2 uv) {
   }
   return ao;
 }
+#elif defined(RL_AO_PACKED)
+// The AO of the texel the shading just read for the hit's normal (relief_common.glsl).
+float rl_stored_ao(vec2 uv) { return rl_packed_ao; }
 #else
 float rl_stored_ao(vec2 uv) { return RL_FETCH(rl_ao, uv).r; }
 #endif

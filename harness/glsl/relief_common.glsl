@@ -85,6 +85,20 @@ float rl_relief_depth(vec2 uv) {
 layout(binding = 9) uniform sampler2D rl_relief_mipmapped;
 vec4 rl_relief_texel(vec2 uv) { return RL_FETCH_GRAD(rl_relief_mipmapped, uv); }
 float rl_relief_depth(vec2 uv) { return rl_relief_texel(uv).a; }
+#elif defined(RL_AO_PACKED)
+// The AO map in the relief texture's blue channel (Limberger et al., Section IV;
+// technique/packed_relief.h): R and G the normal's x and y, its z rebuilt; alpha the depth.
+// A texel's read keeps its AO for the shading (ambient_occlusion.glsl), which reads the hit's
+// normal first: the AO costs no fetch of its own.
+layout(binding = 20) uniform sampler2D rl_relief_packed;
+float rl_packed_ao = 1.0;
+vec4 rl_relief_texel(vec2 uv) {
+  vec4 t = RL_FETCH(rl_relief_packed, uv);
+  rl_packed_ao = t.b;
+  vec2 xy = t.xy * 2.0 - 1.0;
+  return vec4(vec3(xy, sqrt(max(0.0, 1.0 - dot(xy, xy)))) * 0.5 + 0.5, t.a);
+}
+float rl_relief_depth(vec2 uv) { return RL_FETCH(rl_relief_packed, uv).a; }
 #else
 // The relief texel (normal rgb, depth a) and depth at uv: one fetch of the map.
 vec4 rl_relief_texel(vec2 uv) { return RL_FETCH(rl_relief, uv); }

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "technique/mipmapped_relief.h"
+#include "technique/packed_relief.h"
 #include "technique/shader_technique.h"
 
 namespace rl {
@@ -50,6 +51,15 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
               .doc = "1: the colour alone read from its mip chain at the pixel's footprint, the "
                      "geometry at level 0 (Baboud & Decoret 2006, Section 6); 0: level 0, as the "
                      "truth shades it",
+              .neutral_default = true},
+             {.name = "ao_packed",
+              .kind = ParamKind::Bool,
+              .default_value = 0,
+              .min_value = 0,
+              .max_value = 1,
+              .doc = "1: the AO map in the relief texture's blue channel, the normal's x and y in "
+                     "red and green and its z rebuilt (Limberger et al., Section IV), so the AO "
+                     "costs no fetch of its own; 0: a texture of its own",
               .neutral_default = true}},
         .draws = {.reads = {Representation::Heightfield, Representation::Layers,
                             Representation::MetaRuntime},
@@ -69,9 +79,11 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
                      .t_resolution = one_linear_step},
         // A meta-relief combined per fetch reads its layers, which have no mip levels.
         .setting_cannot_render = [](const ParamValues& setting, const SceneDesc& scene) {
-          return setting.at("mipmap") != 0 && scene.meta.runtime()
+          if (setting.at("mipmap") != 0 && setting.at("ao_packed") != 0)
+            return std::string("mipmap = 1 and ao_packed = 1 each read a map of their own");
+          return (setting.at("mipmap") != 0 || setting.at("ao_packed") != 0) && scene.meta.runtime()
                      ? std::string(
-                           "mipmap = 1 reads one map's mip chain, and this scene's "
+                           "mipmap = 1 and ao_packed = 1 read one map, and this scene's "
                            "meta-relief is combined per fetch; set combine = \"baked\" "
                            "in its meta_relief")
                      : std::string();
@@ -80,8 +92,11 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
   void prepare(const ReliefMap& map) override {
     if (mipmapped()) mipmaps_.upload(map);
     if (color_mipmapped()) color_mips_.upload(map);
+    if (packed()) packed_.upload(map);
   }
-  size_t memory_bytes() const override { return mipmaps_.bytes() + color_mips_.bytes(); }
+  size_t memory_bytes() const override {
+    return mipmaps_.bytes() + color_mips_.bytes() + packed_.bytes();
+  }
 
  protected:
   std::string intersect_file() const override { return "techniques/relief/relief.glsl"; }
@@ -91,18 +106,22 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
     if (mipmapped() || color_mipmapped()) d["RL_MIPMAP"] = "1";
     if (mipmapped()) d["RL_MIPMAPPED_RELIEF"] = "1";
     if (color_mipmapped()) d["RL_COLOR_MIPMAP"] = "1";
+    if (packed()) d["RL_AO_PACKED"] = "1";
     return d;
   }
   void bind_resources(GLuint) const override {
     if (mipmapped()) mipmaps_.bind();
     if (color_mipmapped()) color_mips_.bind();
+    if (packed()) packed_.bind();
   }
 
  private:
   bool mipmapped() const { return param("mipmap") != 0; }
   bool color_mipmapped() const { return param("color_mipmap") != 0; }
+  bool packed() const { return param("ao_packed") != 0; }
   MipmappedRelief mipmaps_;
   MipmappedRelief color_mips_{MipmappedRelief::Channel::Color};
+  PackedRelief packed_;
 };
 
 RL_REGISTER_TECHNIQUE(ReliefMapping);
