@@ -303,14 +303,18 @@ TriangleMesh load_mesh(const std::string& path) {
   return m;
 }
 
-MeshClosure mesh_closure(const TriangleMesh& mesh) {
-  // Weld: one id per distinct position.
+std::vector<uint32_t> welded_vertex_ids(const TriangleMesh& mesh) {
   std::map<std::tuple<float, float, float>, uint32_t> ids;
   std::vector<uint32_t> id(mesh.positions.size());
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
     const glm::vec3& p = mesh.positions[i];
     id[i] = ids.emplace(std::make_tuple(p.x, p.y, p.z), uint32_t(ids.size())).first->second;
   }
+  return id;
+}
+
+MeshClosure mesh_closure(const TriangleMesh& mesh) {
+  const std::vector<uint32_t> id = welded_vertex_ids(mesh);
   std::map<std::pair<uint32_t, uint32_t>, int> uses;
   for (const glm::uvec3& t : mesh.triangles) {
     const uint32_t v[3] = {id[t.x], id[t.y], id[t.z]};

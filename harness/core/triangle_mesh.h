@@ -22,6 +22,9 @@ struct TriangleMesh {
 // out of range (beyond 1e15), malformed or degenerate.
 TriangleMesh load_mesh(const std::string& path);
 
+// One id per distinct vertex position, per vertex: a file may split a vertex by uv or normal.
+std::vector<uint32_t> welded_vertex_ids(const TriangleMesh& mesh);
+
 // How far a mesh is from closing a solid: its edges (vertices welded by position, since a file
 // may split a vertex by uv or normal) used by one triangle only (a hole's rim) and by more
 // than two (non-manifold).

@@ -1,7 +1,6 @@
 #include "relief/layer_bake.h"
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <map>
 #include <stdexcept>
@@ -49,13 +48,7 @@ struct Crossing {
 // uses) -- part of an open surface. Vertices are welded by position, as a mesh file may repeat
 // them per face.
 std::vector<bool> open_triangles(const TriangleMesh& mesh) {
-  std::map<std::array<float, 3>, uint32_t> welded;
-  std::vector<uint32_t> id(mesh.positions.size());
-  for (size_t v = 0; v < mesh.positions.size(); ++v) {
-    const glm::vec3& p = mesh.positions[v];
-    id[v] =
-        welded.emplace(std::array<float, 3>{p.x, p.y, p.z}, uint32_t(welded.size())).first->second;
-  }
+  const std::vector<uint32_t> id = welded_vertex_ids(mesh);
   std::vector<uint32_t> parent(mesh.triangles.size());
   for (uint32_t t = 0; t < parent.size(); ++t) parent[t] = t;
   auto root = [&](uint32_t t) {
@@ -66,6 +59,7 @@ std::vector<bool> open_triangles(const TriangleMesh& mesh) {
   for (uint32_t t = 0; t < mesh.triangles.size(); ++t)
     for (int e = 0; e < 3; ++e) {
       uint32_t a = id[mesh.triangles[t][e]], b = id[mesh.triangles[t][(e + 1) % 3]];
+      if (a == b) continue;  // an edge collapsed by the weld, as mesh_closure() skips them
       auto [it, fresh] = edges.try_emplace({std::min(a, b), std::max(a, b)}, t, 0);
       ++it->second.second;
       if (!fresh) parent[root(t)] = root(it->second.first);
