@@ -150,6 +150,71 @@ TEST(PatternBaseTruth, TheWeaveMappedOntoASphereStaysInItsShell) {
   EXPECT_TRUE(h.has_surface);
 }
 
+TEST(PatternBaseTruth, ASolidFloorStopsTheRaysThatMissThePattern) {
+  // Policarpo & Oliveira 2006, Figure 9 (right): under the pattern lies the underlying model.
+  // Rays at the sphere's middle either meet the same pattern point as without the floor, or
+  // stop on the floor: one relief depth inside the base, before the open sphere's next hit,
+  // facing out along the base's normal, in the floor's colour.
+  const BaseMesh sphere =
+      make_base_mesh(BaseDesc{.kind = "sphere", .path = "", .segments = 24}, 1.0, 2.0);
+  const TriangleMesh weave = make_pattern_mesh("weave", {}, "test");
+  const glm::vec3 green(0.0f, 1.0f, 0.0f);
+  const double depth = 0.06;
+  const PatternBaseTruth open(weave, sphere, depth), floored(weave, sphere, depth, green);
+  int floor_hits = 0, rays = 0;
+  for (int j = -20; j <= 20; ++j)
+    for (int i = -20; i <= 20; ++i, ++rays) {
+      // Off the mesh's planes of symmetry, where rays would run along base edges.
+      const glm::dvec3 eye(0.3 * (i + 0.37) / 20.0, 0.3 * (j + 0.21) / 20.0, 3.0), dir(0, 0, -1);
+      const DisplacedHit a = open.intersect(eye, dir, 10.0), b = floored.intersect(eye, dir, 10.0);
+      ASSERT_TRUE(b.hit);
+      if (b.albedo != glm::dvec3(green)) {
+        EXPECT_NEAR(b.t, a.t, 1e-5);  // the pattern in front of the floor, untouched
+        continue;
+      }
+      ++floor_hits;
+      EXPECT_TRUE(!a.hit || a.t > b.t);
+      const double r = glm::length(b.position);
+      EXPECT_LE(r, 0.5 - depth + 1e-6);
+      // A flat facet of the sphere of radius 0.5 - depth (24 segments) sags by at most cos^2.
+      EXPECT_GE(r, (0.5 - depth) * std::pow(std::cos(3.14159265 / 24), 2) - 1e-6);
+      EXPECT_EQ(b.surface_normal, b.normal);  // shaded with the base's normal, facing the eye
+      EXPECT_GT(glm::dot(b.normal, b.position / r), 0.99);
+    }
+  std::printf("solid floor under the weave on a sphere: %d of %d rays end on the floor\n",
+              floor_hits, rays);
+  EXPECT_GT(floor_hits, rays / 10);
+  EXPECT_LT(floor_hits, rays);
+}
+
+TEST(MultilayerScenes, TheMissingPatternDrawnAsTheUnderlyingModel) {
+  // Figure 9 (right): a pattern on a sphere over a solid floor. Every pixel of the truth's
+  // sphere is drawn (the floor shows through every gap), and the search's parallax beats
+  // normal mapping's none. With silhouettes the rays that leave through the top are dropped.
+  SceneDesc scene = test::weave_scene(128, TruthLevel::Mesh);
+  scene.base.kind = "sphere";
+  scene.base.segments = 32;
+  scene.tile = 2;
+  scene.depth = 0.06;
+  scene.empty_floor = false;
+  const View view{30, 30};
+  const test::Measured ml = test::measure(scene, "multilayer", {{"linear_steps", 32}}, view, 96);
+  const test::Measured flat = test::measure(scene, "normal", {}, view, 96);
+  scene.effects.add(Effect::Silhouette);
+  const test::Measured bent = test::measure(scene, "multilayer", {{"linear_steps", 32}}, view, 96);
+  std::printf(
+      "weave on a sphere over a solid floor: multilayer wrong %.2f%% (PSNR %.1f dB, false "
+      "%.2f%%), with silhouettes false %.2f%%, normal mapping %.2f%% (%.1f dB)\n",
+      ml.metrics.wrong_pct, ml.metrics.psnr_db, ml.metrics.false_pct, bent.metrics.false_pct,
+      flat.metrics.wrong_pct, flat.metrics.psnr_db);
+  for (const test::Measured* m : {&ml, &flat, &bent}) EXPECT_EQ(m->metrics.nonfinite_px, 0);
+  EXPECT_LT(ml.metrics.missed_pct, 0.5);
+  EXPECT_LT(bent.metrics.missed_pct, 2.0);  // bent rays that leave the floor's outline early
+  EXPECT_LT(ml.metrics.wrong_pct, flat.metrics.wrong_pct - 10.0);
+  EXPECT_GT(ml.metrics.psnr_db, flat.metrics.psnr_db + 1.0);
+  EXPECT_LT(bent.metrics.false_pct, 0.5 * ml.metrics.false_pct);
+}
+
 TEST(MultilayerScenes, TheWeaveOnTheTeapotWhoseUvsOverlap) {
   // The teapot's cylindrical uvs cover some uvs twice (spout and handle over the body): the
   // truth maps the pattern onto every triangle anyway, and the technique's error stays finite.

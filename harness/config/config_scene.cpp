@@ -45,11 +45,11 @@ void parse_base(const toml::table& t, const Src& src, const std::string& base_di
     fail(src.at(*t.get("base")), "scene '" + s.name +
                                      "': a curved base is drawn itself; proxy = \"box\" needs "
                                      "the planar base");
-  if (!s.relief.mesh_path.empty())
+  if (!s.relief.mesh_path.empty() && s.relief.layers == 0)
     fail(src.at(*t.get("base")),
          "scene '" + s.name +
-             "': a baked mesh relief needs the planar base (it is an object in "
-             "its box)");
+             "': a baked mesh relief needs the planar base (it is an object in its box), "
+             "unless it is baked into layers (layers = N: a pattern repeated over the base)");
 }
 
 // objects = [{ shape = "sphere" | "cube" | "mesh.obj", center = [x, y, z], radius = r,
@@ -166,17 +166,15 @@ void check_scene_combinations(const SceneDesc& s, const Src& src, const toml::no
     if (s.proxy == Proxy::Box)
       fail(src.at(node), no + "is drawn on its base; proxy = \"box\" "
                               "is not supported yet");
-    if (s.base.curved() && !s.relief.pattern_mesh())
-      fail(src.at(node), no + "from a mesh file needs the planar base");
     if (s.base.curved() && s.truth == TruthLevel::Layers)
       fail(src.at(node), no + "on a curved base has the pattern mesh as its truth, not "
                               "\"layers\"");
-    if (!s.empty_floor && (s.base.curved() || s.impostor()))
-      fail(src.at(node), no + "on a curved base or as an impostor has an empty floor (its gaps "
-                              "show what lies behind); floor = \"solid\" applies on the plane");
+    if (!s.empty_floor && s.impostor())
+      fail(src.at(node), no + "as an impostor has an empty floor (its gaps show what lies "
+                              "behind); floor = \"solid\" applies on a base");
   }
   if (s.truth == TruthLevel::Mesh && !s.relief.mesh_path.empty() && !s.impostor() &&
-      s.proxy != Proxy::Box)
+      s.proxy != Proxy::Box && !s.base.curved())
     fail(src.at(node),
          "scene '" + s.name +
              "': truth = \"mesh\" needs proxy = \"box\" (the mesh is an object in its box)");
@@ -230,6 +228,7 @@ const std::set<std::string> kSceneKeys = {
     "proxy",
     "truth",
     "floor",
+    "floor_color",
     "size",
     "tile",
     "depth",
@@ -261,7 +260,11 @@ void parse_numbers(const toml::table& t, const Src& src, SceneDesc& s) {
     if (auto* n = t.get(key)) out = number_in(*n, src, key, lo, hi);
   };
   in_range("size", s.size, 1e-3, 1e3);
-  if (!s.relief.mesh_path.empty()) {
+  // On a curved base a mesh's layers repeat as a pattern does: its tile and depth are the
+  // scene's (the object stretches with the tile).
+  const toml::node* base = t.get("base");
+  const bool curved = base && base->value_or(std::string("plane")) != "plane";
+  if (!s.relief.mesh_path.empty() && !curved) {
     // A baked mesh keeps its proportions: the relief depth follows from the footprint.
     if (t.contains("depth"))
       fail(src.at(*t.get("depth")),
@@ -299,6 +302,11 @@ void parse_floor_and_proxy(const toml::table& t, const Src& src, SceneDesc& s) {
     if (f != "solid" && f != "empty")
       fail(src.at(*n), "'floor' must be \"solid\" or \"empty\" (default: empty for baked meshes)");
     s.empty_floor = f == "empty";
+  }
+  if (auto* n = t.get("floor_color")) {
+    if (s.empty_floor || s.relief.layers == 0)
+      fail(src.at(*n), "'floor_color' colours a layered relief's solid floor (floor = \"solid\")");
+    s.floor_color = vec3_in(*n, src, "floor_color", 0, 1);
   }
   if (auto* n = t.get("proxy")) {
     const std::string p = string_of(*n, src, "proxy");
@@ -357,6 +365,8 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
   canon["proxy"] = s.proxy == Proxy::Box ? "box" : "base";
   canon["truth"] = truth_level_name(s.truth);
   canon["floor"] = s.empty_floor ? "empty" : "solid";
+  if (t.contains("floor_color"))
+    canon["floor_color"] = {s.floor_color.r, s.floor_color.g, s.floor_color.b};
   // A heightfield object's faces carry their own reverse perspective; its cube is affine.
   if (!s.heightfield_object()) s.projection.cop = s.relief.reverse_cop;
   check_scene_combinations(s, src, node);

@@ -59,8 +59,8 @@ void read_scene_files(ParsedScene& parsed) {
   for (size_t i = 0; i < s.meta.layers.size(); ++i)
     read_relief_images(s.meta.layers[i].relief, canon["meta_relief"]["layers"][i]["relief"],
                        parsed.sites.relief);
-  if (!r.mesh_path.empty()) {
-    canon["relief"]["mesh"] = file_id(r.mesh_path);
+  if (!r.mesh_path.empty()) canon["relief"]["mesh"] = file_id(r.mesh_path);
+  if (!r.mesh_path.empty() && !s.base.curved()) {
     // A baked mesh keeps its proportions: the relief depth follows from the footprint.
     const BakeFrame frame = relief_bake_frame(r, mesh_at(parsed.sites.relief, r.mesh_path));
     s.depth = s.size * frame.height / frame.side;

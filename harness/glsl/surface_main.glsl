@@ -113,7 +113,13 @@ void main() {
   vec3 metric = vec3(length(v_dpdu), length(v_dpdv), rl_depth_scale);
   RlHit h = rl_intersect_curved(vec3(v_uv, 0.0), tv, v_curvature, metric);
   t_is_world = true;
+#if defined(RL_LAYERED_FLOOR) && !defined(RL_EMPTY_FLOOR)
+  // A pattern over its solid floor (the underlying model): a ray that reached depth 1 through
+  // the gaps ends on it; one that left through the top is outside the silhouette.
+  if (!h.hit && h.depth < 1.0 - 1e-4) RL_DISCARD;
+#else
   if (!h.hit) RL_DISCARD;
+#endif
 #else
   vec3 s = tv / tv.z;
   RlHit h = rl_intersect(vec3(v_uv, v_entry_depth), s);

@@ -65,6 +65,8 @@ struct ReliefMap {
   int color_width = 0, color_height = 0;
   bool quantized = false;  // every channel holds an exact multiple of 1/255
   LayerStack layers;       // non-height-field maps: their layers; `relief` is the top one
+  // The colour of a layered map's solid floor (the scene's floor_color), where it is drawn.
+  glm::vec3 floor_color = kLayeredFloorColor;
   // The texture-space AO map (relief/ao_map.h), only where a scene asks for ambient_occlusion:
   // visibility in [0, 1] per texel, uploaded 8-bit when the map is quantised.
   std::vector<float> ambient_visibility;

@@ -106,7 +106,7 @@ std::string describe_asset(const SceneDesc& scene, const Asset& asset) {
                   "rounding on the curved base: %s; each trace states its bound in texels)",
                   scene.name.c_str(), layer0_size.width, layer0_size.height, asset.build_ms,
                   asset.truth->build_ms(),
-                  scene.relief.pattern_mesh()
+                  scene.relief.layers > 0
                       ? "the pattern mesh placed on every base triangle"
                       : ("walked through the base's prisms behind a sheet of " +
                          std::to_string(asset.truth->subdivision()) + "x" +

@@ -39,6 +39,19 @@ BakeFrame relief_bake_frame(const ReliefSourceDesc& relief, const TriangleMesh& 
   return bake_frame(mesh, relief.mesh_up, 0.04, relief.layers > 0 ? 0.02 : 0.0);
 }
 
+TriangleMesh layered_tile_mesh(const SceneDesc& scene) {
+  const ReliefSourceDesc& relief = scene.relief;
+  if (relief.pattern_mesh())
+    return make_pattern_mesh(relief.procedural, relief.options, "scene '" + scene.name + "'");
+  TriangleMesh mesh = load_mesh(relief.mesh_path);
+  const BakeFrame frame = relief_bake_frame(relief, mesh);
+  for (glm::vec3& p : mesh.positions) {
+    const glm::dvec3 t = frame.texture_from_mesh(glm::dvec3(p));
+    p = glm::vec3(t.x, t.y, -t.z);
+  }
+  return mesh;
+}
+
 namespace {
 
 // The complex of `mesh` (in texture space) with `options`, through the precompute cache, keyed
@@ -157,6 +170,7 @@ ReliefMap build_relief_asset(const SceneDesc& scene, int resolution, int color_r
     map.color_height = color.height;
   }
   if (scene.quantize) quantize_8bit(map);
+  map.floor_color = scene.floor_color;
   if (!scene.meta.active()) return map;
   // A meta-relief: the sweep's resolution is layer 0's; every other layer is scaled by the same
   // factor from its native size (so "native" keeps each layer's own), each at its tiling.

@@ -32,6 +32,11 @@ AoMap attach_ao_map(ReliefMap& map, const SceneDesc& scene, double texel_world,
 // into layers (an impostor). Used alike by the bake, the truth and the scene's depth.
 BakeFrame relief_bake_frame(const ReliefSourceDesc& relief, const TriangleMesh& mesh);
 
+// The tile a layered relief repeats over a curved base, in pattern space (x = u, y = v,
+// z = -depth: relief/pattern_mesh.h): the procedural pattern, or the mesh file where its bake
+// frame puts it (one object per tile, as the layers hold it).
+TriangleMesh layered_tile_mesh(const SceneDesc& scene);
+
 // The image files and conventions of an image relief, as load_relief_images takes them.
 ReliefImageSource image_source(const ReliefSourceDesc& relief);
 

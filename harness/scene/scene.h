@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "core/effects.h"
+#include "relief/relief_map.h"
 #include "relief/reverse_projection.h"
 
 namespace rl {
@@ -209,6 +210,9 @@ struct SceneDesc {
   // mesh: chapter 5's "alpha = d < 1", Baboud & Decoret's objects)? Rays reaching it hit the
   // floor, or leave the box.
   bool empty_floor = false;
+  // A layered relief's solid floor: its colour (Policarpo & Oliveira 2006, Figure 9 right:
+  // where rays miss the pattern, the underlying model in its own colour).
+  glm::vec3 floor_color = kLayeredFloorColor;
   ReverseProjection projection;  // a baked mesh's reverse perspective (Section 4), or none
   // Draw the frustum cut to the relief's bounding box (Baboud & Decoret, Section 4.1).
   bool clip_frustum = false;
@@ -234,7 +238,7 @@ struct SceneDesc {
   double shadow_bias = 0.02;  // depth units (Listing 5.3's shadow_threshold)
   // A relief impostor (Policarpo & Oliveira 2006, Section 4): a mesh baked into depth layers,
   // drawn on one quad through its middle (depth 0.5) and seen from either side.
-  bool impostor() const { return relief.layers > 0 && !relief.mesh_path.empty(); }
+  bool impostor() const { return relief.layers > 0 && !relief.mesh_path.empty() && !base.curved(); }
   // A closed mesh as a cubic cell complex (relief = { cells = "mesh.obj" }): drawn by the
   // techniques that read it, in its bounding cube (the box proxy, depth = size).
   bool cell_complex() const { return relief.cells.active; }

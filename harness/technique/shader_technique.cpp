@@ -14,7 +14,7 @@ namespace rl {
 
 Defines layered_floor_define(const ReliefMap& map) {
   if (map.layers.empty()) return {};
-  const glm::vec3 c = kLayeredFloorColor;
+  const glm::vec3 c = map.floor_color;
   return {{"RL_LAYERED_FLOOR", "vec3(" + std::to_string(c.r) + ", " + std::to_string(c.g) + ", " +
                                    std::to_string(c.b) + ")"}};
 }
@@ -36,11 +36,10 @@ void set_meta_relief_uniforms(GLuint program, const ReliefMap& map) {
 }
 
 SurfaceVariant ShaderTechnique::variant_of(const SceneDesc& scene) {
-  return {scene.proxy,
-          scene.empty_floor,
-          scene.projection.active(),
-          scene.impostor(),
-          scene.base.curved() && scene.relief.layers > 0,
+  return {scene.proxy, scene.empty_floor, scene.projection.active(), scene.impostor(),
+          // Through a pattern's gaps on a closed base the far side shows, unless a solid floor
+          // (the underlying model) fills it.
+          scene.base.curved() && scene.relief.layers > 0 && scene.empty_floor,
           scene.drawn_effects().has(Effect::AmbientOcclusion) &&
               scene.ao.update == AmbientOcclusionDesc::Update::Eq6 &&
               scene.ao.rescale(scene.depth) != 1.0,

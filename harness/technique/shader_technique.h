@@ -14,7 +14,7 @@
 namespace rl {
 
 // The #define a technique on a multilayer map adds so its misses shade like the truth's solid
-// floor (kLayeredFloorColor, facing up); empty for heightfield maps.
+// floor (map.floor_color, facing up); empty for heightfield maps.
 Defines layered_floor_define(const ReliefMap& map);
 // The tilings and weight shares of a meta-relief combined per fetch (RL_META_LAYERS).
 void set_meta_relief_uniforms(GLuint program, const ReliefMap& map);

@@ -44,11 +44,12 @@ std::unique_ptr<TruthSurface> make_truth(const SceneDesc& scene, const ReliefMap
 SceneTruth::SceneTruth(const SceneDesc& scene, const ReliefMap& map, double tolerance,
                        const BaseMesh* base) {
   const auto start = std::chrono::steady_clock::now();
-  if (scene.base.curved() && scene.relief.pattern_mesh()) {
-    const TriangleMesh pattern = make_pattern_mesh(scene.relief.procedural, scene.relief.options,
-                                                   "scene '" + scene.name + "'");
+  if (scene.base.curved() && scene.relief.layers > 0) {
+    std::optional<glm::vec3> floor;
+    if (!scene.empty_floor) floor = scene.floor_color;
     pattern_ = std::make_unique<PatternBaseTruth>(
-        pattern, base ? *base : make_base_mesh(scene.base, scene.size, scene.tile), scene.depth);
+        layered_tile_mesh(scene), base ? *base : make_base_mesh(scene.base, scene.size, scene.tile),
+        scene.depth, floor);
   } else if (scene.base.curved()) {
     displaced_ = std::make_unique<DisplacedTruth>(
         base ? *base : make_base_mesh(scene.base, scene.size, scene.tile), map, scene.depth);

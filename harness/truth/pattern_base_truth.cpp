@@ -7,6 +7,7 @@
 
 #include "core/elapsed.h"
 #include "core/embree_util.h"
+#include "relief/relief_map.h"
 
 namespace rl {
 
@@ -102,17 +103,38 @@ void PatternBaseTruth::add_clipped(const TriangleMesh& pattern, uint32_t t,
   }
   for (uint32_t k = 1; k + 1 < poly.size(); ++k) {
     triangles_.emplace_back(first, first + k, first + k + 1);
-    colors_.push_back(pattern.triangle_colors.empty() ? glm::vec3(0.78f, 0.74f, 0.70f)
+    colors_.push_back(pattern.triangle_colors.empty() ? kLayeredFloorColor
                                                       : pattern.triangle_colors[t]);
+    on_floor_.push_back(t >= first_floor_triangle_);
   }
 }
 
+namespace {
+
+// The tile with the square at depth 1 (z = -1) appended in `floor_color`; every triangle
+// coloured (the pattern's neutral where it has no colours).
+TriangleMesh with_floor(TriangleMesh tile, const glm::vec3& floor_color) {
+  if (tile.triangle_colors.empty())
+    tile.triangle_colors.assign(tile.triangles.size(), kLayeredFloorColor);
+  const uint32_t first = uint32_t(tile.positions.size());
+  for (const glm::vec2 corner :
+       {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)})
+    tile.positions.emplace_back(corner, -1.0f);
+  tile.triangles.emplace_back(first, first + 1, first + 2);
+  tile.triangles.emplace_back(first, first + 2, first + 3);
+  tile.triangle_colors.insert(tile.triangle_colors.end(), 2, floor_color);
+  return tile;
+}
+
+}  // namespace
+
 PatternBaseTruth::PatternBaseTruth(const TriangleMesh& tile_mesh, const BaseMesh& base,
-                                   double depth) {
+                                   double depth, const std::optional<glm::vec3>& floor_color) {
   const auto start = std::chrono::steady_clock::now();
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("cannot create an Embree device");
-  const TriangleMesh& pattern = tile_mesh;
+  if (floor_color) first_floor_triangle_ = uint32_t(tile_mesh.triangles.size());
+  const TriangleMesh pattern = floor_color ? with_floor(tile_mesh, *floor_color) : tile_mesh;
   const PatternBins bins(pattern);
   std::vector<uint64_t> stamp(pattern.triangles.size(), 0);  // a triangle's last visit
   uint64_t visits = 0;                                       // one per (base triangle, tile)
@@ -177,10 +199,14 @@ DisplacedHit PatternBaseTruth::intersect(const glm::dvec3& origin, const glm::dv
   h.has_surface = true;
   glm::dvec3 n = glm::normalize(glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
   h.surface_normal = glm::dot(n, direction) > 0 ? -n : n;
+  h.geometric_normal = h.surface_normal;  // the flat triangle's: what rounding moves along
   h.normal =
       glm::normalize(b0 * glm::dvec3(base_normals_[t.x]) + b1 * glm::dvec3(base_normals_[t.y]) +
                      b2 * glm::dvec3(base_normals_[t.z]));
   h.albedo = glm::dvec3(colors_[rh.hit.primID]);
+  // The floor is the underlying model: shaded with its normal, as the shaders shade a miss.
+  if (on_floor_[rh.hit.primID])
+    h.surface_normal = glm::dot(h.normal, direction) > 0 ? -h.normal : h.normal;
   return h;
 }
 

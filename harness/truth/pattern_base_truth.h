@@ -6,9 +6,11 @@
 // heightfield truth does -- traced by Embree in world space with the pattern's flat triangle
 // normals and thread colours. Within a base triangle the mapping is affine, so the pattern's
 // triangles stay flat and exact; across base edges the clipped pieces meet without cracks.
-// Works on any base with uvs, including mappings that cover some uvs twice (the teapot).
+// Works on any base with uvs, including mappings that cover some uvs twice (the teapot). With a
+// solid floor the tile gains the square at depth 1, placed as the pattern is.
 #include <atomic>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -22,8 +24,11 @@ namespace rl {
 
 class PatternBaseTruth {
  public:
-  // `depth`: world depth of depth 1.
-  PatternBaseTruth(const TriangleMesh& pattern_tile, const BaseMesh& base, double depth);
+  // `depth`: world depth of depth 1. `floor_color`: a solid floor at depth 1 (the underlying
+  // model where rays miss the pattern: Policarpo & Oliveira 2006, Figure 9 right), shaded with
+  // the base's interpolated normal in that colour; none: rays through the gaps go on.
+  PatternBaseTruth(const TriangleMesh& pattern_tile, const BaseMesh& base, double depth,
+                   const std::optional<glm::vec3>& floor_color = std::nullopt);
   ~PatternBaseTruth();
   PatternBaseTruth(const PatternBaseTruth&) = delete;
   PatternBaseTruth& operator=(const PatternBaseTruth&) = delete;
@@ -50,6 +55,8 @@ class PatternBaseTruth {
   std::vector<glm::vec3> base_normals_;  // the base's normal under each vertex
   std::vector<glm::uvec3> triangles_;
   std::vector<glm::vec3> colors_;
+  std::vector<bool> on_floor_;           // per triangle: a piece of the solid floor
+  uint32_t first_floor_triangle_ = ~0u;  // in the tile: the floor's triangles come last
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   double build_ms_ = 0;

@@ -216,7 +216,7 @@ Surface planar_surface(const PlanarBase& base, const ReliefMap& map, const Truth
   }
   const glm::dvec3 albedo = h.has_albedo ? h.albedo : glm::dvec3(map.sample_color(uv.x, uv.y));
   // The solid floor under a multilayer map: facing up, in the floor colour.
-  if (!map.layers.empty() && !h.hit) return {base.normal(), glm::dvec3(kLayeredFloorColor)};
+  if (!map.layers.empty() && !h.hit) return {base.normal(), glm::dvec3(map.floor_color)};
   return {n, albedo};
 }
 
