@@ -10,6 +10,7 @@
 #include <set>
 
 #include "relief/cell_complex.h"
+#include "relief/cell_projection_bend.h"
 #include "support/test_support.h"
 
 namespace rl {
@@ -124,6 +125,48 @@ TEST(CellConfigurations, EveryPointProjectsOntoADomainFaceAlongOneLine) {
     }
     EXPECT_GT(checked, 300);
   }
+}
+
+// A closed hexagonal tube along x (radius `r` about y = z = 0.5, from x0 to x1), its sides
+// one quad each, split along a diagonal that winds a sixth of a turn along the whole tube.
+TriangleMesh hexagonal_tube(double r, double x0, double x1) {
+  TriangleMesh m;
+  for (double x : {x0, x1})
+    for (int k = 0; k < 6; ++k) {
+      const double a = k * 3.14159265358979 / 3;
+      m.positions.emplace_back(x, 0.5 + r * std::cos(a), 0.5 + r * std::sin(a));
+    }
+  m.positions.emplace_back(x0, 0.5, 0.5);
+  m.positions.emplace_back(x1, 0.5, 0.5);
+  for (uint32_t k = 0; k < 6; ++k) {
+    const uint32_t k1 = (k + 1) % 6;
+    m.triangles.emplace_back(k, k1, 6 + k1);
+    m.triangles.emplace_back(k, 6 + k1, 6 + k);
+    m.triangles.emplace_back(12, k1, k);          // cap at x0
+    m.triangles.emplace_back(13, 6 + k, 6 + k1);  // cap at x1
+  }
+  return m;
+}
+
+TEST(CellProjectionBend, TheAxialProjectionAloneBendsStraightEdges) {
+  // Apaza & Andujar, Figure 3. The tube runs through the middle row of a 3^3 grid: its middle
+  // cell (internal faces -x and +x, case 2b) projects axially about x, its end cells (one
+  // internal face, case 1) perspectively. Pieces of the winding diagonals bend on the middle
+  // cell's faces; every piece in the end cells stays straight to rounding.
+  const CellComplex cc =
+      CellComplex::build(hexagonal_tube(0.12, 0.02, 0.98), {.grid = 3, .resolution = 64});
+  ASSERT_EQ(cc.cell(1, 1, 1).config.projection.type, CellProjection::Type::Axial);
+  ASSERT_EQ(cc.cell(0, 1, 1).config.projection.type, CellProjection::Type::Perspective);
+  const ProjectionBend bend = projection_bend(cc);
+  const size_t axial = size_t(CellProjection::Type::Axial);
+  const size_t perspective = size_t(CellProjection::Type::Perspective);
+  std::printf("hexagonal tube: %ld axial pieces, bend up to %.3g texels; %ld perspective, %.3g\n",
+              bend.pieces[axial], bend.max_texels[axial], bend.pieces[perspective],
+              bend.max_texels[perspective]);
+  EXPECT_GT(bend.pieces[axial], 6);
+  EXPECT_GT(bend.max_texels[axial], 0.1);
+  EXPECT_GT(bend.pieces[perspective], 12);
+  EXPECT_LT(bend.max_texels[perspective], 1e-9);
 }
 
 TEST(CellComplexBuild, ClassifiesASphereLikeItsDistanceField) {

@@ -12,6 +12,7 @@
 #include "core/columns.h"
 #include "output/gbuffer_export.h"
 #include "relief/cell_complex.h"
+#include "relief/cell_projection_bend.h"
 #include "relief/heightfield_faces.h"
 #include "relief/image_io.h"
 
@@ -39,6 +40,14 @@ void add_projection_columns(Row& row, const CellComplex& cc) {
     row["texels_" + name + "_pct"] = all > 0 ? 100.0 * texels[type] / all : 0.0;
     row["multi_crossing_" + name + "_pct"] =
         texels[type] > 0 ? 100.0 * multi[type] / texels[type] : 0.0;
+  }
+  // Figure 3: how far mesh edges bend when projected onto their cell's faces.
+  const ProjectionBend bend = projection_bend(cc);
+  for (size_t type = 0; type < 4; ++type) {
+    const std::string name = projection_type_name(CellProjection::Type(type));
+    row["edge_pieces_" + name] = double(bend.pieces[type]);
+    row["edge_bend_" + name + "_texels_max"] = bend.max_texels[type];
+    row["edge_bend_" + name + "_texels_mean"] = bend.mean_texels[type];
   }
 }
 
