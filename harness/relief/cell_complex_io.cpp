@@ -49,7 +49,7 @@ struct Reader {
       return v;
     }
     v.resize(n);
-    std::memcpy(v.data(), bytes.data() + at, n * sizeof(T));
+    if (n > 0) std::memcpy(v.data(), bytes.data() + at, n * sizeof(T));  // data() may be null
     at += n * sizeof(T);
     return v;
   }

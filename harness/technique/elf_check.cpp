@@ -37,7 +37,8 @@ void read_program_headers(ElfFile& f) {
   if (h.e_shnum && !f.inside(h.e_shoff, uint64_t(h.e_shnum) * h.e_shentsize))
     f.refuse("its section headers lie past its end: cut short?");
   f.segments.resize(h.e_phnum);
-  std::memcpy(f.segments.data(), f.bytes.data() + h.e_phoff, h.e_phnum * sizeof(Elf64_Phdr));
+  if (h.e_phnum > 0)  // an empty vector's data() may be null
+    std::memcpy(f.segments.data(), f.bytes.data() + h.e_phoff, h.e_phnum * sizeof(Elf64_Phdr));
 }
 
 // Loadable segments: inside the file, no larger on file than in memory, congruent with their
@@ -106,7 +107,8 @@ void check_dynamic(const ElfFile& f) {
       f.refuse("its dynamic table lies outside its loaded data");
     const size_t count = d.p_filesz / sizeof(Elf64_Dyn);
     std::vector<Elf64_Dyn> entries(count);
-    std::memcpy(entries.data(), f.bytes.data() + d.p_offset, count * sizeof(Elf64_Dyn));
+    if (count > 0)  // an empty vector's data() may be null
+      std::memcpy(entries.data(), f.bytes.data() + d.p_offset, count * sizeof(Elf64_Dyn));
     for (const Elf64_Dyn& e : entries) {
       if (e.d_tag == DT_NULL) break;
       switch (e.d_tag) {
