@@ -13,11 +13,11 @@
 #include "../techniques/cone_relaxed/cone_map.h"
 #include "../techniques/relief_robust/safety_radius.h"
 #include "gl/context.h"
+#include "gpu/gpu_ao_map.h"
 #include "relief/ao_map.h"
 #include "relief/image_io.h"
 #include "relief/procedural.h"
 #include "relief/relief_map.h"
-#include "technique/gpu_ao_map.h"
 
 namespace rl {
 namespace {

@@ -9,12 +9,12 @@
 #include <random>
 
 #include "gl/context.h"
+#include "gpu/gpu_scene.h"
 #include "relief/cell_complex.h"
 #include "relief/heightfield_faces.h"
 #include "relief/image_io.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
-#include "technique/gpu_scene.h"
 
 namespace rl {
 namespace {

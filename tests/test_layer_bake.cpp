@@ -12,12 +12,12 @@
 #include "core/error.h"
 #include "core/triangle_mesh.h"
 #include "gl/context.h"
+#include "gpu/gpu_scene.h"
 #include "relief/layer_bake.h"
 #include "relief/pattern_mesh.h"
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
-#include "technique/gpu_scene.h"
 #include "truth/layers_truth.h"
 #include "truth/pattern_base_truth.h"
 

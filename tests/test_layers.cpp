@@ -1,6 +1,7 @@
 // The harness's folders form layers, each including only those below it: core; gl, relief and
 // metrics on core; the image module (oiio) on relief's interface to it; scene on relief; truth
-// and technique on scene; a sweep's config on technique; its output (store, tables, report) on
+// on scene; the GPU's copies of a scene (gpu) on gl and scene; technique (the plugin API) on
+// gpu; a sweep's config on technique; its output (store, tables, report) on
 // config and metrics; its run on output and truth; claims (verdicts checked against a sweep's
 // rows) on output; the CLI on top. A cycle (relief <-> scene once did) fails here, naming the
 // file and include. The build enforces the layers too (cmake/ReliefLabLayers.cmake); this test
@@ -29,16 +30,17 @@ TEST(Layers, HarnessFoldersIncludeOnlyTheLayersBelowThem) {
       {"metrics", {"core", "metrics"}},
       {"scene", {"core", "relief", "scene"}},
       {"truth", {"core", "relief", "scene", "truth"}},
-      {"technique", {"core", "gl", "relief", "scene", "technique"}},
+      {"gpu", {"core", "gl", "relief", "scene", "gpu"}},
+      {"technique", {"core", "gl", "relief", "scene", "gpu", "technique"}},
       {"config", {"core", "gl", "relief", "scene", "technique", "config"}},
       {"output", {"core", "relief", "scene", "metrics", "technique", "config", "output"}},
       {"run",
-       {"core", "gl", "relief", "scene", "metrics", "truth", "technique", "config", "output",
+       {"core", "gl", "relief", "scene", "metrics", "truth", "gpu", "technique", "config", "output",
         "run"}},
       {"claims", {"core", "config", "output", "claims"}},
       {"cli",
-       {"core", "gl", "relief", "scene", "metrics", "truth", "technique", "config", "output", "run",
-        "claims"}},
+       {"core", "gl", "relief", "scene", "metrics", "truth", "gpu", "technique", "config", "output",
+        "run", "claims"}},
   };
   const fs::path harness = fs::path(RELIEFLAB_SOURCE_DIR) / "harness";
   const std::regex include(R"re(^\s*#\s*include\s+"([a-z_]+)/)re");

@@ -33,6 +33,16 @@ SceneDesc impostor_scene(const std::string& mesh_file, int layers) {
   return s;
 }
 
+// The weave (128^2, 4 layers) tiled twice on a 32-segment sphere, 0.06 deep.
+SceneDesc weave_on_a_sphere() {
+  SceneDesc scene = test::weave_scene(128, TruthLevel::Mesh);
+  scene.base.kind = "sphere";
+  scene.base.segments = 32;
+  scene.tile = 2;
+  scene.depth = 0.06;
+  return scene;
+}
+
 TEST(MultilayerScenes, BeatsTheHeightfieldOnTheWeaveAgainstTheMesh) {
   const SceneDesc scene = test::weave_scene(128, TruthLevel::Mesh);
   for (double el : {60.0, 30.0}) {
@@ -107,11 +117,7 @@ TEST(MultilayerScenes, TheWeaveOnASphereShowsItsFarSideThroughTheGaps) {
   // Figure 1 / Section 5: on a closed base the far side shows through the pattern's gaps,
   // searched upward from inside. One pass (all faces) and two passes (front, then back faces)
   // draw the same image; a one-sided heightfield search misses the far side.
-  SceneDesc scene = test::weave_scene(128, TruthLevel::Mesh);
-  scene.base.kind = "sphere";
-  scene.base.segments = 32;
-  scene.tile = 2;
-  scene.depth = 0.06;
+  SceneDesc scene = weave_on_a_sphere();
   const View view{30, 30};
   const test::Measured one = test::measure(scene, "multilayer", {{"linear_steps", 32}}, view, 96);
   const test::Measured two =
@@ -191,11 +197,7 @@ TEST(MultilayerScenes, TheMissingPatternDrawnAsTheUnderlyingModel) {
   // Figure 9 (right): a pattern on a sphere over a solid floor. Every pixel of the truth's
   // sphere is drawn (the floor shows through every gap), and the search's parallax beats
   // normal mapping's none. With silhouettes the rays that leave through the top are dropped.
-  SceneDesc scene = test::weave_scene(128, TruthLevel::Mesh);
-  scene.base.kind = "sphere";
-  scene.base.segments = 32;
-  scene.tile = 2;
-  scene.depth = 0.06;
+  SceneDesc scene = weave_on_a_sphere();
   scene.empty_floor = false;
   const View view{30, 30};
   const test::Measured ml = test::measure(scene, "multilayer", {{"linear_steps", 32}}, view, 96);

@@ -10,11 +10,11 @@
 #include <tuple>
 
 #include "../techniques/cone_relaxed/cone_map.h"
+#include "gpu/gpu_scene.h"
 #include "relief/heightfield_reference.h"
 #include "relief/image_io.h"
 #include "relief/procedural.h"
 #include "support/test_support.h"
-#include "technique/gpu_scene.h"
 
 namespace rl {
 namespace {

@@ -6,10 +6,10 @@
 #include <gtest/gtest.h>
 
 #include "gl/context.h"
+#include "gpu/gpu_scene.h"
 #include "relief/heightfield_reference.h"
 #include "relief/procedural.h"
 #include "support/test_support.h"
-#include "technique/gpu_scene.h"
 #include "technique/technique.h"
 
 namespace rl {

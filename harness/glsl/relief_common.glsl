@@ -79,7 +79,7 @@ float rl_relief_depth(vec2 uv) {
   return d;
 }
 #elif defined(RL_MIPMAPPED_RELIEF)
-// Normals and depths from the relief's mip chain (technique/mipmapped_relief.h), trilinear at
+// Normals and depths from the relief's mip chain (gpu/mipmapped_relief.h), trilinear at
 // the pixel's footprint. The colour stays at level 0, as the truth shades it, so the error
 // columns see what mip-mapping does to the geometry alone.
 layout(binding = 9) uniform sampler2D rl_relief_mipmapped;
@@ -87,7 +87,7 @@ vec4 rl_relief_texel(vec2 uv) { return RL_FETCH_GRAD(rl_relief_mipmapped, uv); }
 float rl_relief_depth(vec2 uv) { return rl_relief_texel(uv).a; }
 #elif defined(RL_AO_PACKED)
 // The AO map in the relief texture's blue channel (Limberger et al., Section IV;
-// technique/packed_relief.h): R and G the normal's x and y, its z rebuilt; alpha the depth.
+// gpu/packed_relief.h): R and G the normal's x and y, its z rebuilt; alpha the depth.
 // A texel's read keeps its AO for the shading (ambient_occlusion.glsl), which reads the hit's
 // normal first: the AO costs no fetch of its own.
 layout(binding = 20) uniform sampler2D rl_relief_packed;

@@ -52,7 +52,7 @@ AoMap compute_ao_map(const ReliefMap& map, const AoMapOptions& options);
 void filter_occluded_texels(const ReliefMap& map, std::vector<float>& visibility);
 
 // Who computes a map: the line sweep on the CPU (compute_ao_map), or another (the march of
-// technique/gpu_ao_map.h in a fragment shader). `name` keys the cache, so the two never read
+// gpu/gpu_ao_map.h in a fragment shader). `name` keys the cache, so the two never read
 // each other's files.
 struct AoMapMethod {
   const char* name = "cpu";

@@ -4,11 +4,11 @@
 #include <cstdio>
 
 #include "core/elapsed.h"
+#include "gpu/gpu_ao_map.h"
 #include "relief/ao_map.h"
 #include "relief/cell_complex.h"
 #include "relief/meta_relief.h"
 #include "scene/relief_asset.h"
-#include "technique/gpu_ao_map.h"
 
 namespace rl {
 namespace {

@@ -148,7 +148,7 @@ struct AmbientOcclusionDesc {
   // Who computes the AO map: the line sweep on the CPU (relief/horizon_sweep.h: 1.1-2 s at
   // 1024^2 on 2 cores), the paper's per-texel march on the CPU (relief/ao_map.h: what the sweep
   // approximates, tens of seconds at 1024^2), or that march in a fragment shader
-  // (technique/gpu_ao_map.h: the GPU's way; on llvmpipe slower than the CPU's march).
+  // (gpu/gpu_ao_map.h: the GPU's way; on llvmpipe slower than the CPU's march).
   enum class MapMethod { LineSweep, March, FragmentShader } map_method = MapMethod::LineSweep;
   // The depth the AO map is computed for, and the scene's depth over it.
   double depth_of_map(double depth) const { return map_depth > 0 ? map_depth : depth; }

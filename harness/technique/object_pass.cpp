@@ -2,7 +2,7 @@
 
 #include "gl/context.h"
 #include "gl/shader_library.h"
-#include "technique/scene_uniforms.h"
+#include "gpu/scene_uniforms.h"
 
 namespace rl {
 

@@ -5,9 +5,9 @@
 #include <epoxy/gl.h>
 
 #include "gl/render_target.h"
+#include "gpu/triangle_buffers.h"
 #include "scene/scene.h"
 #include "scene/scene_objects.h"
-#include "technique/triangle_buffers.h"
 
 namespace rl {
 

@@ -7,8 +7,8 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/render_target.h"
+#include "gpu/scene_uniforms.h"
 #include "relief/meta_relief.h"
-#include "technique/scene_uniforms.h"
 
 namespace rl {
 

@@ -22,11 +22,11 @@
 #include "core/effects.h"
 #include "core/params.h"
 #include "gl/render_target.h"
+#include "gpu/gpu_scene.h"
 #include "relief/relief_map.h"
 #include "scene/scene.h"
 #include "technique/contract.h"
 #include "technique/draws.h"
-#include "technique/gpu_scene.h"
 #include "technique/object_pass.h"
 
 namespace rl {

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "technique/scene_uniforms.h"
+#include "gpu/scene_uniforms.h"
 #include "technique/shader_technique.h"
 
 namespace rl {

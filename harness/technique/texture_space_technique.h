@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "gl/shader_library.h"
+#include "gpu/texture_space_geometry.h"
 #include "technique/technique.h"
-#include "technique/texture_space_geometry.h"
 
 namespace rl {
 

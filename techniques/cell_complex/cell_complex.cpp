@@ -2,9 +2,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "gpu/gpu_cell_complex.h"
+#include "gpu/scene_uniforms.h"
 #include "relief/cell_complex.h"
-#include "technique/gpu_cell_complex.h"
-#include "technique/scene_uniforms.h"
 #include "technique/texture_space_technique.h"
 
 namespace rl {

@@ -1,7 +1,7 @@
 // Relief mapping on cubic cell complexes (Apaza & Andujar, Sections 3.2, 3.4 and 3.5.2): the
 // cell table, the four projections, and the inside test of a point against the distance maps.
 // harness/relief/cell_complex.cpp is the same on the CPU (configure_cell, project_in_cell,
-// CellComplex::encoded_inside); technique/gpu_cell_complex.cpp packs the textures.
+// CellComplex::encoded_inside); gpu/gpu_cell_complex.cpp packs the textures.
 //
 // Points are in grid coordinates g = texture-space position * N: cell floor(g), local q in
 // [0, 1]^3. Faces f = 2 * axis + side (0 = -u, 1 = +u, 2 = -v, 3 = +v, 4 = -depth, 5 = +depth);

@@ -11,10 +11,10 @@
 #include <set>
 
 #include "gl/context.h"
+#include "gpu/gpu_scene.h"
 #include "relief/cell_complex.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
-#include "technique/gpu_scene.h"
 #include "truth/cell_complex_truth.h"
 
 namespace rl {

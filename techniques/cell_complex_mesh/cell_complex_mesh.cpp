@@ -4,11 +4,11 @@
 #include <stdexcept>
 
 #include "gl/shader_library.h"
+#include "gpu/gpu_cell_complex.h"
+#include "gpu/scene_uniforms.h"
+#include "gpu/triangle_buffers.h"
 #include "relief/cell_complex.h"
-#include "technique/gpu_cell_complex.h"
-#include "technique/scene_uniforms.h"
 #include "technique/technique.h"
-#include "technique/triangle_buffers.h"
 
 namespace rl {
 

@@ -8,11 +8,11 @@
 #include <vector>
 
 #include "core/ray_box.h"
+#include "gpu/gpu_heightfield_faces.h"
+#include "gpu/scene_uniforms.h"
+#include "gpu/texture_space_geometry.h"
 #include "relief/heightfield_faces.h"
-#include "technique/gpu_heightfield_faces.h"
-#include "technique/scene_uniforms.h"
 #include "technique/shader_technique.h"
-#include "technique/texture_space_geometry.h"
 
 namespace rl {
 namespace {

@@ -8,11 +8,11 @@
 #include <vector>
 
 #include "gl/shader_library.h"
+#include "gpu/scene_uniforms.h"
+#include "gpu/triangle_buffers.h"
 #include "relief/relief_map.h"
 #include "scene/scene.h"
-#include "technique/scene_uniforms.h"
 #include "technique/technique.h"
-#include "technique/triangle_buffers.h"
 
 namespace rl {
 namespace {

@@ -1,9 +1,9 @@
 // Objects from several heightfields, ray cast (Baboud & Decoret 2006, Section 4.2).
 #include <stdexcept>
 
+#include "gpu/gpu_heightfield_faces.h"
+#include "gpu/scene_uniforms.h"
 #include "relief/heightfield_faces.h"
-#include "technique/gpu_heightfield_faces.h"
-#include "technique/scene_uniforms.h"
 #include "technique/texture_space_technique.h"
 
 namespace rl {

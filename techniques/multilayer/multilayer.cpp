@@ -2,7 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "technique/mipmapped_relief.h"
+#include "gpu/mipmapped_relief.h"
 #include "technique/shader_technique.h"
 
 namespace rl {

@@ -3,8 +3,8 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "gpu/scene_uniforms.h"
 #include "odd_map.h"
-#include "technique/scene_uniforms.h"
 #include "technique/shader_technique.h"
 
 namespace rl {

@@ -8,10 +8,10 @@
 #include <cmath>
 
 #include "gl/context.h"
+#include "gpu/gpu_scene.h"
 #include "odd_map.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
-#include "technique/gpu_scene.h"
 #include "truth/heightfield_truth.h"
 
 namespace rl {

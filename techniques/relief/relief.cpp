@@ -2,8 +2,8 @@
 #include <cmath>
 #include <string>
 
-#include "technique/mipmapped_relief.h"
-#include "technique/packed_relief.h"
+#include "gpu/mipmapped_relief.h"
+#include "gpu/packed_relief.h"
 #include "technique/shader_technique.h"
 
 namespace rl {

@@ -8,10 +8,10 @@
 #include <glm/gtc/constants.hpp>
 #include "relief/window_pyramid.h"
 
+#include "gpu/gpu_scene.h"
 #include "relief/heightfield_reference.h"
 #include "relief/procedural.h"
 #include "support/test_support.h"
-#include "technique/gpu_scene.h"
 
 namespace rl {
 namespace {

@@ -8,12 +8,12 @@
 #include <gtest/gtest.h>
 
 #include "gl/context.h"
+#include "gpu/gpu_scene.h"
 #include "relief/heightfield_reference.h"
 #include "relief/image_io.h"
 #include "relief/procedural.h"
 #include "safety_radius.h"
 #include "support/test_support.h"
-#include "technique/gpu_scene.h"
 
 namespace rl {
 namespace {

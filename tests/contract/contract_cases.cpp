@@ -13,6 +13,7 @@
 #include "gl/context.h"
 #include "gl/op_count_buffer.h"
 #include "gl/render_target.h"
+#include "gpu/gpu_scene.h"
 #include "relief/cell_complex.h"
 #include "relief/heightfield_faces.h"
 #include "relief/heightfield_reference.h"
@@ -20,7 +21,6 @@
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
 #include "support/test_support.h"
-#include "technique/gpu_scene.h"
 #include "truth/make_truth.h"
 
 namespace rl::contract {

@@ -15,12 +15,12 @@
 #include "core/atomic_write.h"
 #include "gl/context.h"
 #include "gl/render_target.h"
+#include "gpu/gpu_scene.h"
 #include "output/result_store.h"
 #include "run/cells.h"
 #include "run/runner.h"
 #include "scene/base_mesh.h"
 #include "scene/relief_asset.h"
-#include "technique/gpu_scene.h"
 #include "truth/make_truth.h"
 
 namespace rl::test {

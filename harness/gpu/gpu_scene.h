@@ -6,10 +6,10 @@
 
 #include <epoxy/gl.h>
 
+#include "gpu/gpu_cell_complex.h"
+#include "gpu/gpu_heightfield_faces.h"
 #include "relief/relief_map.h"
 #include "scene/scene.h"
-#include "technique/gpu_cell_complex.h"
-#include "technique/gpu_heightfield_faces.h"
 
 namespace rl {
 

@@ -1,4 +1,4 @@
-#include "technique/gpu_cell_complex.h"
+#include "gpu/gpu_cell_complex.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include "core/error.h"
 #include "gl/context.h"
-#include "technique/scene_uniforms.h"
+#include "gpu/scene_uniforms.h"
 
 namespace rl {
 

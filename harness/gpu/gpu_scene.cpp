@@ -1,4 +1,4 @@
-#include "technique/gpu_scene.h"
+#include "gpu/gpu_scene.h"
 
 #include <cstddef>
 #include <vector>

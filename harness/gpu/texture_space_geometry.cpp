@@ -1,4 +1,4 @@
-#include "technique/texture_space_geometry.h"
+#include "gpu/texture_space_geometry.h"
 
 #include <algorithm>
 #include <utility>

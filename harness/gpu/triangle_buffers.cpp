@@ -1,4 +1,4 @@
-#include "technique/triangle_buffers.h"
+#include "gpu/triangle_buffers.h"
 
 #include <algorithm>
 #include <utility>

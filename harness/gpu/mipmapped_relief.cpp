@@ -1,4 +1,4 @@
-#include "technique/mipmapped_relief.h"
+#include "gpu/mipmapped_relief.h"
 
 #include <algorithm>
 

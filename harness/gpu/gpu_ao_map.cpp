@@ -1,4 +1,4 @@
-#include "technique/gpu_ao_map.h"
+#include "gpu/gpu_ao_map.h"
 
 #include <algorithm>
 #include <chrono>

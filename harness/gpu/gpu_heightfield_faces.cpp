@@ -1,4 +1,4 @@
-#include "technique/gpu_heightfield_faces.h"
+#include "gpu/gpu_heightfield_faces.h"
 
 #include <string>
 #include <vector>

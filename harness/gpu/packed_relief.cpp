@@ -1,4 +1,4 @@
-#include "technique/packed_relief.h"
+#include "gpu/packed_relief.h"
 
 #include <vector>
 
