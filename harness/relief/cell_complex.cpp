@@ -46,11 +46,13 @@ const ColumnDeclaration cell_complex_columns(
       "(Section 3.3.3's occluded fragments)"},
      {"multi_crossing_pct", "% of texels",
       "domain-face texels whose projection line crosses the surface more than once"},
-     {"texels_perspective_pct", "% of texels",
-      "domain-face texels of cells with a perspective projection (Figure 2)"},
-     {"texels_axial_pct", "% of texels", "the same, axial projection"},
-     {"texels_planar_pct", "% of texels", "the same, planar projection"},
-     {"texels_parallel_pct", "% of texels", "the same, parallel projection"},
+     ColumnSpec{"texels_perspective_pct", "% of texels",
+                "domain-face texels of cells with a perspective projection (Figure 2)"}
+         .neither_better(),
+     ColumnSpec{"texels_axial_pct", "% of texels", "the same, axial projection"}.neither_better(),
+     ColumnSpec{"texels_planar_pct", "% of texels", "the same, planar projection"}.neither_better(),
+     ColumnSpec{"texels_parallel_pct", "% of texels", "the same, parallel projection"}
+         .neither_better(),
      {"multi_crossing_perspective_pct", "% of texels",
       "of the texels of cells with a perspective projection, those whose line crosses the "
       "surface more than once (where the projection does not make the cell's surface a "
