@@ -73,7 +73,7 @@ const std::vector<BadCase>& bad_cases() {
        {"no parameter 'linear_stepz'"}},
       {"out_of_range",
        replace(kGood, "linear_steps = [4]", "linear_steps = [4, 0]"),
-       {"linear_steps", "outside [1, 1024]"}},
+       {"linear_steps", "outside [1, 4096]"}},
       {"not_an_integer",
        replace(kGood, "linear_steps = [4]", "linear_steps = [2.5]"),
        {"linear_steps", "integer"}},

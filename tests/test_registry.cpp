@@ -12,8 +12,10 @@
 #include "config/config_technique.h"
 #include "core/atomic_write.h"
 #include "core/error.h"
+#include "core/params.h"
 #include "run/cells.h"
 #include "support/test_support.h"
+#include "technique/contract.h"
 #include "technique/technique.h"
 
 namespace rl {
@@ -332,6 +334,60 @@ TEST(Registry, ASharedParameterNameMeansOneQuantity) {
   info.params[0].min_value = 1;
   EXPECT_EQ(refusal(entry_with(info)), "");
   TechniqueRegistry::instance().remove("test_shared_name");
+}
+
+TEST(ParamDefines, FollowFromTheDeclarations) {
+  // ParamSpec::define: an int's value, a bool's 0 or 1, a float in parentheses; with
+  // define_when_set, "1" where the value is not 0 and nothing at 0; no define, no entry.
+  const std::vector<ParamSpec> specs = {
+      {.name = "steps", .kind = ParamKind::Int, .max_value = 64, .doc = "", .define = "RL_STEPS"},
+      {.name = "fix", .kind = ParamKind::Bool, .max_value = 1, .doc = "", .define = "RL_FIX"},
+      {.name = "cells",
+       .kind = ParamKind::Bool,
+       .max_value = 1,
+       .doc = "",
+       .define = "RL_CELLS",
+       .define_when_set = true},
+      {.name = "bias",
+       .kind = ParamKind::Float,
+       .min_value = -1,
+       .max_value = 1,
+       .doc = "",
+       .define = "RL_B"},
+      {.name = "plain", .kind = ParamKind::Int, .max_value = 9, .doc = ""}};
+  const std::map<std::string, std::string> on =
+      param_defines(specs, {{"steps", 12}, {"fix", 1}, {"cells", 1}, {"bias", 0.25}, {"plain", 3}});
+  const std::map<std::string, std::string> expected_on = {
+      {"RL_STEPS", "12"}, {"RL_FIX", "1"}, {"RL_CELLS", "1"}, {"RL_B", "(0.250000)"}};
+  EXPECT_EQ(on, expected_on);
+  const std::map<std::string, std::string> off =
+      param_defines(specs, {{"steps", 0}, {"fix", 0}, {"cells", 0}, {"bias", -0.5}, {"plain", 0}});
+  const std::map<std::string, std::string> expected_off = {
+      {"RL_STEPS", "0"}, {"RL_FIX", "0"}, {"RL_B", "(-0.500000)"}};
+  EXPECT_EQ(off, expected_off);
+}
+
+TEST(Registry, EveryLinearAndBinarySearchDeclaresItsStepsAlike) {
+  // The search's two knobs come from linear_steps_param() and binary_steps_param(): one kind,
+  // range and define wherever they appear (relief_robust's binary steps, which refine a step the
+  // safety radius took, start at 1).
+  const ParamSpec linear = linear_steps_param(8, ""), binary = binary_steps_param(5, "");
+  int seen = 0;
+  for (const std::string& name : TechniqueRegistry::instance().names()) {
+    for (const ParamSpec& p : TechniqueRegistry::instance().find(name)->info.params) {
+      if (p.name != "linear_steps" && p.name != "binary_steps") continue;
+      SCOPED_TRACE(name + "." + p.name);
+      const ParamSpec& shared = p.name == "linear_steps" ? linear : binary;
+      ++seen;
+      EXPECT_EQ(p.kind, shared.kind);
+      EXPECT_EQ(p.max_value, shared.max_value);
+      EXPECT_EQ(p.define, shared.define);
+      if (name != "relief_robust") {
+        EXPECT_EQ(p.min_value, shared.min_value);
+      }
+    }
+  }
+  EXPECT_GE(seen, 12);
 }
 
 const char* kPairedConfig = R"(

@@ -18,18 +18,16 @@ class IntervalMapping final : public Described<IntervalMapping, ShaderTechnique>
             "Risser, Shah & Pattanaik 2005, 'Interval Mapping', University of Central "
             "Florida technical report (I3D 2005 poster)",
         .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
-        .params = {{.name = "linear_steps",
-                    .kind = ParamKind::Int,
-                    .default_value = 16,
-                    .min_value = 2,
-                    .max_value = 1024,
-                    .doc = "linear search steps through the depth range"},
+        // Each parameter declared once, its shader define with it (the linear steps as every
+        // linear search declares them: technique/contract.h).
+        .params = {linear_steps_param(16, "linear search steps through the depth range"),
                    {.name = "secant_steps",
                     .kind = ParamKind::Int,
                     .default_value = 3,
                     .min_value = 0,
                     .max_value = 32,
-                    .doc = "regula falsi refinements of the bracket the linear search found"}},
+                    .doc = "regula falsi refinements of the bracket the linear search found",
+                    .define = "RL_SECANT_STEPS"}},
         .draws = {.reads = {Representation::Heightfield, Representation::Layers,
                             Representation::MetaRuntime}},
         .contract = {.answer = Answer::Converging,
@@ -53,10 +51,6 @@ class IntervalMapping final : public Described<IntervalMapping, ShaderTechnique>
   // The key relieflab_add_plugin() embedded the file under: plugins/<target>/<path>.
   std::string intersect_file() const override {
     return "plugins/relieflab_interval_mapping/interval_mapping.glsl";
-  }
-  Defines parameter_defines() const override {
-    return {{"RL_LINEAR_STEPS", std::to_string(int(param("linear_steps")))},
-            {"RL_SECANT_STEPS", std::to_string(int(param("secant_steps")))}};
   }
 };
 

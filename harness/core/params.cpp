@@ -30,6 +30,23 @@ std::string format_param(const ParamSpec& spec, double value) {
   return s.str();
 }
 
+std::map<std::string, std::string> param_defines(const std::vector<ParamSpec>& specs,
+                                                 const ParamValues& values) {
+  std::map<std::string, std::string> defines;
+  for (const ParamSpec& spec : specs) {
+    if (spec.define.empty()) continue;
+    const double v = values.at(spec.name);
+    if (spec.define_when_set) {
+      if (v != 0) defines[spec.define] = "1";
+    } else if (spec.kind == ParamKind::Float) {
+      defines[spec.define] = "(" + std::to_string(v) + ")";
+    } else {
+      defines[spec.define] = std::to_string(static_cast<long long>(v));
+    }
+  }
+  return defines;
+}
+
 void check_param_value(const ParamSpec& spec, double value, const std::string& where) {
   std::ostringstream err;
   if (!std::isfinite(value)) {

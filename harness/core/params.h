@@ -20,6 +20,11 @@ struct ParamSpec {
   // compiled, no resource bound): a cell at the default leaves it out of its key, so stored runs
   // and committed reproductions keep theirs. For parameters added to a technique later.
   bool neutral_default = false;
+  // The GLSL define it compiles into the technique's programs, where it is a shader constant:
+  // the value itself (an int; a bool as 0 or 1; a float in parentheses), or, with
+  // `define_when_set`, defined as 1 only where the value is not 0.
+  std::string define = "";
+  bool define_when_set = false;
 };
 
 // Parameter values by name; ints and bools are stored as exact doubles.
@@ -32,5 +37,8 @@ void check_param_value(const ParamSpec& spec, double value, const std::string& w
 ParamValues resolve_params(const std::vector<ParamSpec>& specs, const ParamValues& given,
                            const std::string& where);
 std::string format_param(const ParamSpec& spec, double value);
+// The defines the declared parameters set (ParamSpec::define) at these values, by define name.
+std::map<std::string, std::string> param_defines(const std::vector<ParamSpec>& specs,
+                                                 const ParamValues& values);
 
 }  // namespace rl

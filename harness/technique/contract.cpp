@@ -67,6 +67,26 @@ ParamValues linear_binary_finest() {
   return {{"linear_steps", 1024}, {"binary_steps", 16}};
 }
 
+ParamSpec linear_steps_param(int default_steps, const std::string& doc) {
+  return {.name = "linear_steps",
+          .kind = ParamKind::Int,
+          .default_value = double(default_steps),
+          .min_value = 1,
+          .max_value = 4096,
+          .doc = doc,
+          .define = "RL_LINEAR_STEPS"};
+}
+
+ParamSpec binary_steps_param(int default_steps, const std::string& doc) {
+  return {.name = "binary_steps",
+          .kind = ParamKind::Int,
+          .default_value = double(default_steps),
+          .min_value = 0,
+          .max_value = 32,
+          .doc = doc,
+          .define = "RL_BINARY_STEPS"};
+}
+
 void check_contract(const std::string& technique, const TechniqueContract& c,
                     const std::vector<ParamSpec>& params) {
   const std::string who = "technique '" + technique + "' contract";

@@ -73,6 +73,11 @@ struct AccuracyKnob {
 // refined 16 times.
 std::vector<AccuracyKnob> linear_binary_knobs();
 ParamValues linear_binary_finest();
+// Its two parameters, declared alike by every technique that runs the search: kind, range
+// (linear 1-4096, binary 0-32) and define (RL_LINEAR_STEPS, RL_BINARY_STEPS) here; the default
+// and the paper's words for it the technique's.
+ParamSpec linear_steps_param(int default_steps, const std::string& doc);
+ParamSpec binary_steps_param(int default_steps, const std::string& doc);
 
 struct TechniqueContract {
   Answer answer = Answer::Approximation;

@@ -53,13 +53,19 @@ bool ShaderTechnique::draws_back_faces(const SurfaceVariant& variant) const {
   return variant.two_sided && info().draws.reads.has(Representation::Impostor);
 }
 
+Defines ShaderTechnique::all_parameter_defines() const {
+  Defines d = param_defines(info().params, params_);
+  for (const auto& [name, value] : parameter_defines()) d[name] = value;
+  return d;
+}
+
 ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Kind target,
                                              SurfaceVariant variant) const {
   ProgramDesc d;
   d.owner = info().name;
   d.vertex_file = "harness/glsl/base.vert";
   d.fragment_files = {intersect_file(), "harness/glsl/surface_main.glsl"};
-  d.defines = parameter_defines();
+  d.defines = all_parameter_defines();
   for (Effect e : effects.list()) d.defines[effect_define(e)] = "1";
   if (target == RenderTarget::Kind::GBuffer) d.defines["RL_GBUFFER"] = "1";
   if (variant.proxy == Proxy::Box) d.defines["RL_PROXY_BOX"] = "1";
@@ -82,7 +88,7 @@ ProgramDesc ShaderTechnique::probe_program() const {
   d.owner = info().name;
   d.vertex_file = "harness/glsl/fullscreen.vert";
   d.fragment_files = {intersect_file(), "harness/glsl/probe_main.glsl"};
-  d.defines = parameter_defines();
+  d.defines = all_parameter_defines();
   d.defines["RL_PROBE"] = "1";
   return d;
 }

@@ -58,8 +58,11 @@ class ShaderTechnique : public Technique {
  protected:
   // GLSL file defining rl_intersect, e.g. "techniques/relief/relief.glsl".
   virtual std::string intersect_file() const = 0;
-  // #defines for the parameters, e.g. {"RL_LINEAR_STEPS", "32"}.
+  // #defines beyond those the declared parameters set themselves (ParamSpec::define): ones that
+  // depend on the map or combine parameters, e.g. {"RL_LAYER_GROUPS", "2"}.
   virtual Defines parameter_defines() const { return {}; }
+  // The declared parameters' defines, then parameter_defines() (which wins on a clash).
+  Defines all_parameter_defines() const;
   // Binds the technique's own textures (precomputed maps) for a draw with `program`; units
   // 0-3 and 8 are the harness's (relief, colour, probe rays; the AO map).
   virtual void bind_resources(GLuint program) const { (void)program; }

@@ -7,10 +7,17 @@
 
 namespace rl {
 
+ProgramDesc TextureSpaceTechnique::declared_program() const {
+  ProgramDesc d = program();
+  for (const auto& [name, value] : param_defines(info().params, params_))
+    d.defines.emplace(name, value);  // program()'s own define wins on a clash
+  return d;
+}
+
 void TextureSpaceTechnique::render(const FrameInput& frame, RenderTarget::Kind target) {
   if (const std::string missing = missing_data(frame.map, frame.relief); !missing.empty())
     throw std::logic_error(info().name + " rendered on a scene without " + missing);
-  ProgramDesc d = program();
+  ProgramDesc d = declared_program();
   d.vertex_file = "harness/glsl/texture_space.vert";
   if (target == RenderTarget::Kind::GBuffer) d.defines["RL_GBUFFER"] = "1";
   const GLuint p = ShaderLibrary::shared().program(d);
@@ -26,7 +33,7 @@ std::vector<ProbeHit> TextureSpaceTechnique::probe(const ReliefMap& map, const G
   if (rays.empty()) return {};
   if (const std::string missing = missing_data(map, relief); !missing.empty())
     throw std::logic_error(info().name + " probed without " + missing);
-  ProgramDesc d = program();
+  ProgramDesc d = declared_program();
   d.vertex_file = "harness/glsl/fullscreen.vert";
   d.defines["RL_PROBE"] = "1";
   const GLuint p = ShaderLibrary::shared().program(d);

@@ -26,6 +26,8 @@ class TextureSpaceTechnique : public Technique {
  protected:
   // The fragment files and parameter defines (no vertex file: render and probe choose it).
   virtual ProgramDesc program() const = 0;
+  // program() with the declared parameters' defines (ParamSpec::define) added.
+  ProgramDesc declared_program() const;
   // What the map and its GPU copy must hold ("" when they do, else what is missing).
   virtual std::string missing_data(const ReliefMap& map, const GpuRelief& relief) const = 0;
   // Uniforms of a frame beyond the scene's (set_scene_uniforms is already done).

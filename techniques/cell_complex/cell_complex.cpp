@@ -48,12 +48,7 @@ class CellComplexRaycast final : public Described<CellComplexRaycast, TextureSpa
                         .max_value = 512,
                         .doc = "linear search samples per cell side along the ray (the search "
                                "runs until the ray leaves the grey cells)"},
-                       {.name = "binary_steps",
-                        .kind = ParamKind::Int,
-                        .default_value = 6,
-                        .min_value = 0,
-                        .max_value = 32,
-                        .doc = "binary search refinements after the linear search"}},
+                       binary_steps_param(6, "binary search refinements after the linear search")},
             .draws = {.reads = {Representation::CellComplex}, .proxies = {Proxy::Base, Proxy::Box}},
             .contract = {
                 .answer = Answer::Converging,
@@ -96,7 +91,6 @@ class CellComplexRaycast final : public Described<CellComplexRaycast, TextureSpa
     d.owner = info().name;
     d.fragment_files = {"techniques/cell_complex/cell_complex_main.glsl"};
     d.defines["RL_STEPS_PER_CELL"] = std::to_string(int(param("steps_per_cell")));
-    d.defines["RL_BINARY_STEPS"] = std::to_string(int(param("binary_steps")));
     return d;
   }
 };

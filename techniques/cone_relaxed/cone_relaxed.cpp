@@ -25,13 +25,9 @@ class ConeRelaxed final : public Described<ConeRelaxed, ShaderTechnique> {
                         .max_value = 4096,
                         .doc = "cone steps along the ray (most rays stop after a few; the cap is "
                                "for grazing rays "
-                               "crawling past features)"},
-                       {.name = "binary_steps",
-                        .kind = ParamKind::Int,
-                        .default_value = 6,
-                        .min_value = 0,
-                        .max_value = 32,
-                        .doc = "binary search steps over the last cone step"},
+                               "crawling past features)",
+                        .define = "RL_CONE_STEPS"},
+                       binary_steps_param(6, "binary search steps over the last cone step"),
                        {.name = "relaxed",
                         .kind = ParamKind::Bool,
                         .default_value = 1,
@@ -90,10 +86,6 @@ class ConeRelaxed final : public Described<ConeRelaxed, ShaderTechnique> {
  protected:
   std::string intersect_file() const override {
     return "techniques/cone_relaxed/cone_relaxed.glsl";
-  }
-  Defines parameter_defines() const override {
-    return {{"RL_CONE_STEPS", std::to_string(int(param("cone_steps")))},
-            {"RL_BINARY_STEPS", std::to_string(int(param("binary_steps")))}};
   }
   void bind_resources(GLuint) const override { glBindTextureUnit(4, texture_); }
 

@@ -17,18 +17,9 @@ class DoubleDepth final : public Described<DoubleDepth, ShaderTechnique> {
                 "Book chapter 5, 'Single RTM with Double Depth values (restricted 3D "
                 "objects)', Figures 5.14-5.15 (after Angel & Christ)",
             .effects = {Effect::SelfShadow, Effect::DepthCorrect},
-            .params = {{.name = "linear_steps",
-                        .kind = ParamKind::Int,
-                        .default_value = 32,
-                        .min_value = 2,
-                        .max_value = 1024,
-                        .doc = "linear search samples down to depth 1 (Listing 5.3's search)"},
-                       {.name = "binary_steps",
-                        .kind = ParamKind::Int,
-                        .default_value = 5,
-                        .min_value = 0,
-                        .max_value = 32,
-                        .doc = "binary search refinements (Listing 5.3: 5)"}},
+            .params = {linear_steps_param(
+                           32, "linear search samples down to depth 1 (Listing 5.3's search)"),
+                       binary_steps_param(5, "binary search refinements (Listing 5.3: 5)")},
             .contract = {.answer = Answer::Converging,
                          .surface = Surface::TexelColumns,
                          .max_fetches = linear_binary_fetches_shaded,
@@ -79,12 +70,7 @@ class DoubleDepth final : public Described<DoubleDepth, ShaderTechnique> {
   std::string intersect_file() const override {
     return "techniques/double_depth/double_depth.glsl";
   }
-  Defines parameter_defines() const override {
-    Defines d = {{"RL_LINEAR_STEPS", std::to_string(int(param("linear_steps")))},
-                 {"RL_BINARY_STEPS", std::to_string(int(param("binary_steps")))}};
-    d.insert(floor_.begin(), floor_.end());
-    return d;
-  }
+  Defines parameter_defines() const override { return floor_; }
   void bind_resources(GLuint) const override { glBindTextureUnit(4, texture_); }
 
  private:

@@ -18,19 +18,11 @@ class MultiHeightfield final : public Described<MultiHeightfield, TextureSpaceTe
                 "Baboud & Decoret, 'Rendering geometry with relief textures', "
                 "Section 4.2 (and Oliveira et al.'s six relief textures on a box)",
             .effects = {Effect::DepthCorrect},
-            .params = {{.name = "linear_steps",
-                        .kind = ParamKind::Int,
-                        .default_value = 64,
-                        .min_value = 1,
-                        .max_value = 4096,
-                        .doc = "linear search samples along the ray's chord through the cube; "
-                               "each asks the faces in turn until one says outside"},
-                       {.name = "binary_steps",
-                        .kind = ParamKind::Int,
-                        .default_value = 6,
-                        .min_value = 0,
-                        .max_value = 32,
-                        .doc = "binary search refinements after the linear search"}},
+            .params = {linear_steps_param(
+                           64,
+                           "linear search samples along the ray's chord through the cube; "
+                           "each asks the faces in turn until one says outside"),
+                       binary_steps_param(6, "binary search refinements after the linear search")},
             .draws = {.reads = {Representation::HeightfieldObject},
                       .proxies = {Proxy::Base, Proxy::Box}},
             .contract = {
@@ -70,8 +62,6 @@ class MultiHeightfield final : public Described<MultiHeightfield, TextureSpaceTe
     ProgramDesc d;
     d.owner = info().name;
     d.fragment_files = {"techniques/multi_heightfield/multi_heightfield.glsl"};
-    d.defines["RL_LINEAR_STEPS"] = std::to_string(int(param("linear_steps")));
-    d.defines["RL_BINARY_STEPS"] = std::to_string(int(param("binary_steps")));
     return d;
   }
 };

@@ -19,18 +19,8 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
             "Policarpo & Oliveira 2006, 'Relief Mapping of Non-Height-Field Surface Details', "
             "Sections 3.1-3.2, Algorithms 1-2, Appendix A",
         .effects = {Effect::SelfShadow, Effect::Silhouette, Effect::DepthCorrect},
-        .params = {{.name = "linear_steps",
-                    .kind = ParamKind::Int,
-                    .default_value = 32,
-                    .min_value = 2,
-                    .max_value = 1024,
-                    .doc = "linear search samples down to depth 1 (Algorithm 1)"},
-                   {.name = "binary_steps",
-                    .kind = ParamKind::Int,
-                    .default_value = 5,
-                    .min_value = 0,
-                    .max_value = 32,
-                    .doc = "binary search refinements (Algorithm 2; Appendix A: 5)"},
+        .params = {linear_steps_param(32, "linear search samples down to depth 1 (Algorithm 1)"),
+                   binary_steps_param(5, "binary search refinements (Algorithm 2; Appendix A: 5)"),
                    {.name = "linear_filter",
                     .kind = ParamKind::Bool,
                     .default_value = 0,
@@ -47,14 +37,17 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
                            "(each level the 2 x 2 average, empty texels' depth 1 included) at the "
                            "pixel's footprint, nearest within a level unless linear_filter; "
                            "colour at level 0",
-                    .neutral_default = true},
+                    .neutral_default = true,
+                    .define = "RL_MIPMAP",
+                    .define_when_set = true},
                    {.name = "interface_fix",
                     .kind = ParamKind::Bool,
                     .default_value = 1,
                     .min_value = 0,
                     .max_value = 1,
                     .doc = "Section 3.2: of the last inside and outside samples, keep the one "
-                           "on the texel with more layers"},
+                           "on the texel with more layers",
+                    .define = "RL_INTERFACE_FIX"},
                    {.name = "grazing_bias",
                     .kind = ParamKind::Bool,
                     .default_value = 0,
@@ -62,7 +55,8 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
                     .max_value = 1,
                     .doc = "Appendix A's depth bias: search a relief 2 cos - cos^2 as deep (cos: "
                            "the view to the base normal), flatter at grazing views; not on "
-                           "impostors or curved bases"},
+                           "impostors or curved bases",
+                    .define = "RL_GRAZING_BIAS"},
                    {.name = "two_pass",
                     .kind = ParamKind::Bool,
                     .default_value = 0,
@@ -168,12 +162,7 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
  protected:
   std::string intersect_file() const override { return "techniques/multilayer/multilayer.glsl"; }
   Defines parameter_defines() const override {
-    Defines d = {{"RL_LINEAR_STEPS", std::to_string(int(param("linear_steps")))},
-                 {"RL_BINARY_STEPS", std::to_string(int(param("binary_steps")))},
-                 {"RL_INTERFACE_FIX", param("interface_fix") != 0 ? "1" : "0"},
-                 {"RL_GRAZING_BIAS", param("grazing_bias") != 0 ? "1" : "0"},
-                 {"RL_LAYER_GROUPS", std::to_string(groups_)}};
-    if (param("mipmap") != 0) d["RL_MIPMAP"] = "1";
+    Defines d = {{"RL_LAYER_GROUPS", std::to_string(groups_)}};
     d.insert(floor_.begin(), floor_.end());
     return d;
   }

@@ -20,7 +20,8 @@ class ParallaxMapping final : public Described<ParallaxMapping, ShaderTechnique>
               .max_value = 1,
               .doc =
                   "shift by d * view.xy of the unit view vector (Listing 5.1) instead of reaching "
-                  "the view ray at depth d"},
+                  "the view ray at depth d",
+              .define = "RL_OFFSET_LIMITING"},
              {.name = "bias",
               .kind = ParamKind::Float,
               .default_value = 0,
@@ -28,7 +29,8 @@ class ParallaxMapping final : public Described<ParallaxMapping, ShaderTechnique>
               .max_value = 1,
               .doc =
                   "depth subtracted before shifting (Listing 5.1 uses half the scale because its "
-                  "polygon sits mid-relief; ReliefLab's base is the top, so 0)"}},
+                  "polygon sits mid-relief; ReliefLab's base is the top, so 0)",
+              .define = "RL_PARALLAX_BIAS"}},
         .draws = {.reads = {Representation::Heightfield, Representation::Layers,
                             Representation::MetaRuntime}},
         .contract = {.answer = Answer::Approximation,
@@ -40,10 +42,6 @@ class ParallaxMapping final : public Described<ParallaxMapping, ShaderTechnique>
 
  protected:
   std::string intersect_file() const override { return "techniques/parallax/parallax.glsl"; }
-  Defines parameter_defines() const override {
-    return {{"RL_OFFSET_LIMITING", param("offset_limiting") != 0 ? "1" : "0"},
-            {"RL_PARALLAX_BIAS", "(" + std::to_string(param("bias")) + ")"}};
-  }
 };
 
 RL_REGISTER_TECHNIQUE(ParallaxMapping);

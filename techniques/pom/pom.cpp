@@ -19,13 +19,15 @@ class ParallaxOcclusion final : public Described<ParallaxOcclusion, ShaderTechni
                         .default_value = 8,
                         .min_value = 2,
                         .max_value = 1024,
-                        .doc = "linear search samples when the view is along the normal"},
+                        .doc = "linear search samples when the view is along the normal",
+                        .define = "RL_MIN_SAMPLES"},
                        {.name = "max_samples",
                         .kind = ParamKind::Int,
                         .default_value = 32,
                         .min_value = 2,
                         .max_value = 1024,
-                        .doc = "linear search samples at grazing views"}},
+                        .doc = "linear search samples at grazing views",
+                        .define = "RL_MAX_SAMPLES"}},
             .draws = {.reads = {Representation::Heightfield, Representation::Layers,
                                 Representation::MetaRuntime}},
             .contract = {
@@ -48,10 +50,6 @@ class ParallaxOcclusion final : public Described<ParallaxOcclusion, ShaderTechni
 
  protected:
   std::string intersect_file() const override { return "techniques/pom/pom.glsl"; }
-  Defines parameter_defines() const override {
-    return {{"RL_MIN_SAMPLES", std::to_string(int(param("min_samples")))},
-            {"RL_MAX_SAMPLES", std::to_string(int(param("max_samples")))}};
-  }
 };
 
 RL_REGISTER_TECHNIQUE(ParallaxOcclusion);

@@ -20,20 +20,13 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
             "(Policarpo, Oliveira & Comba 2005)",
         .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
         .params =
-            {{.name = "linear_steps",
-              .kind = ParamKind::Int,
-              .default_value = 10,
-              .min_value = 1,
-              .max_value = 1024,
-              .doc = "linear search steps through the depth range (Listing 5.3: 10, or 20 in its "
-                     "double-precision variant); 1 = no linear search, the binary chop alone "
-                     "(Figure 5.12)"},
-             {.name = "binary_steps",
-              .kind = ParamKind::Int,
-              .default_value = 5,
-              .min_value = 0,
-              .max_value = 32,
-              .doc = "binary search refinements after the linear search (Listing 5.3: 5)"},
+            {linear_steps_param(
+                 10,
+                 "linear search steps through the depth range (Listing 5.3: 10, or 20 in its "
+                 "double-precision variant); 1 = no linear search, the binary chop alone "
+                 "(Figure 5.12)"),
+             binary_steps_param(
+                 5, "binary search refinements after the linear search (Listing 5.3: 5)"),
              {.name = "mipmap",
               .kind = ParamKind::Bool,
               .default_value = 0,
@@ -101,8 +94,7 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
  protected:
   std::string intersect_file() const override { return "techniques/relief/relief.glsl"; }
   Defines parameter_defines() const override {
-    Defines d = {{"RL_LINEAR_STEPS", std::to_string(static_cast<int>(param("linear_steps")))},
-                 {"RL_BINARY_STEPS", std::to_string(static_cast<int>(param("binary_steps")))}};
+    Defines d;
     if (mipmapped() || color_mipmapped()) d["RL_MIPMAP"] = "1";
     if (mipmapped()) d["RL_MIPMAPPED_RELIEF"] = "1";
     if (color_mipmapped()) d["RL_COLOR_MIPMAP"] = "1";

@@ -23,7 +23,8 @@ class ReliefHierarchicalExact final : public Described<ReliefHierarchicalExact, 
                     .max_value = 16,
                     .doc = "coarsest quadtree level the search starts at (at most the level whose "
                            "nodes span the ray's lateral travel; lower starts near the entry and "
-                           "climbs; 16: always that level, as before)"},
+                           "climbs; 16: always that level, as before)",
+                    .define = "RL_START_LEVEL"},
                    {.name = "block_cells",
                     .kind = ParamKind::Int,
                     .default_value = 0,
@@ -31,7 +32,9 @@ class ReliefHierarchicalExact final : public Described<ReliefHierarchicalExact, 
                     .max_value = 1,
                     .doc = "1: on 8-bit maps a level-1 node's four cells are read in one fetch "
                            "(their 3 x 3 corner depths packed in one RGBA32UI texel) instead of "
-                           "one gather per cell"},
+                           "one gather per cell",
+                    .define = "RL_BLOCK_CELLS",
+                    .define_when_set = true},
                    {.name = "byte_bounds",
                     .kind = ParamKind::Int,
                     .default_value = 0,
@@ -39,7 +42,9 @@ class ReliefHierarchicalExact final : public Described<ReliefHierarchicalExact, 
                     .max_value = 1,
                     .doc = "1: on 8-bit maps node bounds are read 4 x 4 nodes at a time, 8 bits "
                            "each, with their parents' bounds derived from them: one fetch serves "
-                           "two levels of the descent"}},
+                           "two levels of the descent",
+                    .define = "RL_BYTE_BOUNDS",
+                    .define_when_set = true}},
         .draws = {.proxies = {Proxy::Base, Proxy::Box}},
         .contract = {.answer = Answer::Exact,
                      .max_fetches = [](const RayQuery& q) { return quadtree_nodes(q) + 2; },
@@ -54,12 +59,6 @@ class ReliefHierarchicalExact final : public Described<ReliefHierarchicalExact, 
   }
   bool uses_blocks() const override {
     return param("block_cells") != 0 || param("byte_bounds") != 0;
-  }
-  Defines parameter_defines() const override {
-    Defines d = {{"RL_START_LEVEL", std::to_string(static_cast<int>(param("start_level")))}};
-    if (param("block_cells") != 0) d["RL_BLOCK_CELLS"] = "1";
-    if (param("byte_bounds") != 0) d["RL_BYTE_BOUNDS"] = "1";
-    return d;
   }
 };
 

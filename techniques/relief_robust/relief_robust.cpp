@@ -26,13 +26,16 @@ class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
               .default_value = 8,
               .min_value = 1,
               .max_value = 32,
-              .doc = "binary search steps once the ray is below"},
+              .doc = "binary search steps once the ray is below",
+              .define = "RL_BINARY_STEPS"},
              {.name = "exact_zero_radius",
               .kind = ParamKind::Bool,
               .default_value = 0,
               .min_value = 0,
               .max_value = 1,
-              .doc = "solve zero-radius columns exactly instead of clamping the radius to 1"},
+              .doc = "solve zero-radius columns exactly instead of clamping the radius to 1",
+              .define = "RL_EXACT_ZERO_RADIUS",
+              .define_when_set = true},
              {.name = "error_allowed",
               .kind = ParamKind::Float,
               .default_value = 0,
@@ -138,11 +141,6 @@ class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
  protected:
   std::string intersect_file() const override {
     return "techniques/relief_robust/relief_robust.glsl";
-  }
-  Defines parameter_defines() const override {
-    Defines d = {{"RL_BINARY_STEPS", std::to_string(int(param("binary_steps")))}};
-    if (param("exact_zero_radius") != 0) d["RL_EXACT_ZERO_RADIUS"] = "1";
-    return d;
   }
   void bind_resources(GLuint) const override { glBindTextureUnit(4, texture_); }
 

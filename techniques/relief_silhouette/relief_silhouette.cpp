@@ -18,18 +18,9 @@ class ReliefSilhouette final : public Described<ReliefSilhouette, ShaderTechniqu
         .effects = {Effect::Silhouette, Effect::SelfShadow, Effect::DepthCorrect,
                     Effect::AmbientOcclusion},
         .params =
-            {{.name = "linear_steps",
-              .kind = ParamKind::Int,
-              .default_value = 10,
-              .min_value = 2,
-              .max_value = 1024,
-              .doc = "linear search samples over [0, t_max] (Listing 5.6: 10)"},
-             {.name = "binary_steps",
-              .kind = ParamKind::Int,
-              .default_value = 6,
-              .min_value = 0,
-              .max_value = 32,
-              .doc = "binary search refinements after the linear search (Listing 5.6: 6)"},
+            {linear_steps_param(10, "linear search samples over [0, t_max] (Listing 5.6: 10)"),
+             binary_steps_param(
+                 6, "binary search refinements after the linear search (Listing 5.6: 6)"),
              {.name = "exact_distance",
               .kind = ParamKind::Bool,
               .default_value = 0,
@@ -44,7 +35,8 @@ class ReliefSilhouette final : public Described<ReliefSilhouette, ShaderTechniqu
               .max_value = 1,
               .doc = "1: Equation 5.2 (whatever exact_distance says) with its linear "
                      "coefficient as the chapter prints it, b = 2 A Px Ux + 2 B Py Uy, without the "
-                     "-Uz that substituting R = P + U s into Equation 5.1 gives"},
+                     "-Uz that substituting R = P + U s into Equation 5.1 gives",
+              .define = "RL_EQ52_AS_PRINTED"},
              {.name = "plane_t_max",
               .kind = ParamKind::Bool,
               .default_value = 0,
@@ -53,7 +45,8 @@ class ReliefSilhouette final : public Described<ReliefSilhouette, ShaderTechniqu
               .doc = "1: the samples spread over the tangent plane's [0, 1 / s_z] (depth 1 on a "
                      "flat base); 0: over Listing 5.7's t_max, the nearer of where the bent ray "
                      "reaches depth 1 and where it returns to depth 0 (Figure 5.25's cases)",
-              .neutral_default = true}},
+              .neutral_default = true,
+              .define = "RL_PLANE_T_MAX"}},
         .draws = {.reads = {Representation::Heightfield, Representation::Layers,
                             Representation::MetaRuntime}},
         .contract = {.answer = Answer::Converging,
@@ -73,13 +66,10 @@ class ReliefSilhouette final : public Described<ReliefSilhouette, ShaderTechniqu
   std::string intersect_file() const override {
     return "techniques/relief_silhouette/relief_silhouette.glsl";
   }
+  // Eq. 5.2 as printed is a form of the exact quadric distance: either sets RL_QUADRIC_EXACT.
   Defines parameter_defines() const override {
-    return {{"RL_LINEAR_STEPS", std::to_string(static_cast<int>(param("linear_steps")))},
-            {"RL_BINARY_STEPS", std::to_string(static_cast<int>(param("binary_steps")))},
-            {"RL_QUADRIC_EXACT", std::to_string(static_cast<int>(param("exact_distance") != 0 ||
-                                                                 param("eq52_as_printed") != 0))},
-            {"RL_EQ52_AS_PRINTED", std::to_string(static_cast<int>(param("eq52_as_printed")))},
-            {"RL_PLANE_T_MAX", std::to_string(static_cast<int>(param("plane_t_max")))}};
+    const bool exact = param("exact_distance") != 0 || param("eq52_as_printed") != 0;
+    return {{"RL_QUADRIC_EXACT", exact ? "1" : "0"}};
   }
 };
 

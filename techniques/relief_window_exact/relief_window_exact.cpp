@@ -29,7 +29,8 @@ class ReliefWindowExact final : public Described<ReliefWindowExact, ShaderTechni
                     .min_value = 0,
                     .max_value = 16,
                     .doc = "level of the first step (2^level texels along the ray's faster "
-                           "axis), at most the pyramid's coarsest"},
+                           "axis), at most the pyramid's coarsest",
+                    .define = "RL_START_LEVEL"},
                    {.name = "climb_after",
                     .kind = ParamKind::Int,
                     .default_value = 3,
@@ -37,7 +38,8 @@ class ReliefWindowExact final : public Described<ReliefWindowExact, ShaderTechni
                     .max_value = 4,
                     .doc = "steps taken at a level before the search tries the next one up "
                            "(1: after every step, as maximum-mipmap traversals do; more saves "
-                           "the failing tries of a ray that runs close to the surface)"},
+                           "the failing tries of a ray that runs close to the surface)",
+                    .define = "RL_CLIMB_AFTER"},
                    {.name = "windows_by_way",
                     .kind = ParamKind::Int,
                     .default_value = 1,
@@ -45,7 +47,8 @@ class ReliefWindowExact final : public Described<ReliefWindowExact, ShaderTechni
                     .max_value = 1,
                     .doc = "1: a window per quadrant of the ray's direction, two blocks wide "
                            "per axis (4x the memory); 0: one window for any direction, three "
-                           "blocks wide, so steps are turned away more often"}},
+                           "blocks wide, so steps are turned away more often",
+                    .define = "RL_WINDOWS_BY_WAY"}},
         .draws = {.proxies = {Proxy::Base, Proxy::Box}},
         .contract = {.answer = Answer::Exact,
                      .max_fetches = [](const RayQuery& q) { return window_steps(q) + 2; },
@@ -98,11 +101,6 @@ class ReliefWindowExact final : public Described<ReliefWindowExact, ShaderTechni
  protected:
   std::string intersect_file() const override {
     return "techniques/relief_window_exact/relief_window_exact.glsl";
-  }
-  Defines parameter_defines() const override {
-    return {{"RL_START_LEVEL", std::to_string(static_cast<int>(param("start_level")))},
-            {"RL_CLIMB_AFTER", std::to_string(static_cast<int>(param("climb_after")))},
-            {"RL_WINDOWS_BY_WAY", std::to_string(static_cast<int>(param("windows_by_way")))}};
   }
   void bind_resources(GLuint program) const override {
     glBindTextureUnit(4, texture_);
