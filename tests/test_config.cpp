@@ -186,6 +186,16 @@ const std::vector<BadCase>& bad_cases() {
                "relief = { mesh = \"" RELIEFLAB_SOURCE_DIR
                "/assets/meshes/teapot.obj\" }\ndepth = 0.2"),
        {"'depth' comes from the mesh's proportions"}},
+      {"mesh_heightfield_on_a_sphere",
+       replace(kGood, "relief = { procedural = \"flat\", resolution = 8 }",
+               "relief = { mesh = \"" RELIEFLAB_SOURCE_DIR
+               "/assets/meshes/teapot.obj\" }\nbase = \"sphere\""),
+       {"a baked mesh relief needs the planar base", "unless it is baked into layers"}},
+      {"impostor_over_a_solid_floor",
+       replace(kGood, "relief = { procedural = \"flat\", resolution = 8 }",
+               "relief = { mesh = \"" RELIEFLAB_SOURCE_DIR
+               "/assets/meshes/teapot.obj\", layers = 4 }\nfloor = \"solid\""),
+       {"as an impostor has an empty floor"}},
       {"reverse_on_base",
        replace(kGood, "relief = { procedural = \"flat\", resolution = 8 }",
                "relief = { mesh = \"" RELIEFLAB_SOURCE_DIR
