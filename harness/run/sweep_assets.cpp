@@ -33,6 +33,7 @@ std::unique_ptr<Asset> build_asset(const SweepConfig& config, const SceneDesc& s
   stage(scene.relief.cells.active ? "building the relief (a cubic cell complex)"
                                   : "building the relief map");
   asset->map = build_relief_asset(scene, cell.texture_res);
+  if (asset->map.cells) asset->projection_bend = projection_bend(*asset->map.cells);
   // The truth's own map where the scene gives it another depth resolution (truth_resolution)
   // or another colour map (truth_color_resolution).
   const int truth_res = scene.truth_texture_res > 0 ? scene.truth_texture_res : cell.texture_res;

@@ -12,7 +12,6 @@
 #include "core/columns.h"
 #include "output/gbuffer_export.h"
 #include "relief/cell_complex.h"
-#include "relief/cell_projection_bend.h"
 #include "relief/heightfield_faces.h"
 #include "relief/image_io.h"
 
@@ -24,7 +23,7 @@ namespace fs = std::filesystem;
 // Per projection type (Apaza & Andujar, Figure 2): its share of the domain-face texels, and the
 // share of those whose line crosses the surface more than once -- where the type fails to make
 // its cell's surface a height field and one distance per texel loses a sheet.
-void add_projection_columns(Row& row, const CellComplex& cc) {
+void add_projection_columns(Row& row, const CellComplex& cc, const ProjectionBend& bend) {
   std::array<double, 4> texels{}, multi{};
   const size_t per_face = size_t(cc.resolution()) * cc.resolution();
   for (size_t f = 0; f < cc.domain_faces().size(); ++f) {
@@ -42,7 +41,6 @@ void add_projection_columns(Row& row, const CellComplex& cc) {
         texels[type] > 0 ? 100.0 * multi[type] / texels[type] : 0.0;
   }
   // Figure 3: how far mesh edges bend when projected onto their cell's faces.
-  const ProjectionBend bend = projection_bend(cc);
   for (size_t type = 0; type < 4; ++type) {
     const std::string name = projection_type_name(CellProjection::Type(type));
     row["edge_pieces_" + name] = double(bend.pieces[type]);
@@ -53,7 +51,8 @@ void add_projection_columns(Row& row, const CellComplex& cc) {
 
 // A cell complex's construction (Apaza & Andujar, Table 1) and ray throughput (Table 2):
 // intersections per second are the pixels the technique covers over the median frame time.
-void add_cell_columns(Row& row, const CellComplex& cc, const GBuffer& g, double frame_ms) {
+void add_cell_columns(Row& row, const CellComplex& cc, const ProjectionBend& bend, const GBuffer& g,
+                      double frame_ms) {
   const CellComplex::Stats& st = cc.stats();
   row["cell_grid"] = cc.grid();
   row["mesh_faces"] = double(st.mesh_triangles);
@@ -69,7 +68,7 @@ void add_cell_columns(Row& row, const CellComplex& cc, const GBuffer& g, double 
   row["occluded_fragment_pct"] = 100.0 * st.occluded_ratio();
   const double texels = double(st.domain_faces) * cc.resolution() * cc.resolution();
   row["multi_crossing_pct"] = texels > 0 ? 100.0 * double(st.multi_crossing_texels) / texels : 0.0;
-  add_projection_columns(row, cc);
+  add_projection_columns(row, cc, bend);
   std::string trials;
   for (const GridTrial& t : st.trials) {
     char buf[48];
@@ -140,7 +139,8 @@ void add_representation_columns(Row& row, const Asset& asset, const CellMeasure&
     row["normal_storage_err_mean_deg"] = layers.normal_storage_err_mean_deg;
     row["normal_storage_err_max_deg"] = layers.normal_storage_err_max_deg;
   }
-  if (asset.map.cells) add_cell_columns(row, *asset.map.cells, c.g, c.timing.median_ms);
+  if (asset.map.cells)
+    add_cell_columns(row, *asset.map.cells, *asset.projection_bend, c.g, c.timing.median_ms);
   if (asset.map.faces) row["face_count"] = asset.map.faces->count();
 }
 

@@ -18,6 +18,7 @@
 #include "metrics/op_cost.h"
 #include "output/result_store.h"
 #include "output/row.h"
+#include "relief/cell_projection_bend.h"
 #include "relief/relief_map.h"
 #include "run/cells.h"
 #include "run/runner.h"
@@ -46,6 +47,8 @@ struct Asset {
   double metric_texel = 0;
   // The base's fitted curvature against its closed form (sphere, torus): Figure 5.28.
   std::optional<CurvatureFitError> curvature_fit;
+  // A cell complex's edges projected onto its faces (Figure 3): measured once, copied to rows.
+  std::optional<ProjectionBend> projection_bend;
   double ao_ms = 0;  // the texture-space AO map's precompute (ambient_occlusion)
   bool ao_from_cache = false;
   // Prepared technique instances by (technique, parameters): prepare() runs once per asset.
