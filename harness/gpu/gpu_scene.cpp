@@ -7,9 +7,7 @@
 #include "relief/meta_relief.h"
 
 namespace rl {
-namespace {
 
-// `format`: GL_RGBA (the relief and colour maps) or GL_RED (the AO map), from floats.
 GLuint make_texture(int w, int h, GLenum internal_format, GLenum format, const float* texels) {
   GLuint tex = 0;
   glCreateTextures(GL_TEXTURE_2D, 1, &tex);
@@ -22,8 +20,6 @@ GLuint make_texture(int w, int h, GLenum internal_format, GLenum format, const f
   glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
   return tex;
 }
-
-}  // namespace
 
 GpuRelief::GpuRelief(const ReliefMap& map, bool meta_layers) {
   GlContext::shared();

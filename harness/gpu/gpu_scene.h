@@ -13,6 +13,11 @@
 
 namespace rl {
 
+// A 2D texture of floats, bilinear and repeating, no mipmaps: how the relief map and what is
+// read beside it (colour, AO, a packed copy) are uploaded, the surface the truth reconstructs.
+// `format`: GL_RGBA or GL_RED of `texels`, stored as `internal_format`.
+GLuint make_texture(int w, int h, GLenum internal_format, GLenum format, const float* texels);
+
 class GpuRelief {
  public:
   // RGBA8 when the map is quantised, else RGBA32F. `meta_layers`: also the layers of the map's

@@ -2,6 +2,8 @@
 
 #include <vector>
 
+#include "gpu/gpu_scene.h"
+
 namespace rl {
 
 PackedRelief::~PackedRelief() {
@@ -17,14 +19,8 @@ void PackedRelief::upload(const ReliefMap& map) {
     const float ao = map.ambient_visibility.empty() ? 1.0f : map.ambient_visibility[i];
     packed[i] = glm::vec4(r.x, r.y, ao, r.a);
   }
-  const GLenum format = map.quantized ? GL_RGBA8 : GL_RGBA32F;
-  glCreateTextures(GL_TEXTURE_2D, 1, &texture_);
-  glTextureStorage2D(texture_, 1, format, map.width, map.height);
-  glTextureSubImage2D(texture_, 0, 0, 0, map.width, map.height, GL_RGBA, GL_FLOAT, packed.data());
-  glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTextureParameteri(texture_, GL_TEXTURE_WRAP_S, GL_REPEAT);
-  glTextureParameteri(texture_, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  texture_ = make_texture(map.width, map.height, map.quantized ? GL_RGBA8 : GL_RGBA32F, GL_RGBA,
+                          &packed[0].x);
   bytes_ = texels * (map.quantized ? 4 : 16);
 }
 
