@@ -78,7 +78,7 @@ TEST(FragmentCost, EveryPassOfAMultiPassTechniqueIsPaidPerPixel) {
     ASSERT_GT(cost.fragments, 0);
     EXPECT_LE(cost.warp_fetches_mean, 2.0);  // one slice's fragment, slowest lane
     EXPECT_GE(cost.warp_fetches_per_px, slices * 1.0);
-    EXPECT_GE(cost.warp_fetches_per_px, m.metrics.fetches.mean);
+    EXPECT_GE(cost.warp_fetches_per_px, m.metrics.at("fetches_mean"));
   }
 }
 
@@ -117,7 +117,7 @@ TEST(FragmentCost, AFlatMapCostsEveryLaneTheSame) {
   EXPECT_EQ(cost.frag_fetches_max, cost.frag_fetches_mean);
   EXPECT_EQ(cost.warp_fetches_mean, cost.frag_fetches_mean);
   EXPECT_EQ(cost.quad_fetches_mean, cost.frag_fetches_mean);
-  EXPECT_DOUBLE_EQ(cost.frag_fetches_mean, m.metrics.fetches.mean);
+  EXPECT_DOUBLE_EQ(cost.frag_fetches_mean, m.metrics.at("fetches_mean"));
   // Listing 5.3 at its defaults (10 linear, 5 binary): depth 0.5 is reached at step 5, then 5
   // bisections, + normal and colour.
   EXPECT_EQ(cost.frag_fetches_mean, 5 + 5 + 2);
@@ -146,7 +146,7 @@ TEST(FragmentCost, MissedRaysUnderABoxProxyAreCharged) {
   long covered = 0;
   for (size_t i = 0; i < m.technique.size(); ++i) covered += m.technique.covered(i);
   EXPECT_GT(cost.fragments, covered + 100) << "discarded fragments are counted";
-  EXPECT_GT(cost.frag_fetches_mean, m.metrics.fetches.mean);
+  EXPECT_GT(cost.frag_fetches_mean, m.metrics.at("fetches_mean"));
   // An exact walk's per-pixel work varies: a warp waits for its longest walk.
   EXPECT_GT(cost.warp_fetches_mean, cost.quad_fetches_mean);
   EXPECT_GT(cost.quad_fetches_mean, cost.frag_fetches_mean);

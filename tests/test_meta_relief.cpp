@@ -189,7 +189,7 @@ TEST(MetaReliefRender, TwinLayersCombinedAtRunTimeRenderTheSingleMapWithTwiceThe
   }
   EXPECT_GT(covered, 1000);
   // The truths are the same surface: one exact walk, one Embree tessellation.
-  EXPECT_LT(b.metrics.wrong_pct, a.metrics.wrong_pct + 0.5);
+  EXPECT_LT(b.metrics.at("wrong_pct"), a.metrics.at("wrong_pct") + 0.5);
 }
 
 TEST(MetaReliefRender, EveryRuntimeTechniqueCombinesFractionalTilingsFinitely) {
@@ -214,7 +214,7 @@ TEST(MetaReliefRender, EveryRuntimeTechniqueCombinesFractionalTilingsFinitely) {
       // The base is drawn whole: every pixel the truth covers is shaded (a search may differ).
       EXPECT_GE(covered, truth_covered * 9 / 10);
       EXPECT_GT(truth_covered, 200);
-      EXPECT_TRUE(std::isfinite(m.metrics.wrong_pct));
+      EXPECT_TRUE(std::isfinite(m.metrics.at("wrong_pct")));
     }
   }
 }

@@ -1,8 +1,11 @@
 // Metrics on hand-made G-buffers with known answers.
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
+#include "core/columns.h"
 #include "metrics/metrics.h"
 
 namespace rl {
@@ -35,15 +38,15 @@ TEST(ErrorStats, KnownValues) {
 TEST(Metrics, IdenticalBuffersHaveNoError) {
   GBuffer a = filled(16, 16);
   ImageMetrics m = compare_gbuffers(a, a, 0.1, 0.01);
-  EXPECT_EQ(m.truth_covered_px, 256);
-  EXPECT_EQ(m.missed_pct, 0);
-  EXPECT_EQ(m.pos_err.max, 0);
-  EXPECT_EQ(m.artifact_pct, 0);
-  EXPECT_NEAR(m.normal_err_mean_deg, 0, 1e-6);
-  EXPECT_EQ(m.psnr_db, 100);  // the stated cap for identical images
-  EXPECT_NEAR(m.ssim, 1.0, 1e-9);
-  EXPECT_EQ(m.fetches.mean, 4);
-  EXPECT_EQ(m.nonfinite_px, 0);
+  EXPECT_EQ(m.at("covered_px"), 256);
+  EXPECT_EQ(m.at("missed_pct"), 0);
+  EXPECT_EQ(m.at("pos_err_max"), 0);
+  EXPECT_EQ(m.at("artifact_pct"), 0);
+  EXPECT_NEAR(m.at("normal_err_mean_deg"), 0, 1e-6);
+  EXPECT_EQ(m.at("psnr_db"), 100);  // the stated cap for identical images
+  EXPECT_NEAR(m.at("ssim"), 1.0, 1e-9);
+  EXPECT_EQ(m.at("fetches_mean"), 4);
+  EXPECT_EQ(m.at("nonfinite_px"), 0);
 }
 
 TEST(Metrics, CoveragePositionNormalsShadowsAndFetches) {
@@ -58,23 +61,23 @@ TEST(Metrics, CoveragePositionNormalsShadowsAndFetches) {
   for (int i = 50; i < 57; ++i) tech.normal[i].w = 1;
   for (int i = 60; i < 100; ++i) tech.hit[i].w = 10;
   ImageMetrics m = compare_gbuffers(tech, truth, 0.1, 0.01);
-  EXPECT_EQ(m.truth_covered_px, 95);
-  EXPECT_NEAR(m.missed_pct, 100.0 * 10 / 95, 1e-9);
-  EXPECT_NEAR(m.false_pct, 100.0 * 5 / 95, 1e-9);
+  EXPECT_EQ(m.at("covered_px"), 95);
+  EXPECT_NEAR(m.at("missed_pct"), 100.0 * 10 / 95, 1e-9);
+  EXPECT_NEAR(m.at("false_pct"), 100.0 * 5 / 95, 1e-9);
   const double both = 85;
-  EXPECT_NEAR(m.artifact_pct, 100.0 * 20 / both, 1e-9);
-  EXPECT_NEAR(m.pos_err.max, 0.5, 1e-6);
-  EXPECT_NEAR(m.pos_err_texels.max, 5.0, 1e-5);
-  EXPECT_NEAR(m.pos_err.mean, 0.5 * 20 / both, 1e-6);
-  EXPECT_NEAR(m.normal_err_mean_deg, 90.0 * 10 / both, 1e-4);
-  EXPECT_NEAR(m.shadow_disagree_pct, 100.0 * 7 / both, 1e-9);
+  EXPECT_NEAR(m.at("artifact_pct"), 100.0 * 20 / both, 1e-9);
+  EXPECT_NEAR(m.at("pos_err_max"), 0.5, 1e-6);
+  EXPECT_NEAR(m.at("pos_err_texels_max"), 5.0, 1e-5);
+  EXPECT_NEAR(m.at("pos_err_mean"), 0.5 * 20 / both, 1e-6);
+  EXPECT_NEAR(m.at("normal_err_mean_deg"), 90.0 * 10 / both, 1e-4);
+  EXPECT_NEAR(m.at("shadow_disagree_pct"), 100.0 * 7 / both, 1e-9);
   // Fetches over the 90 technique-covered pixels: 50 x 4 and 40 x 10.
-  EXPECT_NEAR(m.fetches.mean, (50 * 4 + 40 * 10) / 90.0, 1e-9);
-  EXPECT_EQ(m.fetches.max, 10);
+  EXPECT_NEAR(m.at("fetches_mean"), (50 * 4 + 40 * 10) / 90.0, 1e-9);
+  EXPECT_EQ(m.at("fetches_max"), 10);
   // The headline error: 10 missed + 5 false + 20 off by more than a texel, over the 100
   // pixels either side covers.
-  EXPECT_EQ(m.union_covered_px, 100);
-  EXPECT_DOUBLE_EQ(m.wrong_pct, 35.0);
+  EXPECT_EQ(m.at("union_px"), 100);
+  EXPECT_DOUBLE_EQ(m.at("wrong_pct"), 35.0);
 }
 
 TEST(Metrics, WrongPctCountsAFalseFloorThatArtifactPctCannotSee) {
@@ -83,9 +86,9 @@ TEST(Metrics, WrongPctCountsAFalseFloorThatArtifactPctCannotSee) {
   GBuffer truth = filled(10, 10), tech = filled(10, 10);
   for (int i = 0; i < 60; ++i) truth.color[i].a = truth.position[i].w = 0;
   ImageMetrics m = compare_gbuffers(tech, truth, 0.1, 0.01);
-  EXPECT_EQ(m.artifact_pct, 0);
-  EXPECT_DOUBLE_EQ(m.wrong_pct, 60.0);
-  EXPECT_DOUBLE_EQ(m.false_pct, 150.0);  // in % of the 40 truth-covered pixels
+  EXPECT_EQ(m.at("artifact_pct"), 0);
+  EXPECT_DOUBLE_EQ(m.at("wrong_pct"), 60.0);
+  EXPECT_DOUBLE_EQ(m.at("false_pct"), 150.0);  // in % of the 40 truth-covered pixels
 }
 
 TEST(Metrics, NothingCoveredIsReportedEmptyNotPerfect) {
@@ -129,11 +132,13 @@ TEST(Metrics, FootprintColourAveragesEverySampleUnderThePixel) {
   EXPECT_FLOAT_EQ(f.color[1].r, 0.75f);  // (1 + 1 + 1 + 0) / 4
   EXPECT_FLOAT_EQ(f.color[1].g, 0.375f);
   EXPECT_FLOAT_EQ(f.color[1].a, 0.75f);
-  // Against itself at one sample a side it is the image: no error.
-  const auto same = footprint_metrics(fine, footprint_color(fine, 1));
-  EXPECT_EQ(same[0].first, "psnr_footprint_db");
-  EXPECT_EQ(same[0].second, 100.0);
-  EXPECT_NEAR(same[1].second, 1.0, 1e-9);
+  // Against itself at one sample a side it is the image: no error. Measured only where a
+  // footprint is given.
+  const GBuffer same = footprint_color(fine, 1);
+  const ImageMetrics m = measure_metrics({.technique = fine, .truth = fine, .footprint = &same});
+  EXPECT_EQ(m.at("psnr_footprint_db"), 100.0);
+  EXPECT_NEAR(m.at("ssim_footprint"), 1.0, 1e-9);
+  EXPECT_FALSE(compare_gbuffers(fine, fine, 1, 1).has("psnr_footprint_db"));
 }
 
 TEST(Metrics, NonFiniteOutputsAreCountedNotHidden) {
@@ -141,9 +146,9 @@ TEST(Metrics, NonFiniteOutputsAreCountedNotHidden) {
   tech.position[3].x = std::numeric_limits<float>::quiet_NaN();
   tech.normal[5].y = std::numeric_limits<float>::infinity();
   ImageMetrics m = compare_gbuffers(tech, truth, 0.1, 0.01);
-  EXPECT_EQ(m.nonfinite_px, 2);
-  EXPECT_TRUE(std::isfinite(m.pos_err.mean));
-  EXPECT_GT(m.artifact_pct, 0);  // the NaN hit counts as an artifact, not as a perfect pixel
+  EXPECT_EQ(m.at("nonfinite_px"), 2);
+  EXPECT_TRUE(std::isfinite(m.at("pos_err_mean")));
+  EXPECT_GT(m.at("artifact_pct"), 0);  // the NaN hit counts as an artifact, not as a perfect pixel
 }
 
 TEST(HeatMap, MarksMissedAndFalsePixels) {
@@ -157,6 +162,88 @@ TEST(HeatMap, MarksMissedAndFalsePixels) {
   EXPECT_EQ(rgb[3], 0.0f);  // cyan
   EXPECT_EQ(rgb[4], 1.0f);
   EXPECT_EQ(rgb[5], 1.0f);
+}
+
+// Every metric's columns, in place order, exactly as the registry declares them.
+std::vector<std::string> expected_columns(const MetricInput& in) {
+  std::vector<std::string> names;
+  for (const Metric& metric : registered_metrics())
+    if (!metric.applies || metric.applies(in))
+      for (const ColumnSpec& c : metric.columns) names.push_back(c.name);
+  return names;
+}
+
+TEST(MetricRegistry, MetricsWriteTheirDeclaredColumnsInPlaceOrder) {
+  const GBuffer g = filled(8, 8);
+  const MetricInput plain{.technique = g, .truth = g},
+      ao{.technique = g, .truth = g, .ambient_occlusion = true, .footprint = &g};
+  for (const MetricInput* in : {&plain, &ao}) {
+    const ImageMetrics measured = measure_metrics(*in);
+    std::vector<std::string> written;
+    for (const auto& [name, value] : measured.named()) written.push_back(name);
+    EXPECT_EQ(written, expected_columns(*in));
+  }
+  EXPECT_EQ(measure_metrics(plain).named().front().first, "covered_px");  // rows.csv's order
+  EXPECT_FALSE(measure_metrics(plain).has("ao_err_mean"));                // AO only when asked
+  double last = -1e300;
+  for (const Metric& metric : registered_metrics()) {
+    EXPECT_LT(last, metric.place) << metric.name;
+    last = metric.place;
+    for (const ColumnSpec& c : metric.columns) {
+      const DeclaredColumn* declared = find_column(c.name);
+      ASSERT_NE(declared, nullptr) << c.name;
+      EXPECT_EQ(declared->producer, "metrics") << c.name;
+      EXPECT_EQ(measured_against_truth(c.name), c.scored_against_truth) << c.name;
+    }
+  }
+}
+
+// A metric added in one registration: measured, declared, and empty where nothing is covered.
+TEST(MetricRegistry, AnAddedMetricIsMeasuredAndDeclared) {
+  register_metric({.name = "test covered share",
+                   .place = 1e6,
+                   .columns = {ColumnSpec{"test_covered_share_pct", "% of pixels",
+                                          "pixels the truth covers, in % of the image"}
+                                   .scored()},
+                   .measure = [](const MetricInput& in) -> std::vector<double> {
+                     double n = 0;
+                     for (size_t i = 0; i < in.truth.size(); ++i) n += in.truth.covered(i);
+                     return {100.0 * n / double(in.truth.size())};
+                   }});
+  GBuffer truth = filled(4, 4), tech = filled(4, 4);
+  for (size_t i = 0; i < 12; ++i) truth.color[i].a = tech.color[i].a = 0;
+  EXPECT_EQ(compare_gbuffers(tech, truth, 0.1, 0.01).at("test_covered_share_pct"), 25.0);
+  EXPECT_EQ(find_column("test_covered_share_pct")->spec.unit, "% of pixels");
+  for (size_t i = 0; i < truth.size(); ++i) truth.color[i].a = tech.color[i].a = 0;
+  EXPECT_TRUE(std::isnan(compare_gbuffers(tech, truth, 0.1, 0.01).at("test_covered_share_pct")));
+  unregister_metric("test covered share");
+  EXPECT_FALSE(compare_gbuffers(tech, truth, 0.1, 0.01).has("test_covered_share_pct"));
+}
+
+TEST(MetricRegistry, RefusesAMetricThatTakesAPlaceOrMeasuresTheWrongCount) {
+  const ColumnSpec column{"test_count", "pixels", "a count"};
+  auto one_value = [](const MetricInput&) { return std::vector<double>{1.0}; };
+  EXPECT_THROW(register_metric(
+                   {.name = "test clash", .place = 10, .columns = {column}, .measure = one_value}),
+               std::logic_error);  // coverage's place
+  EXPECT_THROW(register_metric(
+                   {.name = "coverage", .place = 2e6, .columns = {column}, .measure = one_value}),
+               std::logic_error);
+  EXPECT_THROW(
+      register_metric({.name = "test empty", .place = 2e6, .columns = {}, .measure = one_value}),
+      std::logic_error);
+  register_metric({.name = "test two columns",
+                   .place = 2e6,
+                   .columns = {column, ColumnSpec{"test_count2", "pixels", "another count"}},
+                   .measure = one_value});
+  const GBuffer g = filled(2, 2);
+  try {
+    compare_gbuffers(g, g, 1, 1);
+    ADD_FAILURE() << "a metric measuring one value for two columns was accepted";
+  } catch (const std::logic_error& e) {
+    EXPECT_NE(std::string(e.what()).find("test two columns"), std::string::npos) << e.what();
+  }
+  unregister_metric("test two columns");
 }
 
 }  // namespace

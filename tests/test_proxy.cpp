@@ -18,12 +18,12 @@ TEST(BoxProxy, AFullBoxIsDrawnWithItsWalls) {
   for (const char* t : {"relief_exact_bilinear", "relief_exact", "relief_robust", "relief"}) {
     SCOPED_TRACE(t);
     test::Measured m = test::measure(box_scene("flat"), t, {}, View{30, 30}, 96);
-    EXPECT_GT(m.metrics.truth_covered_px, 1500);
-    EXPECT_LE(m.metrics.missed_pct + m.metrics.false_pct, 0.5);  // edge pixels only
+    EXPECT_GT(m.metrics.at("covered_px"), 1500);
+    EXPECT_LE(m.metrics.at("missed_pct") + m.metrics.at("false_pct"), 0.5);  // edge pixels only
     // The exact walks stop on the surface; the binary searches within their last interval
     // (relief: (1/10)/2^4 depth units along the ray; robust: a 16-texel step halved 8 times).
     const bool exact = std::string(t).find("exact") != std::string::npos;
-    EXPECT_LE(m.metrics.pos_err.p99, exact ? 1e-3 : 0.05);
+    EXPECT_LE(m.metrics.at("pos_err_p99"), exact ? 1e-3 : 0.05);
   }
 }
 
@@ -34,10 +34,10 @@ TEST(BoxProxy, SilhouettesOfPeaksComeFromTheSearch) {
   test::Measured exact = test::measure(scene, "relief_exact_bilinear", {}, View{20, 30}, 128);
   test::Measured binary = test::measure(
       scene, "relief", {{"linear_steps", 10}, {"binary_steps", 5}}, View{20, 30}, 128);
-  EXPECT_LE(exact.metrics.missed_pct + exact.metrics.false_pct, 0.1);
-  EXPECT_GT(binary.metrics.missed_pct, 10 * std::max(exact.metrics.missed_pct, 0.01));
+  EXPECT_LE(exact.metrics.at("missed_pct") + exact.metrics.at("false_pct"), 0.1);
+  EXPECT_GT(binary.metrics.at("missed_pct"), 10 * std::max(exact.metrics.at("missed_pct"), 0.01));
   // Background exists: rays that pass between the peaks leave the box.
-  EXPECT_LT(exact.metrics.truth_covered_px, 128 * 128);
+  EXPECT_LT(exact.metrics.at("covered_px"), 128 * 128);
 }
 
 }  // namespace

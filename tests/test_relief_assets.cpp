@@ -112,13 +112,13 @@ TEST(ColourResolution, TheTechniqueShadesWithTheColourMapTheTruthReads) {
   ASSERT_EQ(map.width, 32);
   ASSERT_EQ(map.color_w(), 256);
   const test::Measured m = test::measure(scene, "relief_exact", {}, View{80, 30}, 128);
-  EXPECT_LT(m.metrics.wrong_pct, 1.0);
-  EXPECT_GT(m.metrics.psnr_db, 35.0);
+  EXPECT_LT(m.metrics.at("wrong_pct"), 1.0);
+  EXPECT_GT(m.metrics.at("psnr_db"), 35.0);
   // The same relief with its colour at 32^2 looks different: the test can tell the maps apart.
   SceneDesc coarse = scene;
   coarse.color_texture_res = 0;
   const test::Measured c = test::measure(coarse, "relief_exact", {}, View{80, 30}, 128);
-  EXPECT_LT(psnr_db(c.technique, m.technique), m.metrics.psnr_db - 3.0);
+  EXPECT_LT(psnr_db(c.technique, m.technique), m.metrics.at("psnr_db") - 3.0);
 }
 
 // truth_color_resolution: scenes that differ only in their colour map's resolution measured

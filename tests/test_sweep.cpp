@@ -326,7 +326,7 @@ TEST(Framing, FillCoversTheViewportAtGrazingViewsWithinAFewDegrees) {
   SceneDesc scene = test::procedural_scene("bricks", 32, 0.08, true);
   apply_fill_framing(scene, 5, 1);
   const test::Measured m = test::measure(scene, "relief", {}, View{5, 30}, 48);
-  EXPECT_EQ(m.metrics.truth_covered_px, 48 * 48);
+  EXPECT_EQ(m.metrics.at("covered_px"), 48 * 48);
 }
 
 }  // namespace

@@ -310,9 +310,9 @@ TEST(TruthBound, TheExactTruthStatesATexelBoundWellBelowTheTargetAtOneDegree) {
   const GBuffer g = render_truth(truth, map, scene, make_camera(scene, View{1, 30}, 64, 64), {});
   const double texel = planar_base(scene).texel_world(map.width);
   const ImageMetrics m = compare_gbuffers(g, g, scene.depth, texel);
-  EXPECT_GT(m.truth_bound_texels, 0.0);  // stated: the float storage of positions at least
-  EXPECT_LE(m.truth_bound_texels, kTruthBoundTarget);
-  EXPECT_EQ(m.truth_uncertain_pct, 0.0);
+  EXPECT_GT(m.at("truth_bound_texels"), 0.0);  // stated: the float storage of positions at least
+  EXPECT_LE(m.at("truth_bound_texels"), kTruthBoundTarget);
+  EXPECT_EQ(m.at("truth_uncertain_pct"), 0.0);
   EXPECT_FALSE(m.truth_flagged());
 }
 

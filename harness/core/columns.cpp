@@ -1,5 +1,6 @@
 #include "core/columns.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -16,7 +17,13 @@ std::vector<DeclaredColumn>& catalog() {
 
 }  // namespace
 
-void declare_columns(const std::string& producer, const std::vector<ColumnSpec>& columns) {
+void declare_columns(const std::string& producer, const std::vector<ColumnSpec>& columns,
+                     double place) {
+  // Libraries load in link order and files within one in any order: a producer's columns keep
+  // their declared places whichever file declared first.
+  auto at = std::find_if(catalog().begin(), catalog().end(), [&](const DeclaredColumn& c) {
+    return c.producer == producer && c.place > place;
+  });
   for (const ColumnSpec& c : columns) {
     if (c.name.empty() || c.meaning.empty())
       throw std::logic_error(producer + " declares a column without a name or a meaning");
@@ -27,7 +34,7 @@ void declare_columns(const std::string& producer, const std::vector<ColumnSpec>&
                                c.unit + "'");
       continue;
     }
-    catalog().push_back({c, producer});
+    at = std::next(catalog().insert(at, {c, producer, place}));
   }
 }
 

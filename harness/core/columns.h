@@ -35,6 +35,9 @@ struct ColumnSpec {
   Better better = Better::Lower;  // errors and costs: lower is better
   CompareTolerance tolerance{};   // what `compare` watches by default
   bool in_report = false;         // among the numbers each cell shows in the HTML report
+  // It scores the technique against the truth: empty when neither covers a pixel, unscored
+  // (flagged in tables and plots) when the truth is not accurate enough at the view.
+  bool scored_against_truth = false;
 
   ColumnSpec higher_is_better() const {
     return with([](ColumnSpec& c) { c.better = Better::Higher; });
@@ -47,6 +50,9 @@ struct ColumnSpec {
   }
   ColumnSpec reported() const {
     return with([](ColumnSpec& c) { c.in_report = true; });
+  }
+  ColumnSpec scored() const {
+    return with([](ColumnSpec& c) { c.scored_against_truth = true; });
   }
 
  private:
@@ -61,11 +67,14 @@ struct ColumnSpec {
 struct DeclaredColumn {
   ColumnSpec spec;
   std::string producer;  // e.g. "metrics", "technique depth_slicing"
+  double place = 0;      // its order among its producer's columns (a metric's place in a row)
 };
 
-// Adds `columns`. A name declared again must keep its unit and kind (two techniques may write
-// the same column for the same quantity); otherwise std::logic_error names both producers.
-void declare_columns(const std::string& producer, const std::vector<ColumnSpec>& columns);
+// Adds `columns`, among the producer's others in `place` order. A name declared again must keep
+// its unit and kind (two techniques may write the same column for the same quantity); otherwise
+// std::logic_error names both producers.
+void declare_columns(const std::string& producer, const std::vector<ColumnSpec>& columns,
+                     double place = 0);
 
 // Every declared column, in the order declared (libraries declare at load, lowest layer first).
 const std::vector<DeclaredColumn>& declared_columns();

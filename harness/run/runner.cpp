@@ -275,7 +275,8 @@ std::string progress_line(const Cell& cell, const SceneDesc& scene, const CellMe
                 hms(eta).c_str(), summary.truth_traces, slowest.c_str(), slowest_ms,
                 cell.technique.c_str(), describe_params(cell).c_str(), scene.name.c_str(),
                 cell.view.elevation_deg, cell.view.azimuth_deg, cell.width, cell.height,
-                c.m.wrong_pct, c.m.pos_err.rmse, c.m.fetches.mean, c.timing.median_ms);
+                c.m.at("wrong_pct"), c.m.at("pos_err_rmse"), c.m.at("fetches_mean"),
+                c.timing.median_ms);
   return buf;
 }
 
@@ -341,7 +342,7 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
 
     const auto cell_start = Clock::now();  // the technique's part of the cell, truth excluded
     const CellMeasure measured =
-        measure_cell(config, scene, asset, cell, camera, truth.g, gl.is_software());
+        measure_cell(config, scene, asset, cell, camera, truth, gl.is_software());
     if (measured.m.empty())
       log.line("relieflab: warning: " + cell.technique + " " + describe_params(cell) + " on " +
                scene.name + " el=" + std::to_string(cell.view.elevation_deg) +

@@ -106,7 +106,7 @@ std::string check_fetch_bound(const TechniqueInfo& info, const Cell& cell, const
 }  // namespace
 
 CellMeasure measure_cell(const SweepConfig& config, const SceneDesc& scene, Asset& asset,
-                         const Cell& cell, const Camera& camera, const GBuffer& truth,
+                         const Cell& cell, const Camera& camera, const TruthView& truth,
                          bool software_gl) {
   auto& [technique, prepare_ms] = prepared_technique(config, scene, asset, cell);
   FrameInput frame{scene,
@@ -141,8 +141,13 @@ CellMeasure measure_cell(const SweepConfig& config, const SceneDesc& scene, Asse
       throw std::logic_error("technique '" + technique->info().name + "' wrote column '" + name +
                              "', which its describe() does not declare in .columns");
   }
-  out.m = compare_gbuffers(out.g, truth, scene.depth, asset.metric_texel,
-                           scene.effects.has(Effect::AmbientOcclusion));
+  out.m =
+      measure_metrics({.technique = out.g,
+                       .truth = truth.g,
+                       .depth_world = scene.depth,
+                       .texel_world = asset.metric_texel,
+                       .ambient_occlusion = scene.effects.has(Effect::AmbientOcclusion),
+                       .footprint = truth.footprint.color.empty() ? nullptr : &truth.footprint});
   RenderTarget timing_target(cell.width, cell.height, RenderTarget::Kind::ColorOnly);
   out.timing = time_frames(
       [&] {

@@ -162,8 +162,6 @@ Row cell_row(const Cell& cell, const SceneDesc& scene, const Camera& camera, con
   Row row = cell.identity;
   // An error column that measures nothing (no pixel covered) is empty, never zero.
   for (const auto& [name, value] : c.m.named()) row[name] = number_or_empty(value);
-  if (!truth.footprint.color.empty())
-    for (const auto& [name, value] : footprint_metrics(c.g, truth.footprint)) row[name] = value;
   add_elevation_columns(row, scene, camera, c.g, truth.g);
   add_timing_columns(row, cell, c.timing);
   row["precompute_ms"] = c.precompute_ms;

@@ -107,7 +107,7 @@ void write_truth_files(const SweepConfig& config, const CellFiles& files, const 
 
 // Measure: what one cell's technique draws and costs, against its truth.
 CellMeasure measure_cell(const SweepConfig& config, const SceneDesc& scene, Asset& asset,
-                         const Cell& cell, const Camera& camera, const GBuffer& truth,
+                         const Cell& cell, const Camera& camera, const TruthView& truth,
                          bool software_gl);
 
 // Write: every measured column of a cell's row beside its identity; its pictures and G-buffer.

@@ -114,8 +114,8 @@ std::string columns_markdown(DocsScope scope) {
       "| --- | --- | --- | --- | --- | --- |\n";
   for (const DeclaredColumn& c : columns)
     out += "| `" + c.spec.name + "` | " + cell(c.spec.unit) + " | " + kind_name(c.spec.kind) +
-           " | " + better_name(c.spec) + " | " + cell(c.spec.meaning) + " | " + cell(c.producer) +
-           " |\n";
+           (c.spec.scored_against_truth ? ", scored" : "") + " | " + better_name(c.spec) + " | " +
+           cell(c.spec.meaning) + " | " + cell(c.producer) + " |\n";
   return out;
 }
 

@@ -132,9 +132,9 @@ TEST(Odd, FiniteFromStraightDownToLevelAndAtTheAcosEnds) {
             scene, "odd",
             {{"direction_major", double(direction_major)}, {"interpolate", double(interpolate)}},
             view, 48);
-        EXPECT_EQ(m.metrics.nonfinite_px, 0);
+        EXPECT_EQ(m.metrics.at("nonfinite_px"), 0);
         for (const auto& [column, value] : m.metrics.named())
-          if (m.metrics.union_covered_px > 0) {
+          if (m.metrics.at("union_px") > 0) {
             EXPECT_FALSE(std::isinf(value)) << column;
           }
       }

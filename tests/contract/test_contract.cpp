@@ -206,7 +206,7 @@ TEST_P(Contract, OutputsAreFinite) {
         ASSERT_TRUE(finite(f.image.color[i]) && finite(f.image.position[i]) &&
                     finite(f.image.normal[i]) && finite(f.image.hit[i]) && finite(f.image.aux[i]))
             << name() << " pixel " << i << " of " << render_cases()[k].name;
-      EXPECT_EQ(f.metrics.nonfinite_px, 0) << render_cases()[k].name;
+      EXPECT_EQ(f.metrics.at("nonfinite_px"), 0) << render_cases()[k].name;
     }
   }
 }
@@ -259,13 +259,13 @@ TEST_P(ExactContract, ExactHitsMatchTheClosedForm) {
       continue;
     const Frame f = render(k, name(), params);
     std::cout << "[contract] " << name() << " frame " << render_cases()[k].name << ": wrong "
-              << f.metrics.wrong_pct << "%, position max " << f.metrics.pos_err_texels.max
-              << " texels\n";
+              << f.metrics.at("wrong_pct") << "%, position max "
+              << f.metrics.at("pos_err_texels_max") << " texels\n";
     if (f.metrics.truth_flagged()) continue;
-    EXPECT_LE(f.metrics.pos_err_texels.max, kExactTexels) << rc.name;
+    EXPECT_LE(f.metrics.at("pos_err_texels_max"), kExactTexels) << rc.name;
     // Hit and miss agree but for at most one pixel (a rasteriser's edge rule).
-    EXPECT_LE(f.metrics.missed_pct + f.metrics.false_pct,
-              100.0 / std::max(1L, f.metrics.union_covered_px) + 1e-9)
+    EXPECT_LE(f.metrics.at("missed_pct") + f.metrics.at("false_pct"),
+              100.0 / std::max(1.0, f.metrics.at("union_px")) + 1e-9)
         << rc.name;
   }
 }
@@ -308,7 +308,7 @@ double mean_frame_error(const std::string& technique, const ParamValues& params)
   int n = 0;
   for (size_t k : drawable_cases(info_of(technique))) {
     const Frame f = render(k, technique, params);
-    sum += f.metrics.wrong_pct / 100 * kMismatchTexels + f.metrics.pos_err_texels.mean;
+    sum += f.metrics.at("wrong_pct") / 100 * kMismatchTexels + f.metrics.at("pos_err_texels_mean");
     ++n;
   }
   return sum / std::max(n, 1);
