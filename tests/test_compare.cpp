@@ -72,13 +72,25 @@ class WorsenedRelief final : public ShaderTechnique {
 // a declaration that stops watching a column, or loosens it, fails.
 TEST(Compare, DefaultTolerancesAreTheColumnsDeclarations) {
   const auto tol = default_tolerances();
-  const std::vector<std::string> watched = {
-      "ao_err_mean",       "artifact_pct",        "false_pct",
-      "fetches_mean",      "frag_fetches_mean",   "iterations_mean",
-      "missed_pct",        "normal_err_mean_deg", "object_disagree_pct",
-      "pos_err_p99",       "pos_err_rmse",        "pos_err_texels_mean",
-      "psnr_db",           "shadow_disagree_pct", "ssim",
-      "warp_fetches_mean", "warp_fetches_per_px", "wrong_pct"};
+  const std::vector<std::string> watched = {"ao_err_mean",
+                                            "artifact_pct",
+                                            "false_pct",
+                                            "fetches_mean",
+                                            "frag_fetches_mean",
+                                            "iterations_mean",
+                                            "missed_pct",
+                                            "normal_err_mean_deg",
+                                            "object_disagree_pct",
+                                            "pos_err_p99",
+                                            "pos_err_rmse",
+                                            "pos_err_texels_mean",
+                                            "psnr_covered_db",
+                                            "psnr_db",
+                                            "shadow_disagree_pct",
+                                            "ssim",
+                                            "warp_fetches_mean",
+                                            "warp_fetches_per_px",
+                                            "wrong_pct"};
   std::vector<std::string> names;
   for (const auto& [name, t] : tol) names.push_back(name);
   EXPECT_EQ(names, watched);
@@ -146,6 +158,7 @@ TEST(Compare, AWorsenedShaderIsCaughtOnTheDefaultSweep) {
                           "pos_err_rmse = { rel = 100 }\npos_err_p99 = { rel = 100 }\n"
                           "pos_err_texels_mean = { rel = 100 }\n"
                           "normal_err_mean_deg = { abs = 100 }\npsnr_db = { abs = 100 }\n"
+                          "psnr_covered_db = { abs = 100 }\n"
                           "ssim = { abs = 1 }\nfetches_mean = { rel = 100 }\n";
   EXPECT_EQ(test::run_cli("compare " + dir + "/base " + dir + "/new --tolerances " + loose, out), 0)
       << out;

@@ -164,6 +164,21 @@ TEST(HeatMap, MarksMissedAndFalsePixels) {
   EXPECT_EQ(rgb[5], 1.0f);
 }
 
+TEST(Metrics, CoveredPsnrCountsOnlyTheCoveredPixels) {
+  // 16 of 1024 pixels covered by both, each channel 0.1 off there: an MSE of 0.01 over the
+  // covered pixels (20 dB) and 64 times less over the whole image (20 + 10 log10 64 dB).
+  GBuffer truth = filled(32, 32), tech = filled(32, 32);
+  for (size_t i = 0; i < truth.size(); ++i) {
+    const bool covered = i < 16;
+    truth.color[i] = covered ? glm::vec4(0.5f, 0.5f, 0.5f, 1.0f) : glm::vec4(0.0f);
+    tech.color[i] = covered ? glm::vec4(0.6f, 0.4f, 0.6f, 1.0f) : glm::vec4(0.0f);
+  }
+  const ImageMetrics m = compare_gbuffers(tech, truth, 0.1, 0.01);
+  EXPECT_NEAR(m.at("psnr_covered_db"), 20.0, 1e-4);
+  EXPECT_NEAR(m.at("psnr_db"), 20.0 + 10.0 * std::log10(64.0), 1e-4);
+  EXPECT_EQ(compare_gbuffers(truth, truth, 0.1, 0.01).at("psnr_covered_db"), 100.0);
+}
+
 // Every metric's columns, in place order, exactly as the registry declares them.
 std::vector<std::string> expected_columns(const MetricInput& in) {
   std::vector<std::string> names;
