@@ -60,8 +60,8 @@ class WorsenedRelief final : public ShaderTechnique {
  protected:
   std::string intersect_file() const override { return "techniques/relief/relief.glsl"; }
   Defines parameter_defines() const override {
-    return {{"RL_LINEAR_STEPS", std::to_string(int(param("linear_steps")))},
-            {"RL_BINARY_STEPS", std::to_string(std::max(0, int(param("binary_steps")) - 1))}};
+    return {{"RL_LINEAR_STEPS", std::to_string(param<int>("linear_steps"))},
+            {"RL_BINARY_STEPS", std::to_string(std::max(0, param<int>("binary_steps") - 1))}};
   }
 
  private:

@@ -367,6 +367,31 @@ TEST(ParamDefines, FollowFromTheDeclarations) {
   EXPECT_EQ(off, expected_off);
 }
 
+TEST(TypedParams, AreReadAsDeclaredOrRefusedByName) {
+  const std::vector<ParamSpec> specs = {
+      {.name = "steps", .kind = ParamKind::Int, .max_value = 64, .doc = ""},
+      {.name = "fix", .kind = ParamKind::Bool, .max_value = 1, .doc = ""},
+      {.name = "bias", .kind = ParamKind::Float, .min_value = -1, .max_value = 1, .doc = ""}};
+  const ParamValues values = {{"steps", 12}, {"fix", 1}, {"bias", 0.25}};
+  EXPECT_EQ(typed_param<int>(specs, values, "steps", "technique 't'"), 12);
+  EXPECT_TRUE(typed_param<bool>(specs, values, "fix", "technique 't'"));
+  EXPECT_EQ(typed_param<double>(specs, values, "bias", "technique 't'"), 0.25);
+  auto refusal = [&](auto read) {
+    try {
+      read();
+    } catch (const std::logic_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(refusal([&] { typed_param<int>(specs, values, "fix", "technique 't'"); }),
+            "technique 't' reads parameter 'fix' as int; it is declared bool");
+  EXPECT_EQ(refusal([&] { typed_param<double>(specs, values, "step", "technique 't'"); }),
+            "technique 't' reads parameter 'step', which it does not declare");
+  EXPECT_EQ(refusal([&] { typed_param<int>(specs, {}, "steps", "technique 't'"); }),
+            "technique 't' reads parameter 'steps', which has no value");
+}
+
 TEST(Registry, EveryLinearAndBinarySearchDeclaresItsStepsAlike) {
   // The search's two knobs come from linear_steps_param() and binary_steps_param(): one kind,
   // range and define wherever they appear (relief_robust's binary steps, which refine a step the

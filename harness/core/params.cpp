@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/error.h"
 
@@ -46,6 +47,35 @@ std::map<std::string, std::string> param_defines(const std::vector<ParamSpec>& s
   }
   return defines;
 }
+
+template <typename T>
+T typed_param(const std::vector<ParamSpec>& specs, const ParamValues& values,
+              const std::string& name, const std::string& owner) {
+  constexpr ParamKind wanted = std::is_same_v<T, int>    ? ParamKind::Int
+                               : std::is_same_v<T, bool> ? ParamKind::Bool
+                                                         : ParamKind::Float;
+  const ParamSpec* spec = nullptr;
+  for (const ParamSpec& s : specs)
+    if (s.name == name) spec = &s;
+  if (!spec)
+    throw std::logic_error(owner + " reads parameter '" + name + "', which it does not declare");
+  if (spec->kind != wanted)
+    throw std::logic_error(owner + " reads parameter '" + name + "' as " + param_kind_name(wanted) +
+                           "; it is declared " + param_kind_name(spec->kind));
+  const auto it = values.find(name);
+  if (it == values.end())
+    throw std::logic_error(owner + " reads parameter '" + name + "', which has no value");
+  if constexpr (std::is_same_v<T, bool>)
+    return it->second != 0;
+  else
+    return static_cast<T>(it->second);
+}
+template int typed_param<int>(const std::vector<ParamSpec>&, const ParamValues&, const std::string&,
+                              const std::string&);
+template bool typed_param<bool>(const std::vector<ParamSpec>&, const ParamValues&,
+                                const std::string&, const std::string&);
+template double typed_param<double>(const std::vector<ParamSpec>&, const ParamValues&,
+                                    const std::string&, const std::string&);
 
 void check_param_value(const ParamSpec& spec, double value, const std::string& where) {
   std::ostringstream err;

@@ -37,6 +37,20 @@ void check_param_value(const ParamSpec& spec, double value, const std::string& w
 ParamValues resolve_params(const std::vector<ParamSpec>& specs, const ParamValues& given,
                            const std::string& where);
 std::string format_param(const ParamSpec& spec, double value);
+
+// `name`'s value in `values`, read as the type its declaration in `specs` gives it (int, bool
+// or double). Throws std::logic_error naming `owner` and the parameter when `specs` does not
+// declare it, declares it of another kind, or `values` lacks it: code reads what it declares,
+// as declared, so a renamed or retyped parameter fails where it is read, not in a picture.
+template <typename T>
+T typed_param(const std::vector<ParamSpec>& specs, const ParamValues& values,
+              const std::string& name, const std::string& owner);
+extern template int typed_param<int>(const std::vector<ParamSpec>&, const ParamValues&,
+                                     const std::string&, const std::string&);
+extern template bool typed_param<bool>(const std::vector<ParamSpec>&, const ParamValues&,
+                                       const std::string&, const std::string&);
+extern template double typed_param<double>(const std::vector<ParamSpec>&, const ParamValues&,
+                                           const std::string&, const std::string&);
 // The defines the declared parameters set (ParamSpec::define) at these values, by define name.
 std::map<std::string, std::string> param_defines(const std::vector<ParamSpec>& specs,
                                                  const ParamValues& values);

@@ -54,7 +54,7 @@ bool ShaderTechnique::draws_back_faces(const SurfaceVariant& variant) const {
 }
 
 Defines ShaderTechnique::all_parameter_defines() const {
-  Defines d = param_defines(info().params, params_);
+  Defines d = declared_defines();
   for (const auto& [name, value] : parameter_defines()) d[name] = value;
   return d;
 }

@@ -121,7 +121,20 @@ class Technique {
   virtual std::vector<std::pair<std::string, double>> frame_columns() const { return {}; }
 
   const ParamValues& params() const { return params_; }
-  double param(const std::string& name) const { return params_.at(name); }
+  // A parameter read as its declared kind (core/params.h typed_param): param<int>("slices"),
+  // param<bool>("mipmap"), param<double>("error_allowed"). A technique reads each once, into a
+  // typed member when it is created (a default member initialiser may call it: info() is the
+  // technique's own by then); std::logic_error names one it does not declare or reads as another
+  // kind.
+  template <typename T>
+  T param(const std::string& name) const {
+    return typed_param<T>(info().params, params_, name, "technique '" + info().name + "'");
+  }
+  // The GLSL defines its declared parameters set at this setting (ParamSpec::define), for the
+  // techniques that build their own programs.
+  std::map<std::string, std::string> declared_defines() const {
+    return param_defines(info().params, params_);
+  }
 
  protected:
   ParamValues params_;

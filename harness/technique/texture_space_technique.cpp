@@ -9,7 +9,7 @@ namespace rl {
 
 ProgramDesc TextureSpaceTechnique::declared_program() const {
   ProgramDesc d = program();
-  for (const auto& [name, value] : param_defines(info().params, params_))
+  for (const auto& [name, value] : declared_defines())
     d.defines.emplace(name, value);  // program()'s own define wins on a clash
   return d;
 }

@@ -47,7 +47,8 @@ class CellComplexRaycast final : public Described<CellComplexRaycast, TextureSpa
                         .min_value = 1,
                         .max_value = 512,
                         .doc = "linear search samples per cell side along the ray (the search "
-                               "runs until the ray leaves the grey cells)"},
+                               "runs until the ray leaves the grey cells)",
+                        .define = "RL_STEPS_PER_CELL"},
                        binary_steps_param(6, "binary search refinements after the linear search")},
             .draws = {.reads = {Representation::CellComplex}, .proxies = {Proxy::Base, Proxy::Box}},
             .contract = {
@@ -90,7 +91,6 @@ class CellComplexRaycast final : public Described<CellComplexRaycast, TextureSpa
     ProgramDesc d;
     d.owner = info().name;
     d.fragment_files = {"techniques/cell_complex/cell_complex_main.glsl"};
-    d.defines["RL_STEPS_PER_CELL"] = std::to_string(int(param("steps_per_cell")));
     return d;
   }
 };

@@ -91,8 +91,12 @@ class CellComplexMesh final : public Described<CellComplexMesh, CellTriangles> {
 
   void prepare(const ReliefMap& map) override {
     if (!map.cells) throw std::logic_error("cell_complex_mesh prepared without a cell complex");
-    upload(reconstruct_cell_mesh(*map.cells, int(param("lod")), param("max_edge_texels")));
+    upload(reconstruct_cell_mesh(*map.cells, lod_, max_edge_texels_));
   }
+
+ private:
+  const int lod_ = param<int>("lod");
+  const double max_edge_texels_ = param<double>("max_edge_texels");
 };
 
 // The baseline the paper compares against (Section 4, Table 2): the input mesh itself,

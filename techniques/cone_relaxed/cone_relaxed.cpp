@@ -63,10 +63,7 @@ class ConeRelaxed final : public Described<ConeRelaxed, ShaderTechnique> {
   }
 
   void prepare(const ReliefMap& map) override {
-    ConeMapOptions o;
-    o.relaxed = param("relaxed") != 0;
-    o.directions = int(param("directions"));
-    cones_ = cached_cone_map(map, o);
+    cones_ = cached_cone_map(map, options_);
     const std::vector<float> ratio = ratios_safe_under_filtering(cones_);
     std::vector<glm::vec2> texels(ratio.size());
     for (size_t i = 0; i < texels.size(); ++i) texels[i] = {map.relief[i].a, ratio[i]};
@@ -90,6 +87,8 @@ class ConeRelaxed final : public Described<ConeRelaxed, ShaderTechnique> {
   void bind_resources(GLuint) const override { glBindTextureUnit(4, texture_); }
 
  private:
+  const ConeMapOptions options_{.relaxed = param<bool>("relaxed"),
+                                .directions = param<int>("directions")};
   ConeMap cones_;
   GLuint texture_ = 0;
 };

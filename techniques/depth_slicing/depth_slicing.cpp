@@ -139,7 +139,8 @@ class DepthSlicing final : public Described<DepthSlicing, Technique> {
                         .min_value = 1,
                         .max_value = 256,
                         .doc = "slice planes (passes per relief texture): the level of detail "
-                               "of Figure 5.7"},
+                               "of Figure 5.7",
+                        .define = "RL_SLICES"},
                        {.name = "view_aligned",
                         .kind = ParamKind::Bool,
                         .default_value = 0,
@@ -147,7 +148,9 @@ class DepthSlicing final : public Described<DepthSlicing, Technique> {
                         .max_value = 1,
                         .doc = "slices normal to the view direction across the volume (one set "
                                "for all faces) instead of parallel to each relief texture "
-                               "(Figure 5.8)"}},
+                               "(Figure 5.8)",
+                        .define = "RL_VIEW_ALIGNED",
+                        .define_when_set = true}},
             .draws = {.reads = {Representation::Heightfield, Representation::HeightfieldObject},
                       .bases = {BaseShape::Planar},
                       .proxies = {Proxy::Base, Proxy::Box},
@@ -183,8 +186,8 @@ class DepthSlicing final : public Described<DepthSlicing, Technique> {
   void render(const FrameInput& frame, RenderTarget::Kind target) override {
     const SceneDesc& s = frame.scene;
     const bool counting = target == RenderTarget::Kind::GBuffer;
-    const int slices = int(param("slices"));
-    ProgramDesc d = program(s, frame.map, slices);
+    const int slices = slice_count_;
+    ProgramDesc d = program(s, frame.map);
     d.vertex_file = "harness/glsl/texture_space.vert";
     if (counting) {
       d.defines["RL_GBUFFER"] = "1";
@@ -229,11 +232,11 @@ class DepthSlicing final : public Described<DepthSlicing, Technique> {
   std::vector<ProbeHit> probe(const ReliefMap& map, const GpuRelief& relief,
                               const std::vector<ProbeRay>& rays, glm::dvec2) override {
     if (rays.empty()) return {};
-    const int slices = int(param("slices"));
+    const int slices = slice_count_;
     // A probe has no scene: a plain map has a solid floor, faces make an object.
     SceneDesc probe_scene;
     probe_scene.relief.faces = map.faces ? map.faces->count() : 0;
-    ProgramDesc d = program(probe_scene, map, slices);
+    ProgramDesc d = program(probe_scene, map);
     d.vertex_file = "harness/glsl/fullscreen.vert";
     d.defines["RL_PROBE"] = "1";
     const GLuint p = ShaderLibrary::shared().program(d);
@@ -246,15 +249,14 @@ class DepthSlicing final : public Described<DepthSlicing, Technique> {
   }
 
  private:
-  ProgramDesc program(const SceneDesc& s, const ReliefMap& map, int slices) const {
+  ProgramDesc program(const SceneDesc& s, const ReliefMap& map) const {
     ProgramDesc d;
     d.owner = info().name;
     d.fragment_files = {"techniques/depth_slicing/depth_slicing.glsl"};
-    d.defines["RL_SLICES"] = std::to_string(slices);
+    d.defines = declared_defines();
     // A slice exactly at a stored 8-bit depth counts as behind it whatever the rounding; a float
     // map needs no slack, which would keep slices above the surface.
     d.defines["RL_SLICE_SLACK"] = map.quantized ? "(0.5 / 255.0)" : "0.0";
-    if (param("view_aligned") != 0) d.defines["RL_VIEW_ALIGNED"] = "1";
     if (s.heightfield_object()) d.defines["RL_FACES"] = "1";
     if (s.empty_floor && !s.heightfield_object()) d.defines["RL_EMPTY_FLOOR"] = "1";
     return d;
@@ -271,7 +273,7 @@ class DepthSlicing final : public Described<DepthSlicing, Technique> {
     const std::optional<Hexahedron> volume = relief_volume(s, tile, frame.camera);
     if (!volume) return passes;  // the base is seen from below or edge-on: nothing to slice
     const PlanarBase base = planar_base(s);
-    if (param("view_aligned") != 0) {
+    if (view_aligned_) {
       const glm::dvec3 forward = glm::normalize(frame.camera.target - frame.camera.eye);
       const auto [near, far] = visible_range(frame.camera, forward, *volume);
       for (int i = 0; i < slices; ++i) {
@@ -359,6 +361,8 @@ class DepthSlicing final : public Described<DepthSlicing, Technique> {
     fragments_per_pixel_ = touched ? total / double(touched) : 0.0;
   }
 
+  const int slice_count_ = param<int>("slices");
+  const bool view_aligned_ = param<bool>("view_aligned");
   PositionBuffer slices_;
   GLuint fragment_count_ = 0, fetch_count_ = 0, empty_vao_ = 0;
   int count_width_ = 0, count_height_ = 0;

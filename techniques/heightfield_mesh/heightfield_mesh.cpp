@@ -73,7 +73,7 @@ class HeightfieldMesh final : public Described<HeightfieldMesh, Technique> {
                      .hits_from_inside = false}};
   }
   void prepare_scene(const SceneDesc& scene, const ReliefMap& map) override {
-    const int sub = int(param("subdivision"));
+    const int sub = subdivision_;
     const std::vector<double> us = grid_lines(map.width, scene.tile, sub),
                               vs = grid_lines(map.height, scene.tile, sub);
     const double triangles = 2.0 * double(us.size() - 1) * double(vs.size() - 1);
@@ -168,6 +168,7 @@ class HeightfieldMesh final : public Described<HeightfieldMesh, Technique> {
   size_t memory_bytes() const override { return buffers_.bytes(); }
 
  private:
+  const int subdivision_ = param<int>("subdivision");
   TriangleBuffers buffers_;
 };
 

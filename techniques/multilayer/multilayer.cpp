@@ -131,9 +131,8 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
                                     ? heightfield_color(i)
                                     : glm::vec4(map.layers.color[l * texels + i], 1.0f);
     const GLenum format = map.quantized ? GL_RGBA8 : GL_RGBA32F;
-    const bool linear = param("linear_filter") != 0;
-    const GLenum filter = linear ? GL_LINEAR : GL_NEAREST;
-    const GLenum mip_filter = linear ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_NEAREST;
+    const GLenum filter = linear_filter_ ? GL_LINEAR : GL_NEAREST;
+    const GLenum mip_filter = linear_filter_ ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_NEAREST;
     bytes_ = 0;
     // `mipmapped`: the full chain, each level the driver's 2 x 2 average of the one above.
     auto upload = [&](GLuint& tex, const std::vector<glm::vec4>& data, int slices, bool mipmapped) {
@@ -151,10 +150,9 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
       bytes_ +=
           mipmapped ? mip_chain_bytes(map.width, map.height, texel_bytes) : texels * texel_bytes;
     };
-    const bool mipmapped = param("mipmap") != 0;
-    upload(textures_[0], depth, groups_, mipmapped);
-    upload(textures_[1], nx, groups_, mipmapped);
-    upload(textures_[2], ny, groups_, mipmapped);
+    upload(textures_[0], depth, groups_, mipmapped_);
+    upload(textures_[1], nx, groups_, mipmapped_);
+    upload(textures_[2], ny, groups_, mipmapped_);
     upload(textures_[3], color, count, false);
   }
   size_t memory_bytes() const override { return bytes_; }
@@ -166,7 +164,7 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
     d.insert(floor_.begin(), floor_.end());
     return d;
   }
-  bool two_pass() const override { return param("two_pass") != 0; }
+  bool two_pass() const override { return two_pass_; }
   // Section 5's two passes draw the base twice (front faces, then back faces): the image is the
   // same as one pass's, the rasterised work is not, so the row says how many passes it drew.
   void render(const FrameInput& frame, RenderTarget::Kind target) override {
@@ -181,6 +179,10 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
   }
 
  private:
+  const bool linear_filter_ = param<bool>("linear_filter");
+  const bool mipmapped_ = param<bool>("mipmap");
+  const bool two_pass_ = param<bool>("two_pass");
+
   void release() {
     for (GLuint& t : textures_)
       if (t) {

@@ -38,7 +38,9 @@ class OmniDirectionalDisplacement final : public Described<OmniDirectionalDispla
                         .min_value = 0,
                         .max_value = 1,
                         .doc = "memory order (a, b, x, y) (Figure 5.31; the hardware then "
-                               "filters space) or (x, y, a, b) (filters directions)"},
+                               "filters space) or (x, y, a, b) (filters directions)",
+                        .define = "RL_ODD_DIRECTION_MAJOR",
+                        .define_when_set = true},
                        {.name = "interpolate",
                         .kind = ParamKind::Bool,
                         .default_value = 0,
@@ -46,7 +48,9 @@ class OmniDirectionalDisplacement final : public Described<OmniDirectionalDispla
                         .max_value = 1,
                         .doc = "blend the four nearest cells of the floored pair too (4 "
                                "fetches): directions in (a, b, x, y), super pixels in "
-                               "(x, y, a, b)"}},
+                               "(x, y, a, b)",
+                        .define = "RL_ODD_INTERPOLATE",
+                        .define_when_set = true}},
             .draws = {.reads = {Representation::Heightfield}, .projections = {Projection::Plain}},
             .contract = {.answer = Answer::Approximation,
                          .max_fetches =
@@ -124,8 +128,7 @@ class OmniDirectionalDisplacement final : public Described<OmniDirectionalDispla
 
  private:
   void build(const ReliefMap& map, glm::dvec2 depth_aspect) {
-    odd_ = build_odd_map(map, {int(param("spatial")), int(param("directions"))},
-                         param("direction_major") != 0, depth_aspect);
+    odd_ = build_odd_map(map, size_, direction_major_, depth_aspect);
     if (texture_) glDeleteTextures(1, &texture_);
     glCreateTextures(GL_TEXTURE_2D, 1, &texture_);
     glTextureStorage2D(texture_, 1, GL_RGBA8, odd_.width, odd_.height);
@@ -147,11 +150,12 @@ class OmniDirectionalDisplacement final : public Described<OmniDirectionalDispla
     ProgramDesc d;
     d.owner = info().name;
     d.fragment_files = {"techniques/odd/odd.glsl"};
-    if (param("direction_major") != 0) d.defines["RL_ODD_DIRECTION_MAJOR"] = "1";
-    if (param("interpolate") != 0) d.defines["RL_ODD_INTERPOLATE"] = "1";
+    d.defines = declared_defines();
     return d;
   }
 
+  const OddSize size_{param<int>("spatial"), param<int>("directions")};
+  const bool direction_major_ = param<bool>("direction_major");
   OddMap odd_;
   GLuint texture_ = 0;
 };

@@ -35,7 +35,9 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
               .doc = "1: normals and depths read from mip-mapped copies at the pixel's footprint "
                      "(chapter 5, 'Texture filtering and mip-mapping'); 0: level 0, the surface "
                      "the truth reconstructs",
-              .neutral_default = true},
+              .neutral_default = true,
+              .define = "RL_MIPMAPPED_RELIEF",
+              .define_when_set = true},
              {.name = "color_mipmap",
               .kind = ParamKind::Bool,
               .default_value = 0,
@@ -44,7 +46,9 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
               .doc = "1: the colour alone read from its mip chain at the pixel's footprint, the "
                      "geometry at level 0 (Baboud & Decoret 2006, Section 6); 0: level 0, as the "
                      "truth shades it",
-              .neutral_default = true},
+              .neutral_default = true,
+              .define = "RL_COLOR_MIPMAP",
+              .define_when_set = true},
              {.name = "ao_packed",
               .kind = ParamKind::Bool,
               .default_value = 0,
@@ -53,7 +57,9 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
               .doc = "1: the AO map in the relief texture's blue channel, the normal's x and y in "
                      "red and green and its z rebuilt (Limberger et al., Section IV), so the AO "
                      "costs no fetch of its own; 0: a texture of its own",
-              .neutral_default = true}},
+              .neutral_default = true,
+              .define = "RL_AO_PACKED",
+              .define_when_set = true}},
         .draws = {.reads = {Representation::Heightfield, Representation::Layers,
                             Representation::MetaRuntime},
                   .proxies = {Proxy::Base, Proxy::Box}},
@@ -83,9 +89,9 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
         }};
   }
   void prepare(const ReliefMap& map) override {
-    if (mipmapped()) mipmaps_.upload(map);
-    if (color_mipmapped()) color_mips_.upload(map);
-    if (packed()) packed_.upload(map);
+    if (mipmapped_) mipmaps_.upload(map);
+    if (color_mipmapped_) color_mips_.upload(map);
+    if (packed_ao_) packed_.upload(map);
   }
   size_t memory_bytes() const override {
     return mipmaps_.bytes() + color_mips_.bytes() + packed_.bytes();
@@ -95,22 +101,20 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
   std::string intersect_file() const override { return "techniques/relief/relief.glsl"; }
   Defines parameter_defines() const override {
     Defines d;
-    if (mipmapped() || color_mipmapped()) d["RL_MIPMAP"] = "1";
-    if (mipmapped()) d["RL_MIPMAPPED_RELIEF"] = "1";
-    if (color_mipmapped()) d["RL_COLOR_MIPMAP"] = "1";
-    if (packed()) d["RL_AO_PACKED"] = "1";
+    // Either mip chain needs the footprint's level of detail.
+    if (mipmapped_ || color_mipmapped_) d["RL_MIPMAP"] = "1";
     return d;
   }
   void bind_resources(GLuint) const override {
-    if (mipmapped()) mipmaps_.bind();
-    if (color_mipmapped()) color_mips_.bind();
-    if (packed()) packed_.bind();
+    if (mipmapped_) mipmaps_.bind();
+    if (color_mipmapped_) color_mips_.bind();
+    if (packed_ao_) packed_.bind();
   }
 
  private:
-  bool mipmapped() const { return param("mipmap") != 0; }
-  bool color_mipmapped() const { return param("color_mipmap") != 0; }
-  bool packed() const { return param("ao_packed") != 0; }
+  const bool mipmapped_ = param<bool>("mipmap");
+  const bool color_mipmapped_ = param<bool>("color_mipmap");
+  const bool packed_ao_ = param<bool>("ao_packed");
   MipmappedRelief mipmaps_;
   MipmappedRelief color_mips_{MipmappedRelief::Channel::Color};
   PackedRelief packed_;

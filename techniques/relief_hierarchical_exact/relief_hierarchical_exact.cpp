@@ -57,9 +57,11 @@ class ReliefHierarchicalExact final : public Described<ReliefHierarchicalExact, 
   std::string intersect_file() const override {
     return "techniques/relief_hierarchical_exact/relief_hierarchical_exact.glsl";
   }
-  bool uses_blocks() const override {
-    return param("block_cells") != 0 || param("byte_bounds") != 0;
-  }
+  bool uses_blocks() const override { return uses_blocks_; }
+
+ private:
+  // Int switches (0 or 1), as their rows have always stored them.
+  const bool uses_blocks_ = param<int>("block_cells") != 0 || param<int>("byte_bounds") != 0;
 };
 
 RL_REGISTER_TECHNIQUE(ReliefHierarchicalExact);

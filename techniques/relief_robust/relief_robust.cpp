@@ -112,13 +112,7 @@ class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
   }
 
   void prepare(const ReliefMap& map) override {
-    SafetyRadiusOptions o;
-    o.error_allowed = param("error_allowed");
-    o.directions = int(param("directions"));
-    o.max_radius = int(param("max_radius"));
-    o.ignore_blocked = param("ignore_blocked") != 0;
-    o.max_over_directions = param("max_over_directions") != 0;
-    radii_ = cached_safety_radii(map, o);
+    radii_ = cached_safety_radii(map, options_);
     if (texture_) glDeleteTextures(1, &texture_);
     glCreateTextures(GL_TEXTURE_2D, 1, &texture_);
     glTextureStorage2D(texture_, 1, GL_R8UI, radii_.width, radii_.height);
@@ -145,6 +139,17 @@ class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
   void bind_resources(GLuint) const override { glBindTextureUnit(4, texture_); }
 
  private:
+  // The precompute's options, read when created.
+  SafetyRadiusOptions radius_options() const {
+    SafetyRadiusOptions o;
+    o.error_allowed = param<double>("error_allowed");
+    o.directions = param<int>("directions");
+    o.max_radius = param<int>("max_radius");
+    o.ignore_blocked = param<bool>("ignore_blocked");
+    o.max_over_directions = param<bool>("max_over_directions");
+    return o;
+  }
+  const SafetyRadiusOptions options_ = radius_options();
   SafetyRadii radii_;
   GLuint texture_ = 0;
 };

@@ -68,9 +68,11 @@ class ReliefSilhouette final : public Described<ReliefSilhouette, ShaderTechniqu
   }
   // Eq. 5.2 as printed is a form of the exact quadric distance: either sets RL_QUADRIC_EXACT.
   Defines parameter_defines() const override {
-    const bool exact = param("exact_distance") != 0 || param("eq52_as_printed") != 0;
-    return {{"RL_QUADRIC_EXACT", exact ? "1" : "0"}};
+    return {{"RL_QUADRIC_EXACT", exact_distance_ ? "1" : "0"}};
   }
+
+ private:
+  const bool exact_distance_ = param<bool>("exact_distance") || param<bool>("eq52_as_printed");
 };
 
 RL_REGISTER_TECHNIQUE(ReliefSilhouette);

@@ -77,7 +77,7 @@ class ReliefWindowExact final : public Described<ReliefWindowExact, ShaderTechni
     top_ = quadtree_levels(map.width, map.height) - 1;
     if (texture_) glDeleteTextures(1, &texture_);
     // Layer = the ray's way along x (1: negative) + 2 x its way along y; one layer for either.
-    const int layers = param("windows_by_way") != 0 ? 4 : 1;
+    const int layers = windows_by_way_ ? 4 : 1;
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture_);
     glTextureStorage3D(texture_, top_ + 1, GL_R32F, map.width, map.height, layers);
     bytes_ = 0;
@@ -108,6 +108,7 @@ class ReliefWindowExact final : public Described<ReliefWindowExact, ShaderTechni
   }
 
  private:
+  const bool windows_by_way_ = param<int>("windows_by_way") != 0;  // an int switch, 0 or 1
   GLuint texture_ = 0;
   int top_ = 0;
   size_t bytes_ = 0;
