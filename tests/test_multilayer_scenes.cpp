@@ -1,8 +1,8 @@
 // Non-height-field relief in scenes, against the geometry it stands for: the weave on a
-// plane (multilayer, double depth and a heightfield compared), with an object sitting in it,
-// on closed curved bases (the far side through the gaps, two passes, silhouettes, the teapot
-// whose uvs overlap), relief impostors seen from every side, and every registered technique
-// on the weave. The layer bake: tests/test_layer_bake.cpp; the search itself:
+// plane (multilayer and a heightfield compared; double depth in techniques/double_depth/), with
+// an object sitting in it, on closed curved bases (the far side through the gaps, two passes,
+// silhouettes, the teapot whose uvs overlap), relief impostors seen from every side, and every
+// registered technique on the weave. The layer bake: tests/test_layer_bake.cpp; the search itself:
 // techniques/multilayer/test_multilayer.cpp.
 #include <cmath>
 #include <cstdio>
@@ -60,27 +60,6 @@ TEST(MultilayerScenes, BeatsTheHeightfieldOnTheWeaveAgainstTheMesh) {
         "(false %.2f%%)\n",
         el, ml.metrics.at("wrong_pct"), ml.metrics.at("false_pct"), hf.metrics.at("wrong_pct"),
         hf.metrics.at("false_pct"));
-  }
-}
-
-TEST(DoubleDepth, CapsTheExtrusionButFillsUnderTheCrossings) {
-  // Chapter 5's double depth keeps one solid per texel, from the first to the last surface:
-  // the gaps between threads stay open (no curtains down to the floor, unlike a heightfield),
-  // but where a thread crosses over another the space between them is filled.
-  const SceneDesc scene = test::weave_scene(128, TruthLevel::Mesh);
-  for (double el : {60.0, 30.0}) {
-    SCOPED_TRACE(el);
-    const ParamValues steps = {{"linear_steps", 32}};
-    const double ml =
-        test::measure(scene, "multilayer", steps, View{el, 30}, 128).metrics.at("wrong_pct");
-    const test::Measured dd = test::measure(scene, "double_depth", steps, View{el, 30}, 128);
-    const double hf =
-        test::measure(scene, "relief", steps, View{el, 30}, 128).metrics.at("wrong_pct");
-    EXPECT_EQ(dd.metrics.at("nonfinite_px"), 0);
-    EXPECT_LT(ml, dd.metrics.at("wrong_pct"));
-    EXPECT_LT(dd.metrics.at("wrong_pct"), hf);
-    std::printf("weave %2.0f deg: wrong multilayer %.2f%%, double depth %.2f%%, relief %.2f%%\n",
-                el, ml, dd.metrics.at("wrong_pct"), hf);
   }
 }
 

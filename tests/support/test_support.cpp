@@ -108,6 +108,30 @@ std::vector<ProbeRay> as_probe_rays(const std::vector<TangentRay>& rays) {
   return out;
 }
 
+SceneDesc curved_scene(const std::string& base, const std::string& relief, int res, double depth) {
+  SceneDesc s = procedural_scene(relief, res, depth);
+  s.name = base + "_" + relief;
+  s.base.kind = base;
+  s.base.segments = 32;
+  return s;
+}
+
+ReliefMap random_map(int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0, 1);
+  std::vector<float> d;
+  for (int i = 0; i < n * n; ++i) d.push_back(u(rng));
+  return map_from_depths(n, n, d);
+}
+
+std::vector<ProbeHit> probe(const std::string& technique, const ParamValues& params,
+                            const ReliefMap& map, const GpuRelief& relief,
+                            const std::vector<ProbeRay>& rays, glm::dvec2 depth_aspect) {
+  auto t = TechniqueRegistry::instance().create(technique, params, "test");
+  t->prepare(map);
+  return t->probe(map, relief, rays, depth_aspect);
+}
+
 ReliefMap map_from_depths(int w, int h, const std::vector<float>& depths) {
   ReliefMap m;
   m.width = w;

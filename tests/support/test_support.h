@@ -57,6 +57,19 @@ std::vector<ProbeRay> as_probe_rays(const std::vector<TangentRay>& rays);
 
 // A w x h map with these depths (row 0 first), flat normals and white colour.
 ReliefMap map_from_depths(int w, int h, const std::vector<float>& depths);
+// `relief` (a procedural kind) on a curved base (sphere, torus, cylinder...) of 32 segments.
+SceneDesc curved_scene(const std::string& base, const std::string& relief, int res, double depth);
+
+// An n x n map of uniformly random depths (seeded): every texel a feature, the hardest surface
+// for a search.
+ReliefMap random_map(int n, unsigned seed);
+
+// `technique` at `params`, prepared on `map`, run on `rays` (Technique::probe: depth_aspect is
+// world depth over the world length of a unit of u and of v).
+std::vector<ProbeHit> probe(const std::string& technique, const ParamValues& params,
+                            const ReliefMap& map, const GpuRelief& relief,
+                            const std::vector<ProbeRay>& rays,
+                            glm::dvec2 depth_aspect = glm::dvec2(0.08));
 
 // A UV sphere of radius r about c (slices x stacks quads, poles as fans), counter-clockwise seen
 // from outside.

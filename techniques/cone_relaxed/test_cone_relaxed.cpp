@@ -1,15 +1,13 @@
-// The techniques engines ship, as peers for the paper techniques: their cost bounds
-// and their error against parallax and relief mapping on analytic procedural maps.
+// Cone step mapping's cone maps (conservative and relaxed) against brute-force scans of the
+// same samples, their cache, and the relaxed search's convergence on the first hit.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-#include <cstring>
-#include <map>
-#include <numeric>
-#include <random>
-#include <tuple>
-
-#include "../techniques/cone_relaxed/cone_map.h"
+#include "cone_map.h"
 #include "gpu/gpu_scene.h"
 #include "relief/heightfield_reference.h"
 #include "relief/image_io.h"
@@ -19,142 +17,37 @@
 namespace rl {
 namespace {
 
-TEST(ParallaxOcclusion, BetweenParallaxAndRelief) {
-  // Pyramids at 20 degrees: the linear search with an interpolated hit removes nearly all of
-  // parallax mapping's error (measured 0.66% against 91.9%) within its fetch bound.
-  const SceneDesc scene = test::procedural_scene("pyramids", 128, 0.08, true, {{"count", 8}});
-  const View view{20, 30};
-  const ParamValues pom = {{"min_samples", 16}, {"max_samples", 64}};
-  const test::Measured m = test::measure(scene, "pom", pom, view, 128);
-  const test::Measured parallax = test::measure(scene, "parallax", {}, view, 128);
-  std::printf("pyramids 20 deg: wrong pom %.2f%% (%.1f fetches), parallax %.2f%%\n",
-              m.metrics.at("wrong_pct"), m.metrics.at("fetches_mean"),
-              parallax.metrics.at("wrong_pct"));
-  EXPECT_EQ(m.metrics.at("nonfinite_px"), 0);
-  EXPECT_LE(m.metrics.at("fetches_max"), 64 + 1 + 2);  // search + normal + colour
-  EXPECT_LT(m.metrics.at("wrong_pct"), 0.1 * parallax.metrics.at("wrong_pct"));
-  // More samples at grazing views: the mean fetch count rises as the view lowers.
-  const test::Measured steep = test::measure(scene, "pom", pom, View{80, 30}, 128);
-  EXPECT_LT(steep.metrics.at("fetches_mean"), m.metrics.at("fetches_mean"));
-}
-
-ReliefMap random_map(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0, 1);
-  std::vector<float> d;
-  for (int i = 0; i < n * n; ++i) d.push_back(u(rng));
-  return test::map_from_depths(n, n, d);
-}
-
-std::vector<ProbeHit> probe(const std::string& technique, const ParamValues& params,
-                            const ReliefMap& map, const GpuRelief& relief,
-                            const std::vector<ProbeRay>& rays) {
-  auto t = TechniqueRegistry::instance().create(technique, params, "test");
-  t->prepare(map);
-  return t->probe(map, relief, rays, glm::dvec2(0.08));
-}
-
-double mean_fetches(const std::vector<ProbeHit>& hits) {
-  double sum = 0;
-  for (const ProbeHit& h : hits) sum += h.fetches;
-  return sum / double(hits.size());
-}
-
-// The quadtree and window searches against the walks whose cells they solve the same way: on
-// 1024^2 maps, where the quadtree has 11 levels, every ray must find the walk's first hit (they
-// only skip cells the ray passes above) or, where rounding parts them, the reference's; the
-// quadtree searches at a fraction of the walk's fetches at grazing views and within a small
-// multiple of relief mapping's 32 + 6 guess. Rays start just above the top
-// (depth -1e-4), 1,024 per elevation, azimuths at random.
-TEST(QuadtreeSearch, SameHitsAsTheWalkOn1024MapsAtAFractionOfItsFetches) {
-  const std::vector<std::pair<std::string, ReliefMap>> maps = {
-      {"pyramids", make_procedural("pyramids", 1024, {}, 10.0, "test")},
-      {"domes", make_procedural("domes", 1024, {}, 10.0, "test")},
-      {"sines", make_procedural("sines", 1024, {}, 10.0, "test")},
-      {"random", random_map(1024, 11)}};
-  // {search, the walk it must agree with, whether its fetch bounds below apply}: the window
-  // search's goal is GPU time, not fetches (results/exact-at-guess-cost judges it).
-  const std::tuple<const char*, const char*, bool> pairs[] = {
-      {"relief_hierarchical_exact", "relief_exact_bilinear", true},
-      {"relief_window_exact", "relief_exact_bilinear", false},
-      {"max_mipmap", "relief_exact", true}};
-  const ParamValues relief_32_6 = {{"linear_steps", 32}, {"binary_steps", 6}};
-  for (const auto& [name, map] : maps) {
-    GpuRelief relief(map);
-    for (double el : {5.0, 20.0, 45.0, 90.0}) {
-      SCOPED_TRACE(name + " at " + std::to_string(int(el)) + " deg");
-      const std::vector<ProbeRay> rays =
-          test::as_probe_rays(test::random_tangent_rays(1024, el, el, 0.08, 7, -1e-4));
-      const double guess = mean_fetches(probe("relief", relief_32_6, map, relief, rays));
-      for (const auto& [hierarchical, walk, fetch_bounds] : pairs) {
-        const std::vector<ProbeHit> h = probe(hierarchical, {}, map, relief, rays);
-        const std::vector<ProbeHit> w = probe(walk, {}, map, relief, rays);
-        int differ = 0;
-        // A ray where the search leaves the walk for the double-precision reference (the walk's
-        // float rounding can put a hit on a graze) does not count against it.
-        for (size_t i = 0; i < rays.size(); ++i)
-          if (h[i].hit != w[i].hit || std::abs(h[i].t - w[i].t) > 1e-4) {
-            const glm::dvec3 o(rays[i].origin), d(rays[i].direction);
-            const ReferenceHit ref = intersect_heightfield(map, o, d, 1.0 - o.z);
-            differ += !(h[i].hit == ref.hit && std::abs(h[i].t - ref.t) <= 1e-4);
-          }
-        const double fh = mean_fetches(h), fw = mean_fetches(w);
-        std::printf("%-8s %2.0f deg %-25s differ %d, fetches %.1f (walk %.1f, relief 32+6 %.1f)\n",
-                    name.c_str(), el, hierarchical, differ, fh, fw, guess);
-        EXPECT_EQ(differ, 0) << hierarchical;
-        // Fetch bounds on the maps with empty space to skip (measured: at most 0.16 of the walk
-        // at 5 and 20 deg, at most 1.7x relief's); on the random map every cell is a feature
-        // and the ray meets it late (71 fetches at 5 deg, 4.3x relief's).
-        if (name == "random" || !fetch_bounds) continue;
-        if (el <= 20) {
-          EXPECT_LT(fh, 0.2 * fw) << hierarchical;
-        }
-        EXPECT_LT(fh, 2.0 * guess) << hierarchical;
+// The relaxed cone of one texel by the definition, scanned outward from its centre along every
+// direction over the same samples the precompute's line sweeps read (cone_scan_directions: sub
+// samples per step, bilinear, wrapping), with no block skipping, no bound from other directions
+// and no hint: segment [n - 1, n] narrows the cone when h / n rises across it.
+double relaxed_cone_by_scan(const ReliefMap& map, int x, int y, const ConeMapOptions& o) {
+  const int side = std::max(map.width, map.height);
+  const double apex = map.depth_texel(x, y);
+  if (apex <= 0) return o.max_ratio;
+  auto depth = [&](double X, double Y) {  // bilinear at texel-centre coordinates, wrapping
+    const int x0 = int(std::floor(X)), y0 = int(std::floor(Y));
+    const double ax = X - x0, ay = Y - y0;
+    const double top = map.depth_texel(x0, y0) * (1 - ax) + map.depth_texel(x0 + 1, y0) * ax;
+    const double bottom =
+        map.depth_texel(x0, y0 + 1) * (1 - ax) + map.depth_texel(x0 + 1, y0 + 1) * ax;
+    return top * (1 - ay) + bottom * ay;
+  };
+  double best = o.max_ratio;  // texture units across per unit depth
+  for (const ConeScanDirection& d : cone_scan_directions(o.directions)) {
+    const double step = d.step_texels();
+    const int reach = int(std::ceil(o.max_ratio * side * apex / step)) + 2;
+    double previous = depth(x + double(d.p) / d.sub, y + double(d.q) / d.sub);
+    for (int n = 2; n <= reach; ++n) {
+      const double h = depth(x + double(n * d.p) / d.sub, y + double(n * d.q) / d.sub);
+      if (h * (n - 1) > (previous + 1e-6) * n) {  // rises by more than the precompute's tie
+        if (h < apex) best = std::min(best, n * step / ((apex - h) * side));
+        if (previous < apex) best = std::min(best, (n - 1) * step / ((apex - previous) * side));
       }
+      previous = h;
     }
   }
-}
-
-// On 8-bit maps the quadtree searches, which gather a cell's four texels and interpolate in
-// float, keep finding the reference's first hit; relief_exact, which reads the same linear
-// profile's ends through the texture filter, misses some (measured on llvmpipe: 61 and 73 of
-// 2,048 rays against 2 and 0 for max_mipmap; on float maps 1 and 0 for both). The filter's
-// fixed-point weights are what differs; the study's images show the same gap.
-TEST(QuadtreeSearch, GatheredCornersStayExactOn8BitMaps) {
-  for (const char* kind : {"pyramids", "sines"}) {
-    SCOPED_TRACE(kind);
-    ReliefMap map = make_procedural(kind, 1024, {}, 10.0, "test");
-    quantize_8bit(map);
-    GpuRelief relief(map);
-    const std::vector<ProbeRay> rays =
-        test::as_probe_rays(test::random_tangent_rays(2048, 5, 20, 0.08, 3, -1e-4));
-    std::map<std::string, int> off;
-    for (const char* t :
-         {"relief_exact", "max_mipmap", "relief_hierarchical_exact", "relief_window_exact"}) {
-      const std::vector<ProbeHit> h = probe(t, {}, map, relief, rays);
-      for (size_t i = 0; i < rays.size(); ++i) {
-        const glm::dvec3 o(rays[i].origin), d(rays[i].direction);
-        off[t] += std::abs(h[i].t - intersect_heightfield(map, o, d, 1.0 - o.z).t) > 1e-3;
-      }
-    }
-    std::printf(
-        "%s, 8-bit: rays off the reference by > 1e-3: relief_exact %d, max_mipmap %d, "
-        "relief_hierarchical_exact %d, relief_window_exact %d\n",
-        kind, off["relief_exact"], off["max_mipmap"], off["relief_hierarchical_exact"],
-        off["relief_window_exact"]);
-    EXPECT_EQ(off["relief_hierarchical_exact"], 0);
-    EXPECT_EQ(off["relief_window_exact"], 0);
-    // The packed blocks, built on 8-bit maps only, read the same corners.
-    const std::vector<ProbeHit> packed = probe(
-        "relief_hierarchical_exact", {{"block_cells", 1}, {"byte_bounds", 1}}, map, relief, rays);
-    int packed_off = 0;
-    for (size_t i = 0; i < rays.size(); ++i) {
-      const glm::dvec3 o(rays[i].origin), d(rays[i].direction);
-      packed_off += std::abs(packed[i].t - intersect_heightfield(map, o, d, 1.0 - o.z).t) > 1e-3;
-    }
-    EXPECT_EQ(packed_off, 0);
-    EXPECT_LE(off["max_mipmap"], 5);
-  }
+  return best;
 }
 
 // A floor at depth 1 with one spike texel at depth 0: from a floor texel r texels along an
@@ -259,39 +152,6 @@ TEST(ConeMap, ConservativeConesAreNeverWiderThanBruteForce) {
   }
 }
 
-// The relaxed cone of one texel by the definition, scanned outward from its centre along every
-// direction over the same samples the precompute's line sweeps read (cone_scan_directions: sub
-// samples per step, bilinear, wrapping), with no block skipping, no bound from other directions
-// and no hint: segment [n - 1, n] narrows the cone when h / n rises across it.
-double relaxed_cone_by_scan(const ReliefMap& map, int x, int y, const ConeMapOptions& o) {
-  const int side = std::max(map.width, map.height);
-  const double apex = map.depth_texel(x, y);
-  if (apex <= 0) return o.max_ratio;
-  auto depth = [&](double X, double Y) {  // bilinear at texel-centre coordinates, wrapping
-    const int x0 = int(std::floor(X)), y0 = int(std::floor(Y));
-    const double ax = X - x0, ay = Y - y0;
-    const double top = map.depth_texel(x0, y0) * (1 - ax) + map.depth_texel(x0 + 1, y0) * ax;
-    const double bottom =
-        map.depth_texel(x0, y0 + 1) * (1 - ax) + map.depth_texel(x0 + 1, y0 + 1) * ax;
-    return top * (1 - ay) + bottom * ay;
-  };
-  double best = o.max_ratio;  // texture units across per unit depth
-  for (const ConeScanDirection& d : cone_scan_directions(o.directions)) {
-    const double step = d.step_texels();
-    const int reach = int(std::ceil(o.max_ratio * side * apex / step)) + 2;
-    double previous = depth(x + double(d.p) / d.sub, y + double(d.q) / d.sub);
-    for (int n = 2; n <= reach; ++n) {
-      const double h = depth(x + double(n * d.p) / d.sub, y + double(n * d.q) / d.sub);
-      if (h * (n - 1) > (previous + 1e-6) * n) {  // rises by more than the precompute's tie
-        if (h < apex) best = std::min(best, n * step / ((apex - h) * side));
-        if (previous < apex) best = std::min(best, (n - 1) * step / ((apex - previous) * side));
-      }
-      previous = h;
-    }
-  }
-  return best;
-}
-
 // The line sweeps step over blocks, stop at the narrowest cone of the directions before and try
 // a neighbour's constraint first: none of it may change a cone. Against the per-texel scan of
 // the definition on small 8-bit maps of every kind, square and not, at 32 and 80 directions.
@@ -383,7 +243,7 @@ TEST(ConeMap, SameMapBitForBitWhateverTheOrderOfTheDirections) {
   ReliefMap rock = load_relief_images(src, 10.0);
   quantize_8bit(rock);
   for (const auto& [name, map] : std::vector<std::pair<const char*, ReliefMap>>{
-           {"rock", rock}, {"random", random_map(48, 3)}})
+           {"rock", rock}, {"random", test::random_map(48, 3)}})
     for (bool relaxed : {true, false}) {
       SCOPED_TRACE(std::string(name) + (relaxed ? " relaxed" : " conservative"));
       ConeMapOptions o;
@@ -415,9 +275,10 @@ TEST(ConeRelaxed, ConvergesOnTheFirstHitAsStepsAreAdded) {
       SCOPED_TRACE(std::string(kind) + " at " + std::to_string(int(el)) + " deg");
       const std::vector<ProbeRay> rays =
           test::as_probe_rays(test::random_tangent_rays(2048, el, el, 0.08, 7, -1e-4));
-      const std::vector<ProbeHit> exact = probe("relief_exact_bilinear", {}, map, relief, rays);
+      const std::vector<ProbeHit> exact =
+          test::probe("relief_exact_bilinear", {}, map, relief, rays);
       auto off = [&](int relaxed, int steps) {
-        const std::vector<ProbeHit> h = probe(
+        const std::vector<ProbeHit> h = test::probe(
             "cone_relaxed", {{"relaxed", relaxed}, {"cone_steps", steps}, {"binary_steps", 20}},
             map, relief, rays);
         int n = 0;
