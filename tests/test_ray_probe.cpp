@@ -15,14 +15,12 @@
 namespace rl {
 namespace {
 
+// test::probe on a relief uploaded for the call.
 std::vector<ProbeHit> probe(const std::string& technique, const ParamValues& params,
                             const ReliefMap& map, const std::vector<ProbeRay>& rays,
                             glm::dvec2 aspect = glm::dvec2(0.08)) {
   GlContext::shared();
-  GpuRelief relief(map);
-  auto t = TechniqueRegistry::instance().create(technique, params, "test");
-  t->prepare(map);
-  return t->probe(map, relief, rays, aspect);
+  return test::probe(technique, params, map, GpuRelief(map), rays, aspect);
 }
 
 TEST(RayProbe, ReliefMatchesTheReferenceWithinItsSearchInterval) {

@@ -1,7 +1,6 @@
 // Baboud & Decoret's exact traversal and ReliefLab's exact bilinear traversal, in ray-probe
 // mode against the double-precision reference (the same bilinear surface, solved exactly).
 #include <cmath>
-#include <random>
 
 #include <gtest/gtest.h>
 
@@ -25,14 +24,6 @@ ReliefMap checker(int n) {
   std::vector<float> d;
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) d.push_back(float((x + y) % 2));
-  return from_depths(n, n, d);
-}
-
-ReliefMap random_map(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0, 1);
-  std::vector<float> d;
-  for (int i = 0; i < n * n; ++i) d.push_back(u(rng));
   return from_depths(n, n, d);
 }
 
@@ -102,7 +93,7 @@ TEST(ExactBilinear, MatchesTheReferenceAtFloatLevelOnAdversarialSaddles) {
 
 TEST(ExactBilinear, MatchesTheReferenceOnRandomAndProceduralMaps) {
   const std::vector<std::pair<std::string, ReliefMap>> maps = {
-      {"random", random_map(32, 5)},
+      {"random", test::random_map(32, 5)},
       {"bricks", make_procedural("bricks", 64, {}, 10.0, "test")},
       {"pyramids", make_procedural("pyramids", 64, {}, 10.0, "test")},
       {"walls", make_procedural("walls", 64, {{"spacing", 8}}, 10.0, "test")}};
