@@ -76,7 +76,8 @@ struct DeclaredColumn {
 void declare_columns(const std::string& producer, const std::vector<ColumnSpec>& columns,
                      double place = 0);
 
-// Every declared column, in the order declared (libraries declare at load, lowest layer first).
+// Every declared column, in the order declared (libraries declare at load, lowest layer first),
+// a producer's own columns in the order of their places.
 const std::vector<DeclaredColumn>& declared_columns();
 const DeclaredColumn* find_column(const std::string& name);
 // The declared numbers and flags: what a table, a plot or `compare` may take as a value.
