@@ -7,7 +7,7 @@
 # clean clone's run while llvmpipe's threads wound down, and CI must not fail by chance.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=None -DCMAKE_C_FLAGS=-O1 -DCMAKE_CXX_FLAGS=-O1 \
+cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS=-O1 \
   -DRELIEFLAB_SANITIZE=ON -DRELIEFLAB_BUILD_BENCHMARKS=OFF
 cmake --build build-sanitize -j"$(nproc)"
 export ASAN_OPTIONS=detect_leaks=0
