@@ -12,6 +12,8 @@
 // report take them the day the file is added. compare_gbuffers (metrics/metrics.h) runs every
 // metric that applies, in the order of `place`, which is also its columns' order in rows.csv.
 // Adding a metric is one file and its test.
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -32,6 +34,7 @@ struct MetricInput {
   const GBuffer* footprint = nullptr;  // the truth's colour over pixel footprints, if asked for
 
   bool both_cover(size_t i) const { return technique.covered(i) && truth.covered(i); }
+  bool either_covers(size_t i) const { return technique.covered(i) || truth.covered(i); }
   // World distance between the two hits of pixel i; a non-finite one counts as far away.
   double hit_distance(size_t i) const;
 };
@@ -64,6 +67,11 @@ void unregister_metric(const std::string& name);
 struct MetricRegistrar {
   explicit MetricRegistrar(Metric metric);
 };
+
+// A colour channel as an image file holds it: clamped to [0, 1], a non-finite value black.
+inline float stored_channel(float v) {
+  return std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f;
+}
 
 // A plain scene object's pixel (hit layer -1), not the relief's.
 inline bool shows_object(const GBuffer& g, size_t i) {

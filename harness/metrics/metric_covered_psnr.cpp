@@ -10,19 +10,15 @@
 namespace rl {
 namespace {
 
-// A colour channel as an image file would hold it: clamped to [0, 1], a non-finite value black.
-double channel(float v) {
-  return std::isfinite(v) ? std::clamp(double(v), 0.0, 1.0) : 0.0;
-}
-
 std::vector<double> measure_covered_psnr(const MetricInput& in) {
   double squared = 0;
   long pixels = 0;
   for (size_t i = 0; i < in.truth.size(); ++i) {
-    if (!in.technique.covered(i) && !in.truth.covered(i)) continue;
+    if (!in.either_covers(i)) continue;
     ++pixels;
     for (int c = 0; c < 3; ++c) {
-      const double d = channel(in.technique.color[i][c]) - channel(in.truth.color[i][c]);
+      const double d = double(stored_channel(in.technique.color[i][c])) -
+                       double(stored_channel(in.truth.color[i][c]));
       squared += d * d;
     }
   }

@@ -18,8 +18,8 @@ cv::Mat color_mat(const GBuffer& g) {
   for (int y = 0; y < g.height; ++y)
     for (int x = 0; x < g.width; ++x) {
       const glm::vec4& c = g.color[size_t(y) * g.width + x];
-      auto clamp01 = [](float v) { return std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f; };
-      m.at<cv::Vec3f>(y, x) = cv::Vec3f(clamp01(c.r), clamp01(c.g), clamp01(c.b));
+      m.at<cv::Vec3f>(y, x) =
+          cv::Vec3f(stored_channel(c.r), stored_channel(c.g), stored_channel(c.b));
     }
   return m;
 }

@@ -28,8 +28,7 @@ namespace {
 std::vector<double> measure_truth_bound(const MetricInput& in) {
   const TruthBoundStats bound = truth_bound_stats(in.truth, in.texel_world);
   long union_px = 0;
-  for (size_t i = 0; i < in.truth.size(); ++i)
-    union_px += in.truth.covered(i) || in.technique.covered(i);
+  for (size_t i = 0; i < in.truth.size(); ++i) union_px += in.either_covers(i);
   return {bound.largest_texels,
           union_px ? 100.0 * double(bound.uncertain) / double(union_px) : 0.0};
 }

@@ -22,8 +22,7 @@ bool ImageMetrics::has(const std::string& column) const {
 
 ImageMetrics measure_metrics(const MetricInput& in) {
   bool empty = true;
-  for (size_t i = 0; i < in.truth.size() && empty; ++i)
-    empty = !in.truth.covered(i) && !in.technique.covered(i);
+  for (size_t i = 0; i < in.truth.size() && empty; ++i) empty = !in.either_covers(i);
   ImageMetrics out;
   for (const Metric& metric : registered_metrics()) {
     if (metric.applies && !metric.applies(in)) continue;
