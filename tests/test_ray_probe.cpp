@@ -15,13 +15,7 @@
 namespace rl {
 namespace {
 
-// test::probe on a relief uploaded for the call.
-std::vector<ProbeHit> probe(const std::string& technique, const ParamValues& params,
-                            const ReliefMap& map, const std::vector<ProbeRay>& rays,
-                            glm::dvec2 aspect = glm::dvec2(0.08)) {
-  GlContext::shared();
-  return test::probe(technique, params, map, GpuRelief(map), rays, aspect);
-}
+using test::probe;
 
 TEST(RayProbe, ReliefMatchesTheReferenceWithinItsSearchInterval) {
   // Smooth bumps, float texels: with 64 linear steps no feature is thinner than a step along

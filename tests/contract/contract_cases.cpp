@@ -183,11 +183,7 @@ double steepest_slope(const ReliefMap& map) {
 std::vector<ProbeHit> probe(const std::string& technique, const ParamValues& params,
                             const ReliefMap& map, const std::vector<ProbeRay>& rays,
                             glm::dvec2 depth_aspect) {
-  GlContext::shared();
-  GpuRelief relief(map);
-  auto t = TechniqueRegistry::instance().create(technique, params, "contract");
-  t->prepare(map);
-  return t->probe(map, relief, rays, depth_aspect);
+  return test::probe(technique, params, map, rays, depth_aspect);
 }
 
 const std::vector<RenderCase>& render_cases() {

@@ -132,6 +132,13 @@ std::vector<ProbeHit> probe(const std::string& technique, const ParamValues& par
   return t->probe(map, relief, rays, depth_aspect);
 }
 
+std::vector<ProbeHit> probe(const std::string& technique, const ParamValues& params,
+                            const ReliefMap& map, const std::vector<ProbeRay>& rays,
+                            glm::dvec2 depth_aspect) {
+  GlContext::shared();
+  return probe(technique, params, map, GpuRelief(map), rays, depth_aspect);
+}
+
 ReliefMap map_from_depths(int w, int h, const std::vector<float>& depths) {
   ReliefMap m;
   m.width = w;

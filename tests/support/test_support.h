@@ -70,6 +70,10 @@ std::vector<ProbeHit> probe(const std::string& technique, const ParamValues& par
                             const ReliefMap& map, const GpuRelief& relief,
                             const std::vector<ProbeRay>& rays,
                             glm::dvec2 depth_aspect = glm::dvec2(0.08));
+// The same on `map` uploaded for the call (the shared GL context made if need be).
+std::vector<ProbeHit> probe(const std::string& technique, const ParamValues& params,
+                            const ReliefMap& map, const std::vector<ProbeRay>& rays,
+                            glm::dvec2 depth_aspect = glm::dvec2(0.08));
 
 // A UV sphere of radius r about c (slices x stacks quads, poles as fans), counter-clockwise seen
 // from outside.
