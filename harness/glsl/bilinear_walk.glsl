@@ -32,11 +32,16 @@ float rl_smallest_root(float a, float b, float c, float lo, float hi) {
   return -1.0;
 }
 
-// Corner depths (d00, d10, d01, d11) of cell (i, j): one gather at the point between texel
-// centres i, i + 1 and j, j + 1.
-vec4 rl_cell_corners(ivec2 cell) {
-  vec4 g = RL_GATHER_DEPTH((vec2(cell) + 1.0) / vec2(textureSize(rl_relief, 0)));
+// Corner depths (d00, d10, d01, d11) of a cell, one gather at its point uv = (cell + 1) / the
+// map's size: between texel centres i, i + 1 and j, j + 1 for cell (i, j).
+vec4 rl_cell_corners_at(vec2 uv) {
+  vec4 g = RL_GATHER_DEPTH(uv);
   return vec4(g.w, g.z, g.x, g.y);
+}
+
+// The same for cell (i, j) given by its integer indices.
+vec4 rl_cell_corners(ivec2 cell) {
+  return rl_cell_corners_at((vec2(cell) + 1.0) / vec2(textureSize(rl_relief, 0)));
 }
 
 // First tau in [0, tau_max] at which a ray meets a cell's patch, or -1. The ray is at `local`

@@ -48,7 +48,16 @@ class ReliefWindowExact final : public Described<ReliefWindowExact, ShaderTechni
                     .doc = "1: a window per quadrant of the ray's direction, two blocks wide "
                            "per axis (4x the memory); 0: one window for any direction, three "
                            "blocks wide, so steps are turned away more often",
-                    .define = "RL_WINDOWS_BY_WAY"}},
+                    .define = "RL_WINDOWS_BY_WAY"},
+                   {.name = "solve_texels",
+                    .kind = ParamKind::Int,
+                    .default_value = 8,
+                    .min_value = 1,
+                    .max_value = 16,
+                    .doc = "texels of the ray (along its faster axis) whose cells are solved "
+                           "when even a one-texel step may hit, before the window is read "
+                           "again (1: that step's texel only)",
+                    .define = "RL_SOLVE_TEXELS"}},
         .draws = {.proxies = {Proxy::Base, Proxy::Box}},
         .contract = {.answer = Answer::Exact,
                      .max_fetches = [](const RayQuery& q) { return window_steps(q) + 2; },
@@ -63,8 +72,8 @@ class ReliefWindowExact final : public Described<ReliefWindowExact, ShaderTechni
   size_t memory_bytes() const override { return bytes_; }
 
   // Each step advances at least a texel along the faster axis (a climb) or descends, and
-  // descents are at most the climbs plus the first level; an exact segment of one texel
-  // solves at most 3 cells.
+  // descents are at most the climbs plus the first level; a solved stretch of n texels
+  // gathers at most 3n + 1 cells after its one window read, at most 4 per texel.
   static double window_steps(const RayQuery& q) {
     const double texels = std::floor(std::max(q.span_texels.x, q.span_texels.y)) + 2;
     return std::min(4 * kWalkCellCap, 5 * texels + q.param("start_level"));
