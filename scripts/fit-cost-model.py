@@ -225,6 +225,57 @@ def by_map_cross_validation(pairs):
     return predictions
 
 
+def view_key(row):
+    return (row["scene"], row["elevation_deg"], row["azimuth_deg"], row["viewport"])
+
+
+def is_relief_32_6(row):
+    return row["technique"] == "relief" and row.get("linear_steps") == "32"
+
+
+def by_technique_cross_validation(pairs):
+    """Each search technique's rows predicted by a fit without any of its rows (every setting):
+    how far the model carries to a shader it has not seen. Per technique: the rows, the median
+    and range of predicted/measured time, and of its time over relief 32+6's in the same view,
+    predicted over measured (None for relief itself)."""
+    out = []
+    for technique in sorted({t["technique"] for t, _ in pairs} - SHADING_ONLY):
+        weights = fit([p for p in pairs if p[0]["technique"] != technique])
+        guess = {view_key(t): (predict(weights, c), measured(t))
+                 for t, c in pairs if is_relief_32_6(t)}
+        time_ratios, relief_ratios = [], []
+        for t, c in pairs:
+            if t["technique"] != technique:
+                continue
+            p = predict(weights, c)
+            time_ratios.append(p / measured(t))
+            g = guess.get(view_key(t))
+            if technique != "relief" and g:
+                relief_ratios.append((p / g[0]) / (measured(t) / g[1]))
+        out.append((technique, len(time_ratios), sorted(time_ratios),
+                    sorted(relief_ratios) or None))
+    return out
+
+
+def unseen_technique_lines(pairs):
+    def spread(xs):
+        return "%s× (%s–%s)" % (fmt(xs[len(xs) // 2]), fmt(xs[0]), fmt(xs[-1]))
+
+    lines = ["", "## A technique it has not seen", "",
+             "Each search technique's rows (all its settings) predicted by a fit to every other",
+             "technique's rows: how far the model carries to a shader it was not fitted to, such",
+             "as one written after the GPU rows were measured. Median (range) over the technique's",
+             "rows of predicted over measured time, and of its time over relief 32+6's in the",
+             "same view, predicted over measured: above 1, the model makes it look dearer than",
+             "the GPU does.", "",
+             "| technique left out | rows | predicted / measured time | its time over relief "
+             "32+6's, predicted / measured |", "| --- | ---: | ---: | ---: |"]
+    for technique, n, time_ratios, relief_ratios in by_technique_cross_validation(pairs):
+        lines.append("| `%s` | %d | %s | %s |" % (technique, n, spread(time_ratios),
+                                                 spread(relief_ratios) if relief_ratios else "–"))
+    return lines
+
+
 def fmt(x, digits=3):
     return "%.*g" % (digits, x)
 
@@ -302,6 +353,7 @@ def report_text(args, weights, fit_sets, judge_sets):
                                    judge(pairs, [predict(weights, c) for _, c in pairs])))
     for spec, pairs in fit_sets + judge_sets:
         lines += baseline_rows(pairs, "`%s`" % short(spec))
+    lines += unseen_technique_lines(fit_pairs)
     for spec in args.renderer_check:
         lines += renderer_check(spec)
     unweighted = [k for k, w in zip(WEIGHTS, weights) if k in KINDS and w == 0]
