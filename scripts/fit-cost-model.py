@@ -181,13 +181,16 @@ def pareto(points):
     return front
 
 
+def view_key(row):
+    return (row["scene"], row["elevation_deg"], row["azimuth_deg"], row["viewport"])
+
+
 def views(pairs, predictions):
     by_view = defaultdict(list)
     params = parameter_columns(list(pairs[0][0].keys()))
     for (t, c), p in zip(pairs, predictions):
-        key = (t["scene"], t["elevation_deg"], t["azimuth_deg"], t["viewport"])
-        by_view[key].append((setting(t, params), float(c["wrong_pct"] or "nan"), measured(t), p,
-                             t["technique"]))
+        by_view[view_key(t)].append((setting(t, params), float(c["wrong_pct"] or "nan"),
+                                     measured(t), p, t["technique"]))
     return by_view
 
 
@@ -223,10 +226,6 @@ def by_map_cross_validation(pairs):
             if t["scene"] == m:
                 predictions[i] = predict(weights, c)
     return predictions
-
-
-def view_key(row):
-    return (row["scene"], row["elevation_deg"], row["azimuth_deg"], row["viewport"])
 
 
 def is_relief_32_6(row):

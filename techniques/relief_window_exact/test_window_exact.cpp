@@ -1,6 +1,5 @@
 // The window search's knobs trade time, never answers: every setting finds the default's hits.
 #include <cmath>
-#include <cstdio>
 
 #include <gtest/gtest.h>
 
