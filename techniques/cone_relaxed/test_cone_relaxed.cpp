@@ -17,6 +17,13 @@
 namespace rl {
 namespace {
 
+// A procedural map of `kind` resampled to w x h and stored in 8 bits, as the cone tests read it.
+ReliefMap eight_bit_map(const char* kind, int w, int h) {
+  ReliefMap map = resample(make_procedural(kind, std::max(w, h), {}, 10.0, "test"), w, h);
+  quantize_8bit(map);
+  return map;
+}
+
 // The relaxed cone of one texel by the definition, scanned outward from its centre along every
 // direction over the same samples the precompute's line sweeps read (cone_scan_directions: sub
 // samples per step, bilinear, wrapping), with no block skipping, no bound from other directions
@@ -117,8 +124,7 @@ TEST(ConeMap, ConservativeConesAreNeverWiderThanBruteForce) {
                                                       {"domes", 64, 40},
                                                       {"pyramids", 64, 40}}) {
     SCOPED_TRACE(std::string(kind) + " " + std::to_string(w) + "x" + std::to_string(h));
-    ReliefMap map = resample(make_procedural(kind, std::max(w, h), {}, 10.0, "test"), w, h);
-    quantize_8bit(map);
+    const ReliefMap map = eight_bit_map(kind, w, h);
     ConeMapOptions o;
     o.relaxed = false;
     const ConeMap cones = compute_cone_map(map, o);
@@ -163,8 +169,7 @@ TEST(ConeMap, RelaxedConesMatchAPerTexelScanOfTheSameSamples) {
                                                            {"bricks", 40, 32, 32},
                                                            {"walls", 32, 32, 32}}) {
     SCOPED_TRACE(std::string(kind) + " " + std::to_string(w) + "x" + std::to_string(h));
-    ReliefMap map = resample(make_procedural(kind, std::max(w, h), {}, 10.0, "test"), w, h);
-    quantize_8bit(map);
+    const ReliefMap map = eight_bit_map(kind, w, h);
     ConeMapOptions o;
     o.directions = directions;
     const ConeMap cones = compute_cone_map(map, o);
