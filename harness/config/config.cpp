@@ -139,8 +139,8 @@ void parse_sweep_table(const toml::table& root, const Src& src, SweepConfig& c) 
 // The names a table's rows and columns or a plot's groups may use: the sweep's fields and
 // every registered technique's parameters.
 std::set<std::string> sweep_fields() {
-  std::set<std::string> fields = {"technique",   "scene",       "elevation_deg",
-                                  "azimuth_deg", "texture_res", "viewport"};
+  std::set<std::string> fields = {"technique",   "scene",    "elevation_deg", "azimuth_deg",
+                                  "texture_res", "viewport", "bake_axis"};
   for (const auto& name : TechniqueRegistry::instance().names())
     for (const ParamSpec& p : TechniqueRegistry::instance().find(name)->info.params)
       fields.insert(p.name);
@@ -149,12 +149,19 @@ std::set<std::string> sweep_fields() {
 
 // One [[scene]]: parsed, completed from its files (sizes, proportions, hashes), checked
 // against the sweep's views and sizes, and entered in the canonical description.
-void add_scene(SweepConfig& c, json& canon, std::set<std::string>& scene_names,
-               const toml::table& t, const toml::node& n, const Src& src,
-               const std::string& base_dir) {
-  ParsedScene parsed = parse_scene(t, src, base_dir, n);
+void enter_scene(SweepConfig& c, json& canon, std::set<std::string>& scene_names,
+                 ParsedScene parsed, const toml::node& n, const Src& src,
+                 const SceneDesc* three_view_scene = nullptr) {
   read_scene_files(parsed);
   json& sc = parsed.canon;
+  if (three_view_scene) {
+    // A bake along another axis is lit by the scene's own light, carried into its frame.
+    SceneDesc& bake = parsed.scene;
+    bake.light_position =
+        carry_to_bake(three_view_scene->light_position, three_view_scene->relief.mesh_up,
+                      three_view_scene->depth, bake.relief.mesh_up, bake.depth);
+    sc["light"] = {bake.light_position.x, bake.light_position.y, bake.light_position.z};
+  }
   c.scenes.push_back(parsed.scene);
   SceneDesc& scene = c.scenes.back();
   // Layers cost memory per texel and layer (7 floats baked, then 28 bytes uploaded).
@@ -188,6 +195,35 @@ void add_scene(SweepConfig& c, json& canon, std::set<std::string>& scene_names,
   canon["scenes"][c.scenes.back().name] = sc;
   c.scene_canonical[c.scenes.back().name] = sc.dump();
   c.scene_sites[c.scenes.back().name] = {parsed.sites.scene, parsed.sites.relief};
+}
+
+// One [[scene]]: parsed, then entered with, for a three-view impostor, its bakes along the two
+// other axes (named "<scene>-along-<axis>", their cells picked by run/cells.h).
+void add_scene(SweepConfig& c, json& canon, std::set<std::string>& scene_names,
+               const toml::table& t, const toml::node& n, const Src& src,
+               const std::string& base_dir) {
+  const ParsedScene parsed = parse_scene(t, src, base_dir, n);
+  const SceneDesc& scene = parsed.scene;
+  if (scene.relief.three_views && !scene.impostor())
+    fail(src.at(n), "scene '" + scene.name +
+                        "': 'three_views' draws a relief impostor, which needs a flat base");
+  if (scene.relief.three_views && scene.distance == 0)
+    fail(src.at(n), "scene '" + scene.name +
+                        "': 'three_views' needs a camera 'distance': fitted to each bake's quad "
+                        "and depth, the camera would draw the object at three scales");
+  enter_scene(c, canon, scene_names, parsed, n, src);
+  if (!scene.relief.three_views) return;
+  const SceneDesc entered = c.scenes.back();  // its depth read from the mesh
+  for (int axis = 0; axis < 3; ++axis) {
+    if (axis == entered.relief.mesh_up) continue;
+    ParsedScene bake = parsed;
+    bake.scene.relief.mesh_up = axis;
+    bake.canon["relief"]["up"] = axis;
+    bake.scene.name = scene.name + "-along-" + char('x' + axis);
+    bake.canon["name"] = bake.scene.name;
+    bake.scene.bake_of = scene.name;
+    enter_scene(c, canon, scene_names, std::move(bake), n, src, &entered);
+  }
 }
 
 std::string join_names(const std::vector<std::string>& names) {

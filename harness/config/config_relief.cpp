@@ -20,7 +20,7 @@ void parse_layers(const toml::table& t, const Src& src, ReliefSourceDesc& r,
 }
 
 // relief = { mesh = "file", up, resolution, reverse_perspective, layers, faces,
-// open_surface_gap }.
+// open_surface_gap, three_views }.
 void parse_mesh_relief(const toml::table& t, const toml::node& node, const Src& src,
                        const std::string& base_dir, ReliefSourceDesc& r, nlohmann::json& canon) {
   for (const char* k : {"color", "convention", "flip_green", "normalize", "nodata", "options"})
@@ -62,6 +62,13 @@ void parse_mesh_relief(const toml::table& t, const toml::node& node, const Src& 
                format_number(gap));
     r.open_surface_gap = gap;
     canon["open_surface_gap"] = gap;
+  }
+  if (auto* n = t.get("three_views")) {
+    // Policarpo & Oliveira 2006, Section 4: a bake along each axis, the nearest one drawn.
+    r.three_views = boolean_of(*n, src, "three_views");
+    if (r.three_views && r.layers == 0)
+      fail(src.at(*n), "'three_views' bakes a relief impostor along each axis: it needs 'layers'");
+    if (r.three_views) canon["three_views"] = true;  // absent when off: older scenes hash alike
   }
   if (auto* n = t.get("faces")) {
     // An object from several heightfields (Baboud & Decoret, Section 4.2).
@@ -175,7 +182,7 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
   check_keys(*t,
              {"procedural", "resolution", "options", "normal", "depth", "color", "convention",
               "flip_green", "normalize", "nodata", "mesh", "up", "reverse_perspective", "layers",
-              "faces", "open_surface_gap"},
+              "faces", "open_surface_gap", "three_views"},
              src, "relief");
   const bool procedural = t->contains("procedural");
   const bool images = t->contains("normal") || t->contains("depth");
@@ -188,9 +195,10 @@ ReliefSourceDesc parse_relief(const toml::node& node, const Src& src, const std:
     parse_mesh_relief(*t, node, src, base_dir, r, canon);
     return r;
   }
-  for (const char* k : {"up", "reverse_perspective", "faces"})
+  for (const char* k : {"up", "reverse_perspective", "faces", "three_views"})
     if (t->contains(k))
-      fail(src.at(node), "'up', 'reverse_perspective' and 'faces' apply to mesh reliefs only");
+      fail(src.at(node),
+           "'up', 'reverse_perspective', 'faces' and 'three_views' apply to mesh reliefs only");
   // A procedural relief makes its own colour and depths: image keys beside it were silently
   // ignored, a missing colour file included.
   for (const char* k : {"color", "convention", "flip_green", "normalize", "nodata"})

@@ -22,7 +22,11 @@ const ColumnDeclaration cell_identity_columns(
      {"elevation_deg", "degrees", "the view's elevation above the base", ColumnKind::Identity},
      {"azimuth_deg", "degrees", "the view's azimuth", ColumnKind::Identity},
      {"texture_res", "texels", "the relief map's resolution asked for", ColumnKind::Identity},
-     {"viewport", "pixels", "the viewport, WxH", ColumnKind::Identity}});
+     {"viewport", "pixels", "the viewport, WxH", ColumnKind::Identity},
+     {"bake_axis", "",
+      "a three-view impostor's bake drawn for the view: the mesh axis it was baked along (x, y "
+      "or z); the view's elevation and azimuth stay those of the scene's own 'up'",
+      ColumnKind::Identity}});
 
 const ColumnDeclaration runner_columns(
     "run (runner)",
@@ -51,7 +55,9 @@ const ColumnDeclaration runner_columns(
       "the precompute came from the cache (precompute_ms is then the "
       "read)",
       ColumnKind::Flag},
-     ColumnSpec{"memory_bytes", "bytes", "the relief's textures plus the technique's own"}
+     ColumnSpec{"memory_bytes", "bytes",
+                "the relief's textures plus the technique's own (three times that for a "
+                "three-view impostor's three bakes)"}
          .reported(),
      {"ao_precompute_ms", "ms", "time to compute the texture-space AO map"},
      {"ao_precompute_cached", "", "the AO map came from the cache", ColumnKind::Flag},
@@ -104,12 +110,37 @@ std::vector<std::string> parameter_columns(const SweepConfig& config) {
   return cols;
 }
 
+namespace {
+
+// The scene a view of scene `si` is drawn from, and the view in that scene's frame: for a
+// three-view impostor, its bake along the axis nearest the view (scene/scene.h's
+// nearest_bake_view); for any other scene, itself and the view as given.
+struct DrawnView {
+  size_t scene_index = 0;
+  View view;
+};
+
+DrawnView drawn_view(const SweepConfig& config, size_t si, const View& view) {
+  const SceneDesc& scene = config.scenes[si];
+  if (!scene.relief.three_views) return {si, view};
+  const AxisView nearest = nearest_bake_view(view, scene.relief.mesh_up);
+  for (size_t i = 0; i < config.scenes.size(); ++i) {
+    const SceneDesc& bake = config.scenes[i];
+    const bool ours = i == si || bake.bake_of == scene.name;
+    if (ours && bake.relief.mesh_up == nearest.up) return {i, nearest.view};
+  }
+  throw std::logic_error("scene '" + scene.name + "' has no bake along its nearest axis");
+}
+
+}  // namespace
+
 std::vector<Cell> expand_cells(const SweepConfig& config, size_t* duplicates) {
   std::vector<Cell> cells;
   std::set<std::string> keys;
   if (duplicates) *duplicates = 0;
   for (size_t si = 0; si < config.scenes.size(); ++si) {
     const SceneDesc& scene = config.scenes[si];
+    if (!scene.bake_of.empty()) continue;  // drawn through its three-view scene's cells
     for (const TechniqueSweep& ts : config.techniques) {
       if (!ts.runs_on(scene.name)) continue;
       const TechniqueInfo& info = TechniqueRegistry::instance().find(ts.name)->info;
@@ -117,17 +148,19 @@ std::vector<Cell> expand_cells(const SweepConfig& config, size_t* duplicates) {
       for (int tex : config.texture_res) {
         const int res = resolve_texture_res(scene, tex);
         for (const auto& [w, h] : config.viewports) {
-          for (const View& view : config.views) {
+          for (const View& asked : config.views) {
+            const auto [drawn_index, view] = drawn_view(config, si, asked);
+            const SceneDesc& drawn = config.scenes[drawn_index];
             for (const ParamValues& params : settings) {
               Cell c;
-              c.scene_index = si;
+              c.scene_index = drawn_index;
               c.technique = ts.name;
               c.params = params;
               c.texture_res = res;
               c.width = w;
               c.height = h;
               c.view = view;
-              const std::string scene_text = config.scene_canonical.at(scene.name);
+              const std::string scene_text = config.scene_canonical.at(drawn.name);
               c.asset_key = hex64(fnv1a64(scene_text + "|res=" + std::to_string(res)));
               // A truth of a fixed resolution (truth_resolution) is one surface for every
               // texture resolution of the scene: traced once per view, shared by them all.
@@ -143,6 +176,7 @@ std::vector<Cell> expand_cells(const SweepConfig& config, size_t* duplicates) {
                                                  {"az", view.azimuth_deg},
                                                  {"tol", config.truth_tolerance},
                                                  {"v", kMeasurementVersion}};
+              if (view.roll_deg != 0) truth_id["roll"] = view.roll_deg;  // absent: keys hold
               c.truth_key = hex64(fnv1a64(truth_id.dump()));
               ParamValues keyed = params;
               for (const ParamSpec& p : info.params)
@@ -160,10 +194,12 @@ std::vector<Cell> expand_cells(const SweepConfig& config, size_t* duplicates) {
               c.key = hex64(fnv1a64(id.dump()));
               c.identity["technique"] = ts.name;
               c.identity["scene"] = scene.name;
-              c.identity["elevation_deg"] = view.elevation_deg;
-              c.identity["azimuth_deg"] = view.azimuth_deg;
+              c.identity["elevation_deg"] = asked.elevation_deg;
+              c.identity["azimuth_deg"] = asked.azimuth_deg;
               c.identity["texture_res"] = res;
               c.identity["viewport"] = std::to_string(w) + "x" + std::to_string(h);
+              if (scene.relief.three_views)
+                c.identity["bake_axis"] = std::string(1, char('x' + drawn.relief.mesh_up));
               for (const ParamSpec& p : info.params) c.identity[p.name] = params.at(p.name);
               if (!keys.insert(c.key).second) {
                 if (duplicates) ++*duplicates;

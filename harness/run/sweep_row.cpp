@@ -154,6 +154,30 @@ void check_columns_declared(const Row& row, const Cell& cell) {
                              "', which no producer declares (core/columns.h)");
 }
 
+// What the truth of the cell's view says of itself: its front end, bound and trace, what an
+// impostor's quad cannot show, and the reference AO.
+void add_truth_columns(Row& row, const SceneDesc& scene, const Asset& asset, const CellMeasure& c,
+                       const TruthView& truth) {
+  row["truth_subdivision"] = asset.truth->subdivision();
+  row["truth_bound"] = asset.truth->tessellation_bound();
+  row["truth_flagged"] = c.m.truth_flagged();
+  row["truth_ms"] = truth.stats.trace_ms;
+  row["truth_unresolved_px"] = double(truth.stats.unresolved);
+  if (scene.impostor()) {
+    long shown = 0;
+    for (size_t i = 0; i < truth.g.color.size(); ++i) shown += truth.g.covered(i) ? 1 : 0;
+    const long object = shown + truth.stats.beyond_quad;
+    row["beyond_quad_pct"] = object ? 100.0 * double(truth.stats.beyond_quad) / double(object) : 0;
+  }
+  if (scene.effects.has(Effect::AmbientOcclusion)) {
+    row["ao_precompute_ms"] = asset.ao_ms;
+    row["ao_precompute_cached"] = asset.ao_from_cache;
+    row["ao_rescale"] = scene.ao.rescale(scene.depth);
+    row["ao_drawn"] = scene.ao.render;
+    row["truth_ao_rays"] = double(truth.stats.ao_rays);
+  }
+}
+
 }  // namespace
 
 // Every measured column of a cell's row, beside its identity.
@@ -176,19 +200,11 @@ Row cell_row(const Cell& cell, const SceneDesc& scene, const Camera& camera, con
   row["gpu_frame_ms_source"] =
       on_gpu ? "measured" : (c.model_gpu.empty() ? "" : "model " + c.model_gpu);
   for (const auto& [name, value] : c.frame_columns) row[name] = value;
-  row["memory_bytes"] = double(asset.relief->bytes() + c.technique_bytes);
-  row["truth_subdivision"] = asset.truth->subdivision();
-  row["truth_bound"] = asset.truth->tessellation_bound();
-  row["truth_flagged"] = c.m.truth_flagged();
-  row["truth_ms"] = truth.stats.trace_ms;
-  row["truth_unresolved_px"] = double(truth.stats.unresolved);
-  if (scene.effects.has(Effect::AmbientOcclusion)) {
-    row["ao_precompute_ms"] = asset.ao_ms;
-    row["ao_precompute_cached"] = asset.ao_from_cache;
-    row["ao_rescale"] = scene.ao.rescale(scene.depth);
-    row["ao_drawn"] = scene.ao.render;
-    row["truth_ao_rays"] = double(truth.stats.ao_rays);
-  }
+  // A three-view impostor keeps its three bakes (one resolution and layer count) resident, and
+  // what the technique builds from each.
+  const int bakes = scene.relief.three_views ? 3 : 1;
+  row["memory_bytes"] = double(bakes * (asset.relief->bytes() + c.technique_bytes));
+  add_truth_columns(row, scene, asset, c, truth);
   if (asset.curvature_fit) {
     row["curvature_fit_err_mean_pct"] = asset.curvature_fit->mean_pct;
     row["curvature_fit_err_max_pct"] = asset.curvature_fit->max_pct;

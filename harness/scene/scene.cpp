@@ -22,6 +22,72 @@ PlanarBase planar_base(const SceneDesc& scene) {
   return b;
 }
 
+glm::dvec3 view_direction(const View& view) {
+  const double el = glm::radians(view.elevation_deg), az = glm::radians(view.azimuth_deg);
+  return {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
+}
+
+glm::dvec3 camera_up(const View& view) {
+  // d(direction)/d(elevation): perpendicular to the view direction at every elevation, so the
+  // top-down view (90 degrees) needs no special case; then turned by the roll.
+  const double el = glm::radians(view.elevation_deg), az = glm::radians(view.azimuth_deg);
+  const glm::dvec3 up(-std::sin(el) * std::cos(az), -std::sin(el) * std::sin(az), std::cos(el));
+  if (view.roll_deg == 0) return up;
+  const double roll = glm::radians(view.roll_deg);
+  return std::cos(roll) * up + std::sin(roll) * glm::cross(view_direction(view), up);
+}
+
+namespace {
+
+// A vector of the quad frame of the bake along `up`, along the mesh's own x, y, z, and back.
+glm::dvec3 mesh_from_bake(const glm::dvec3& v, int up) {
+  glm::dvec3 m;
+  m[(up + 1) % 3] = v.x;
+  m[(up + 2) % 3] = v.y;
+  m[up] = v.z;
+  return m;
+}
+
+glm::dvec3 bake_from_mesh(const glm::dvec3& m, int up) {
+  return {m[(up + 1) % 3], m[(up + 2) % 3], m[up]};
+}
+
+}  // namespace
+
+glm::dvec3 carry_to_bake(const glm::dvec3& point, int from_up, double from_depth, int to_up,
+                         double to_depth) {
+  // Each bake's world has the object's centre at (0, 0, -depth / 2) and one scale.
+  const glm::dvec3 from_centre(0, 0, -0.5 * from_depth), to_centre(0, 0, -0.5 * to_depth);
+  return to_centre + bake_from_mesh(mesh_from_bake(point - from_centre, from_up), to_up);
+}
+
+AxisView nearest_bake_view(const View& view, int up) {
+  const glm::dvec3 mesh = mesh_from_bake(view_direction(view), up);
+  AxisView out;
+  out.up = up;
+  // Within 1e-12 is a tie (45 degrees puts cos and sin an ulp apart): the earlier axis keeps it.
+  for (int a = 0; a < 3; ++a)
+    if (std::abs(mesh[a]) > std::abs(mesh[out.up]) + 1e-12) out.up = a;
+  const glm::dvec3 along = bake_from_mesh(mesh, out.up);
+  if (out.up == up) {
+    out.view = view;  // the same bake: the view as given, to the bit
+    return out;
+  }
+  // Rounded to 1e-9 degrees: a view on an axis plane keeps a clean zero (cells are keyed on it).
+  auto clean = [](double deg) { return std::round(deg * 1e9) / 1e9; };
+  out.view.elevation_deg = clean(glm::degrees(std::asin(std::clamp(along.z, -1.0, 1.0))));
+  const double az_deg = clean(glm::degrees(std::atan2(along.y, along.x)));
+  out.view.azimuth_deg = az_deg < 0 ? az_deg + 360 : az_deg;
+  // The camera's up as the given view has it, carried into the bake's frame, against the up
+  // the bake's own view would take: the roll that keeps the image the same.
+  const glm::dvec3 wanted = bake_from_mesh(mesh_from_bake(camera_up(view), up), out.up);
+  const View unrolled{out.view.elevation_deg, out.view.azimuth_deg};
+  const glm::dvec3 plain = camera_up(unrolled), side = glm::cross(view_direction(unrolled), plain);
+  out.view.roll_deg =
+      clean(glm::degrees(std::atan2(glm::dot(wanted, side), glm::dot(wanted, plain))));
+  return out;
+}
+
 const char* truth_level_name(TruthLevel level) {
   switch (level) {
     case TruthLevel::Mesh:
@@ -181,12 +247,11 @@ Camera make_camera(const SceneDesc& scene, const View& view, int width, int heig
     cam.width = width;
     cam.height = height;
     cam.fov_y_deg = fill_fov_deg(scene, view.elevation_deg);
-    const double el = glm::radians(view.elevation_deg), az = glm::radians(view.azimuth_deg);
+    const double el = glm::radians(view.elevation_deg);
     const double distance = fill_distance(scene, cam.fov_y_deg, double(width) / height);
-    const glm::dvec3 dir(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
     cam.target = glm::dvec3(0);
-    cam.eye = dir * distance;
-    cam.up = glm::dvec3(-std::sin(el) * std::cos(az), -std::sin(el) * std::sin(az), std::cos(el));
+    cam.eye = view_direction(view) * distance;
+    cam.up = camera_up(view);
     // A map of extreme aspect (8192 x 2) frames its short side from closer than 1e-3: the
     // near plane shrinks with the distance there, or it clipped the whole relief away (every
     // technique drew nothing while the ray-traced truth covered the view).
@@ -199,7 +264,6 @@ Camera make_camera(const SceneDesc& scene, const View& view, int width, int heig
   cam.width = width;
   cam.height = height;
   cam.fov_y_deg = scene.fov_deg;
-  const double el = glm::radians(view.elevation_deg), az = glm::radians(view.azimuth_deg);
   // Fit the quad's bounding sphere (relief included) in the narrower field of view.
   const double radius = scene_radius(scene);
   double half_fov = glm::radians(scene.fov_deg) * 0.5;
@@ -210,11 +274,8 @@ Camera make_camera(const SceneDesc& scene, const View& view, int width, int heig
   cam.target = glm::dvec3(0, 0, 0);
   if (scene.impostor()) cam.target.z = -0.5 * scene.depth;  // the quad through its middle
   if (scene.in_cube()) cam.target.z = -0.5 * scene.depth;   // the cube's centre
-  const glm::dvec3 dir(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
-  cam.eye = cam.target + dir * distance;
-  // d(dir)/d(elevation): perpendicular to the view direction at every elevation, so the
-  // top-down view (90 degrees) needs no special case.
-  cam.up = glm::dvec3(-std::sin(el) * std::cos(az), -std::sin(el) * std::sin(az), std::cos(el));
+  cam.eye = cam.target + view_direction(view) * distance;
+  cam.up = camera_up(view);
   cam.near_plane = std::max(1e-3, distance - 2 * radius) * 0.5;
   cam.far_plane = distance + 4 * radius + 10 * scene.size;
   return cam;

@@ -23,10 +23,35 @@ namespace rl {
 struct View {
   double elevation_deg = 45;  // 90 = looking straight down on the base
   double azimuth_deg = 0;     // 0 = camera on the +u side, looking along -u
+  // The camera turned about its view direction, counter-clockwise seen from the eye: 0 keeps
+  // the base's up (its normal) up in the image. Set only where a view is carried into another
+  // frame (a three-view impostor's bakes), so the image stays the same world's.
+  double roll_deg = 0;
 };
 
 // A relief map's size in texels. Maps need not be square: a texture resolution in a sweep
 // (texture_res) names the longer side and the shorter one keeps the native aspect.
+// A three-view impostor (ReliefSourceDesc::three_views): of the mesh's axes, the one a view
+// looks along most nearly (ties go to `up`, then to the lower axis), and the same view direction
+// in the frame of the bake along that axis. A bake along axis a maps mesh axes
+// (a + 1, a + 2, a) mod 3 to the quad's (u, v, up), so its views are those of any other bake
+// turned about the object's centre.
+struct AxisView {
+  int up = 1;  // 0, 1, 2 = x, y, z
+  View view;
+};
+AxisView nearest_bake_view(const View& view, int up);
+// A point of the world of the bake along `from_up` (its quad's frame, relief depth from_depth)
+// where it lies in the world of the bake along `to_up`: turned about the object's centre, as
+// the three bakes of one object share a scale.
+glm::dvec3 carry_to_bake(const glm::dvec3& point, int from_up, double from_depth, int to_up,
+                         double to_depth);
+
+// A view's direction from the target toward the eye, and the camera's up (roll included), in
+// the frame of the base's quad (x along u, y along v, z up).
+glm::dvec3 view_direction(const View& view);
+glm::dvec3 camera_up(const View& view);
+
 struct MapSize {
   int width = 256, height = 256;
   int longer() const { return width > height ? width : height; }
@@ -52,6 +77,9 @@ struct ReliefSourceDesc {
   // footprint box.
   int faces = 0;
   int layers = 0;  // > 0: baked into that many depth layers (a mesh or a pattern)
+  // A relief impostor baked along all three axes, the bake whose axis is nearest the view drawn
+  // (Policarpo & Oliveira 2006, Section 4's remedy for a quad seen edge-on).
+  bool three_views = false;
   // A mesh's open surfaces baked as two layers this far apart in depth (relief/layer_bake.h);
   // without it, a texel whose ray crosses an odd number of times drops its deepest crossing.
   std::optional<double> open_surface_gap;
@@ -239,6 +267,9 @@ struct SceneDesc {
   // A relief impostor (Policarpo & Oliveira 2006, Section 4): a mesh baked into depth layers,
   // drawn on one quad through its middle (depth 0.5) and seen from either side.
   bool impostor() const { return relief.layers > 0 && !relief.mesh_path.empty() && !base.curved(); }
+  // Set on the bakes of a three-view impostor along its other two axes: the name of the
+  // [[scene]] whose views nearest this bake's axis it draws (their rows carry that name).
+  std::string bake_of;
   // A closed mesh as a cubic cell complex (relief = { cells = "mesh.obj" }): drawn by the
   // techniques that read it, in its bounding cube (the box proxy, depth = size).
   bool cell_complex() const { return relief.cells.active; }

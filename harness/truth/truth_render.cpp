@@ -39,6 +39,10 @@ const ColumnDeclaration truth_columns(
      ColumnSpec{"truth_unresolved_px", "pixels",
                 "covered pixels whose truth ray found no surface (0)"}
          .neither_better(),
+     {"beyond_quad_pct", "% of the object's pixels",
+      "a relief impostor: of the pixels the object covers at this view, the share its quad's "
+      "footprint misses -- what no render of the quad can show, and what wrong_pct (over the "
+      "quad's pixels) leaves out"},
      ColumnSpec{"truth_ao_rays", "rays",
                 "hemisphere rays the reference AO of this view traced (cached pixels counted too)"}
          .neither_better(),
@@ -52,6 +56,14 @@ namespace {
 constexpr double kAboveTop = 1e-6;  // depth units above the top plane where truth rays start
 constexpr double kFloor = 1e-4;     // depth units within which a hit counts as on the floor
 
+// What a truth render counts besides its rays, from every core.
+struct TruthCounters {
+  ShardedCounter ao_rays;    // hemisphere directions sampled
+  ShardedCounter ao_traced;  // those traced (the truth counts them as shadow rays)
+  std::atomic<long> unresolved{0};
+  std::atomic<long> beyond_quad{0};  // TruthStats::beyond_quad
+};
+
 // The ray o + t d against the texture-space box [0, tile]^2 x [0, 1].
 bool clip_to_box(const glm::dvec3& o, const glm::dvec3& d, double tile, double& t_in,
                  double& t_out) {
@@ -61,16 +73,27 @@ bool clip_to_box(const glm::dvec3& o, const glm::dvec3& d, double tile, double& 
 // The first surface point along the camera ray o + t d (texture space, t = world distance)
 // for the scene's proxy; false when the pixel shows background. On return the hit is at
 // t = t_start + h.t.
+// Whether the ray o + t d meets the object anywhere in its box: for an impostor's ray that
+// misses the quad, whether the object lies in that pixel all the same.
+bool meets_object_in_box(const TruthSurface& truth, const glm::dvec3& o, const glm::dvec3& d,
+                         double tile) {
+  double t_in = 0, t_out = 0;
+  if (!clip_to_box(o, d, tile, t_in, t_out)) return false;
+  return truth.intersect(o + d * t_in, d, 0.0, t_out - t_in).hit;
+}
+
 bool trace_primary(const TruthSurface& truth, const ReliefMap& map, const SceneDesc& scene,
                    const glm::dvec3& o, const glm::dvec3& d, double bottom, double& t_start,
-                   TruthHit& h, std::atomic<long>& unresolved) {
+                   TruthHit& h, TruthCounters& counters) {
   if (scene.impostor()) {
     // The quad through the object's middle, seen from either side: the ray is searched over
     // the whole depth range where it crosses the quad's footprint.
-    if (d.z == 0) return false;
-    const double t_quad = (0.5 - o.z) / d.z;
+    const double t_quad = d.z == 0 ? -1 : (0.5 - o.z) / d.z;
     const glm::dvec3 at = o + d * t_quad;
-    if (t_quad <= 0 || at.x < 0 || at.y < 0 || at.x > scene.tile || at.y > scene.tile) return false;
+    if (t_quad <= 0 || at.x < 0 || at.y < 0 || at.x > scene.tile || at.y > scene.tile) {
+      if (meets_object_in_box(truth, o, d, scene.tile)) ++counters.beyond_quad;
+      return false;
+    }
     const double t0 = (0.0 - o.z) / d.z, t1 = (1.0 - o.z) / d.z;
     t_start = std::min(t0, t1);
     h = truth.intersect(o + d * t_start, d, 0.0, std::max(t0, t1) - t_start);
@@ -130,7 +153,7 @@ bool trace_primary(const TruthSurface& truth, const ReliefMap& map, const SceneD
   }
   if (!h.hit) {
     // Rounding let the ray through the floor; it is inside the relief there.
-    ++unresolved;
+    ++counters.unresolved;
     h.point = start + d * t_bottom;
     h.t = t_bottom;
   }
@@ -240,11 +263,6 @@ bool planar_in_shadow(const TruthSurface& truth, const PlanarBase& base, const S
 // `trace(g, i, eye, dir, in_front)`, traces the relief and writes pixel i, after asking
 // `in_front(distance)`, which writes the object pixel when an object lies nearer than the
 // relief's hit (any distance where it missed) and says so.
-struct TruthCounters {
-  ShardedCounter ao_rays;    // hemisphere directions sampled
-  ShardedCounter ao_traced;  // those traced (the truth counts them as shadow rays)
-  std::atomic<long> unresolved{0};
-};
 
 template <typename Truth, typename Trace>
 GBuffer trace_pixels(const Truth& truth, const SceneDesc& scene, const Camera& camera,
@@ -278,6 +296,7 @@ GBuffer trace_pixels(const Truth& truth, const SceneDesc& scene, const Camera& c
     stats->ao_rays = counters.ao_rays.load();
     stats->ao_cached_px = ao_cache ? ao_cache->reused() - ao_reused0 : 0;
     stats->unresolved = counters.unresolved.load();
+    stats->beyond_quad = counters.beyond_quad.load();
   }
   return g;
 }
@@ -317,8 +336,7 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
     }
     double t_start = 0;
     TruthHit h;
-    const bool relief =
-        trace_primary(truth, map, scene, o, d, bottom, t_start, h, counters.unresolved);
+    const bool relief = trace_primary(truth, map, scene, o, d, bottom, t_start, h, counters);
     const glm::dvec3 world = projection.active()
                                  ? base.world_from_texture(projection.affine_from_texture(h.point))
                                  : eye + dir * (t_start + h.t);

@@ -21,6 +21,9 @@ struct TruthStats {
   uint64_t ao_rays = 0;       // hemisphere rays of the reference ambient occlusion
   uint64_t ao_cached_px = 0;  // pixels whose reference AO came from the AoTruthCache
   long unresolved = 0;        // covered pixels whose ray found no surface (should be 0)
+  // A relief impostor: pixels where the object lies but its quad's footprint does not (rays
+  // that meet the mesh only outside it), which no render of the quad can show.
+  long beyond_quad = 0;
 };
 
 // harness/glsl/shading.glsl, in double precision; `ambient_visibility` scales the ambient term
