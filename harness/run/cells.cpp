@@ -132,6 +132,43 @@ DrawnView drawn_view(const SweepConfig& config, size_t si, const View& view) {
   throw std::logic_error("scene '" + scene.name + "' has no bake along its nearest axis");
 }
 
+// The cell's keys, from what it draws: its asset (the drawn scene at its resolution), its
+// truth (that asset, viewport and view) and the cell itself (truth, technique, parameters, run
+// settings).
+void key_cell(Cell& c, const SweepConfig& config, const SceneDesc& drawn,
+              const TechniqueInfo& info) {
+  const std::string scene_text = config.scene_canonical.at(drawn.name);
+  c.asset_key = hex64(fnv1a64(scene_text + "|res=" + std::to_string(c.texture_res)));
+  // A truth of a fixed resolution (truth_resolution) is one surface for every texture
+  // resolution of the scene: traced once per view, shared by them all.
+  const std::string truth_source =
+      drawn.truth_texture_res > 0
+          ? hex64(fnv1a64(scene_text + "|truth_res=" + std::to_string(drawn.truth_texture_res)))
+          : c.asset_key;
+  nlohmann::ordered_json truth_id = {{"asset", truth_source},
+                                     {"w", c.width},
+                                     {"h", c.height},
+                                     {"el", c.view.elevation_deg},
+                                     {"az", c.view.azimuth_deg},
+                                     {"tol", config.truth_tolerance},
+                                     {"v", kMeasurementVersion}};
+  if (c.view.roll_deg != 0) truth_id["roll"] = c.view.roll_deg;  // absent: keys hold
+  c.truth_key = hex64(fnv1a64(truth_id.dump()));
+  ParamValues keyed = c.params;
+  for (const ParamSpec& p : info.params)
+    if (p.neutral_default && c.params.at(p.name) == p.default_value) keyed.erase(p.name);
+  nlohmann::ordered_json id = {{"truth", c.truth_key},    {"technique", c.technique},
+                               {"params", keyed},         {"frames", config.frames},
+                               {"warmup", config.warmup}, {"images", config.write_images}};
+  // Only when asked, so cells of sweeps without G-buffers keep their keys.
+  if (config.write_gbuffers) id["gbuffers"] = true;
+  // Its rows carry the footprint columns: a run without them is another cell.
+  if (config.footprint_samples > 1) id["footprint"] = config.footprint_samples;
+  // A shared truth no longer names the asset: the cell must.
+  if (drawn.truth_texture_res > 0) id["asset"] = c.asset_key;
+  c.key = hex64(fnv1a64(id.dump()));
+}
+
 }  // namespace
 
 std::vector<Cell> expand_cells(const SweepConfig& config, size_t* duplicates) {
@@ -160,38 +197,7 @@ std::vector<Cell> expand_cells(const SweepConfig& config, size_t* duplicates) {
               c.width = w;
               c.height = h;
               c.view = view;
-              const std::string scene_text = config.scene_canonical.at(drawn.name);
-              c.asset_key = hex64(fnv1a64(scene_text + "|res=" + std::to_string(res)));
-              // A truth of a fixed resolution (truth_resolution) is one surface for every
-              // texture resolution of the scene: traced once per view, shared by them all.
-              const std::string truth_source =
-                  scene.truth_texture_res > 0
-                      ? hex64(fnv1a64(scene_text +
-                                      "|truth_res=" + std::to_string(scene.truth_texture_res)))
-                      : c.asset_key;
-              nlohmann::ordered_json truth_id = {{"asset", truth_source},
-                                                 {"w", w},
-                                                 {"h", h},
-                                                 {"el", view.elevation_deg},
-                                                 {"az", view.azimuth_deg},
-                                                 {"tol", config.truth_tolerance},
-                                                 {"v", kMeasurementVersion}};
-              if (view.roll_deg != 0) truth_id["roll"] = view.roll_deg;  // absent: keys hold
-              c.truth_key = hex64(fnv1a64(truth_id.dump()));
-              ParamValues keyed = params;
-              for (const ParamSpec& p : info.params)
-                if (p.neutral_default && params.at(p.name) == p.default_value) keyed.erase(p.name);
-              nlohmann::ordered_json id = {
-                  {"truth", c.truth_key},    {"technique", ts.name},
-                  {"params", keyed},         {"frames", config.frames},
-                  {"warmup", config.warmup}, {"images", config.write_images}};
-              // Only when asked, so cells of sweeps without G-buffers keep their keys.
-              if (config.write_gbuffers) id["gbuffers"] = true;
-              // Its rows carry the footprint columns: a run without them is another cell.
-              if (config.footprint_samples > 1) id["footprint"] = config.footprint_samples;
-              // A shared truth no longer names the asset: the cell must.
-              if (scene.truth_texture_res > 0) id["asset"] = c.asset_key;
-              c.key = hex64(fnv1a64(id.dump()));
+              key_cell(c, config, drawn, info);
               c.identity["technique"] = ts.name;
               c.identity["scene"] = scene.name;
               c.identity["elevation_deg"] = asked.elevation_deg;
