@@ -103,10 +103,12 @@ linear_steps = 32
 )";
 }
 
-TEST(ThreeViews, EachBakesCameraSeesTheRaysAndLightOfTheScenesOwnView) {
+TEST(ThreeViews, EachBakesCameraSeesTheRaysLightAndObjectsOfTheScenesOwnView) {
   const std::string dir = test::scratch_dir("three_views_cameras");
+  const std::string objects =
+      "objects = [{ shape = \"sphere\", center = [0.3, 0.2, 0.1], radius = 0.1 }]\n";
   const SweepConfig config =
-      parse_sweep_config(three_view_sweep(brick_mesh(dir), "[[30, 10]]"), "s.toml", dir);
+      parse_sweep_config(three_view_sweep(brick_mesh(dir), "[[30, 10]]", objects), "s.toml", dir);
   ASSERT_EQ(config.scenes.size(), 3u);  // the scene and its bakes along x and z
   const SceneDesc& scene = config.scenes[0];
   const int from = scene.relief.mesh_up;
@@ -116,6 +118,11 @@ TEST(ThreeViews, EachBakesCameraSeesTheRaysAndLightOfTheScenesOwnView) {
     expect_near(
         bake.light_position,
         carry_to_bake(scene.light_position, from, scene.depth, bake.relief.mesh_up, bake.depth),
+        kTight);
+    ASSERT_EQ(bake.objects.size(), 1u);
+    expect_near(
+        bake.objects[0].center,
+        carry_to_bake(scene.objects[0].center, from, scene.depth, bake.relief.mesh_up, bake.depth),
         kTight);
   }
   for (const View view : {View{30, 10}, View{12, 210}, View{-20, 100}, View{50, 300}}) {

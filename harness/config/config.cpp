@@ -161,6 +161,13 @@ void enter_scene(SweepConfig& c, json& canon, std::set<std::string>& scene_names
         carry_to_bake(three_view_scene->light_position, three_view_scene->relief.mesh_up,
                       three_view_scene->depth, bake.relief.mesh_up, bake.depth);
     sc["light"] = {bake.light_position.x, bake.light_position.y, bake.light_position.z};
+    // Its objects likewise (spheres and cubes: a turn between bakes keeps a cube axis-aligned).
+    for (size_t i = 0; i < bake.objects.size(); ++i) {
+      SceneObject& o = bake.objects[i];
+      o.center = carry_to_bake(o.center, three_view_scene->relief.mesh_up, three_view_scene->depth,
+                               bake.relief.mesh_up, bake.depth);
+      for (int k = 0; k < 3; ++k) sc["objects"][i][1 + k] = o.center[k];
+    }
   }
   c.scenes.push_back(parsed.scene);
   SceneDesc& scene = c.scenes.back();
@@ -207,6 +214,11 @@ void add_scene(SweepConfig& c, json& canon, std::set<std::string>& scene_names,
   if (scene.relief.three_views && !scene.impostor())
     fail(src.at(n), "scene '" + scene.name +
                         "': 'three_views' draws a relief impostor, which needs a flat base");
+  for (const SceneObject& o : scene.objects)
+    if (scene.relief.three_views && o.shape != "sphere" && o.shape != "cube")
+      fail(src.at(n), "scene '" + scene.name + "': 'three_views' carries spheres and cubes into " +
+                          "each bake's frame, not a mesh object (" + o.shape + "), which would " +
+                          "need turning");
   if (scene.relief.three_views && scene.distance == 0)
     fail(src.at(n), "scene '" + scene.name +
                         "': 'three_views' needs a camera 'distance': fitted to each bake's quad "
