@@ -164,8 +164,10 @@ void add_truth_columns(Row& row, const SceneDesc& scene, const Asset& asset, con
   row["truth_ms"] = truth.stats.trace_ms;
   row["truth_unresolved_px"] = double(truth.stats.unresolved);
   if (scene.impostor()) {
+    // The object's pixels the quad shows: covered, and not by a scene object (layer -1).
     long shown = 0;
-    for (size_t i = 0; i < truth.g.color.size(); ++i) shown += truth.g.covered(i) ? 1 : 0;
+    for (size_t i = 0; i < truth.g.size(); ++i)
+      shown += truth.g.covered(i) && truth.g.hit[i].z >= 0 ? 1 : 0;
     const long object = shown + truth.stats.beyond_quad;
     row["beyond_quad_pct"] = object ? 100.0 * double(truth.stats.beyond_quad) / double(object) : 0;
   }

@@ -29,8 +29,6 @@ struct View {
   double roll_deg = 0;
 };
 
-// A relief map's size in texels. Maps need not be square: a texture resolution in a sweep
-// (texture_res) names the longer side and the shorter one keeps the native aspect.
 // A three-view impostor (ReliefSourceDesc::three_views): of the mesh's axes, the one a view
 // looks along most nearly (ties go to `up`, then to the lower axis), and the same view direction
 // in the frame of the bake along that axis. A bake along axis a maps mesh axes
@@ -52,6 +50,8 @@ glm::dvec3 carry_to_bake(const glm::dvec3& point, int from_up, double from_depth
 glm::dvec3 view_direction(const View& view);
 glm::dvec3 camera_up(const View& view);
 
+// A relief map's size in texels. Maps need not be square: a texture resolution in a sweep
+// (texture_res) names the longer side and the shorter one keeps the native aspect.
 struct MapSize {
   int width = 256, height = 256;
   int longer() const { return width > height ? width : height; }

@@ -40,9 +40,9 @@ const ColumnDeclaration truth_columns(
                 "covered pixels whose truth ray found no surface (0)"}
          .neither_better(),
      {"beyond_quad_pct", "% of the object's pixels",
-      "a relief impostor: of the pixels the object covers at this view, the share its quad's "
-      "footprint misses -- what no render of the quad can show, and what wrong_pct (over the "
-      "quad's pixels) leaves out"},
+      "a relief impostor: of the pixels the object covers at this view (scene objects in front "
+      "of it aside), the share its quad's footprint misses -- what no render of the quad can "
+      "show, and what wrong_pct (over the quad's pixels) leaves out"},
      ColumnSpec{"truth_ao_rays", "rays",
                 "hemisphere rays the reference AO of this view traced (cached pixels counted too)"}
          .neither_better(),
@@ -70,9 +70,6 @@ bool clip_to_box(const glm::dvec3& o, const glm::dvec3& d, double tile, double& 
   return clip_ray_to_box(o, d, glm::dvec3(0), glm::dvec3(tile, tile, 1), t_in, t_out);
 }
 
-// The first surface point along the camera ray o + t d (texture space, t = world distance)
-// for the scene's proxy; false when the pixel shows background. On return the hit is at
-// t = t_start + h.t.
 // Whether the ray o + t d meets the object anywhere in its box: for an impostor's ray that
 // misses the quad, whether the object lies in that pixel all the same.
 bool meets_object_in_box(const TruthSurface& truth, const glm::dvec3& o, const glm::dvec3& d,
@@ -81,6 +78,10 @@ bool meets_object_in_box(const TruthSurface& truth, const glm::dvec3& o, const g
   if (!clip_to_box(o, d, tile, t_in, t_out)) return false;
   return truth.intersect(o + d * t_in, d, 0.0, t_out - t_in).hit;
 }
+
+// The first surface point along the camera ray o + t d (texture space, t = world distance)
+// for the scene's proxy; false when the pixel shows background. On return the hit is at
+// t = t_start + h.t.
 
 bool trace_primary(const TruthSurface& truth, const ReliefMap& map, const SceneDesc& scene,
                    const glm::dvec3& o, const glm::dvec3& d, double bottom, double& t_start,
@@ -263,7 +264,6 @@ bool planar_in_shadow(const TruthSurface& truth, const PlanarBase& base, const S
 // `trace(g, i, eye, dir, in_front)`, traces the relief and writes pixel i, after asking
 // `in_front(distance)`, which writes the object pixel when an object lies nearer than the
 // relief's hit (any distance where it missed) and says so.
-
 template <typename Truth, typename Trace>
 GBuffer trace_pixels(const Truth& truth, const SceneDesc& scene, const Camera& camera,
                      const ObjectsTruth* objects, AoTruthCache* ao_cache, TruthStats* stats,
