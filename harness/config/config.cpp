@@ -147,8 +147,9 @@ std::set<std::string> sweep_fields() {
   return fields;
 }
 
-// One [[scene]]: parsed, completed from its files (sizes, proportions, hashes), checked
-// against the sweep's views and sizes, and entered in the canonical description.
+// A parsed scene completed from its files (sizes, proportions, hashes), checked against the
+// sweep's views and sizes, and entered in the canonical description; a three-view scene's bake
+// along another axis first gets that scene's light and objects carried into its frame.
 void enter_scene(SweepConfig& c, json& canon, std::set<std::string>& scene_names,
                  ParsedScene parsed, const toml::node& n, const Src& src,
                  const SceneDesc* three_view_scene = nullptr) {

@@ -36,12 +36,13 @@ BakeFrame relief_bake_frame(const ReliefSourceDesc& relief, const TriangleMesh& 
   // A cell complex and a heightfield object live in the mesh's bounding cube: one scale on all
   // three axes.
   if (relief.cells.active || relief.faces > 0) return cell_frame(mesh, relief.mesh_up);
-  BakeFrame f = bake_frame(mesh, relief.mesh_up, 0.04, relief.layers > 0 ? 0.02 : 0.0);
+  const double margin = 0.04;  // of the footprint, each side
+  BakeFrame f = bake_frame(mesh, relief.mesh_up, margin, relief.layers > 0 ? 0.02 : 0.0);
   if (relief.three_views) {
     // One quad size for the three bakes, the longest extent's: at one camera distance each
     // draws the object at one scale, so a view drawn from any of them frames it alike.
     const glm::dvec3 extent = mesh.hi - mesh.lo, centre = 0.5 * (mesh.lo + mesh.hi);
-    f.side = std::max({extent.x, extent.y, extent.z, 1e-9}) * (1 + 2 * 0.04);
+    f.side = std::max({extent.x, extent.y, extent.z, 1e-9}) * (1 + 2 * margin);
     f.origin[f.axis_u] = centre[f.axis_u] - 0.5 * f.side;
     f.origin[f.axis_v] = centre[f.axis_v] - 0.5 * f.side;
   }
