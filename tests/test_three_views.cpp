@@ -78,8 +78,10 @@ std::string brick_mesh(const std::string& dir) {
   return test::write_obj(test::layer_boxes({{0.1, 0.9, 0.2, 0.4}}), dir + "/brick.obj");
 }
 
+// A sweep of the brick as a three-view impostor; `extra` follows the brick scene's own keys:
+// more of them, or further [[scene]] tables.
 std::string three_view_sweep(const std::string& mesh, const std::string& views,
-                             const std::string& extra_scene = "") {
+                             const std::string& extra = "") {
   return R"([sweep]
 name = "three-views"
 views = )" +
@@ -96,7 +98,7 @@ relief = { mesh = ")" +
 truth = "mesh"
 distance = 2.5
 light = [0.4, -0.9, 1.3]
-)" + extra_scene +
+)" + extra +
          R"([[technique]]
 name = "multilayer"
 linear_steps = 32
@@ -180,7 +182,7 @@ distance = 2.5
       test::run_sweep_in(three_view_sweep(brick_mesh(dir), "[[10, 20]]", one_view), dir);
   ResultStore store(dir + "/out/results.sqlite");
   std::map<std::string, nlohmann::json> rows;
-  for (const Cell& c : expand_cells(config)) rows[c.identity["scene"]] = *store.row(c.key);
+  for (const Cell& c : expand_cells(config)) rows[c.identity["scene"]] = store.row(c.key).value();
   const nlohmann::json &three = rows.at("brick"), &one = rows.at("brick_one_view");
   // Seen 10 degrees off its quad, the one-view impostor's footprint misses most of the object;
   // the bake nearest the view, 80 degrees above its own quad, misses little of it.
