@@ -41,10 +41,12 @@ BakeFrame relief_bake_frame(const ReliefSourceDesc& relief, const TriangleMesh& 
   if (relief.three_views) {
     // One quad size for the three bakes, the longest extent's: at one camera distance each
     // draws the object at one scale, so a view drawn from any of them frames it alike.
-    const glm::dvec3 extent = mesh.hi - mesh.lo, centre = 0.5 * (mesh.lo + mesh.hi);
-    f.side = std::max({extent.x, extent.y, extent.z, 1e-9}) * (1 + 2 * margin);
-    f.origin[f.axis_u] = centre[f.axis_u] - 0.5 * f.side;
-    f.origin[f.axis_v] = centre[f.axis_v] - 0.5 * f.side;
+    // The footprint of the mesh's bounding cube, as a cell complex has it; the depth stays
+    // this axis's own.
+    const BakeFrame cube = cell_frame(mesh, relief.mesh_up, margin);
+    f.side = cube.side;
+    f.origin[f.axis_u] = cube.origin[f.axis_u];
+    f.origin[f.axis_v] = cube.origin[f.axis_v];
   }
   return f;
 }
