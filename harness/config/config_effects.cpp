@@ -85,4 +85,53 @@ void parse_effect_options(const toml::table& t, const Src& src, const toml::node
     canon["ambient_occlusion"]["map_method"] = ao_map_method_name(s.ao.map_method);
 }
 
+void parse_scene_shadows(const toml::table& t, const Src& src, const toml::node& scene_node,
+                         SceneDesc& s, nlohmann::json& canon) {
+  const bool wanted = s.effects.has(Effect::SceneShadows);
+  const toml::node* options = t.get("shadow_map");
+  if (options && !wanted)
+    fail(src.at(*options), "scene '" + s.name +
+                               "': 'shadow_map' options are given but the scene does not ask "
+                               "for the effect (add \"scene_shadows\" to 'effects')");
+  if (!wanted) return;
+  // What the shadow map is built for: the relief on its planar base, seen from above.
+  const std::string no = "scene '" + s.name + "': scene_shadows needs ";
+  if (s.base.curved()) fail(src.at(scene_node), no + "the planar base (not a curved one)");
+  if (s.proxy == Proxy::Box || s.in_cube())
+    fail(src.at(scene_node), no + "the relief drawn on its base (not in a box proxy)");
+  if (s.impostor()) fail(src.at(scene_node), no + "a relief on its base (not an impostor)");
+  if (s.relief.reverse_cop > 0)
+    fail(src.at(scene_node), no + "the plain projection (not reverse_perspective)");
+  if (options) {
+    const toml::table* o = options->as_table();
+    if (!o)
+      fail(src.at(*options),
+           "'shadow_map' must be a table, e.g. { size = 2048, depth = \"corrected\", bias = "
+           "0.002, slope_bias = 1 }");
+    check_keys(*o, {"size", "depth", "bias", "slope_bias"}, src, "shadow_map");
+    if (auto* n = o->get("size")) s.shadow_map.size = positive_int(*n, src, "size", 16, 8192);
+    if (auto* n = o->get("bias")) s.shadow_map.bias = number_in(*n, src, "bias", 0, 1);
+    if (auto* n = o->get("slope_bias"))
+      s.shadow_map.slope_bias = number_in(*n, src, "slope_bias", 0, 100);
+    if (auto* n = o->get("depth")) {
+      const std::string d = string_of(*n, src, "depth");
+      if (d != "corrected" && d != "base")
+        fail(src.at(*n),
+             "'depth' must be \"corrected\" (the relief at its found hit's depth) or \"base\" "
+             "(at its base's), got \"" +
+                 d + "\"");
+      s.shadow_map.corrected_depth = d == "corrected";
+    }
+  }
+  try {
+    (void)light_camera(s);
+  } catch (const std::runtime_error& e) {
+    fail(src.at(t.get("light") ? *t.get("light") : scene_node), e.what());
+  }
+  canon["shadow_map"] = {{"size", s.shadow_map.size},
+                         {"depth", s.shadow_map.corrected_depth ? "corrected" : "base"},
+                         {"bias", s.shadow_map.bias},
+                         {"slope_bias", s.shadow_map.slope_bias}};
+}
+
 }  // namespace rl

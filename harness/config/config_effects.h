@@ -1,6 +1,6 @@
 #pragma once
 // The options of a [[scene]]'s effects: ambient_occlusion = { ... } (Limberger et al.,
-// Section IV). Parsing only.
+// Section IV) and shadow_map = { ... } (scene_shadows). Parsing only.
 #include <nlohmann/json.hpp>
 
 #include "config/config_toml.h"
@@ -13,5 +13,12 @@ namespace rl {
 // options into `canon` only when the scene asks for the effect, so other scenes keep their keys.
 void parse_effect_options(const toml::table& t, const Src& src, const toml::node& scene_node,
                           SceneDesc& s, nlohmann::json& canon);
+
+// Reads `shadow_map` = { size, depth, bias } of scene table `t` into s.shadow_map and checks
+// that the scene can have scene_shadows: a heightfield or multilayer relief drawn on its planar
+// base, in the plain projection, lit from above and from outside its bounds (objects included:
+// read after them). Enters the options into `canon` only when the scene asks for the effect.
+void parse_scene_shadows(const toml::table& t, const Src& src, const toml::node& scene_node,
+                         SceneDesc& s, nlohmann::json& canon);
 
 }  // namespace rl

@@ -181,8 +181,10 @@ void check_scene_combinations(const SceneDesc& s, const Src& src, const toml::no
 }
 
 void parse_framing(const toml::table& t, const Src& src, SceneDesc& s) {
-  const bool can_fill =
-      !s.base.curved() && s.proxy == Proxy::Base && s.distance == 0 && s.relief.mesh_path.empty();
+  // A fill-framed quad grows with the views (many tiles at grazing ones), where scene_shadows'
+  // shadow map must hold it whole.
+  const bool can_fill = !s.base.curved() && s.proxy == Proxy::Base && s.distance == 0 &&
+                        s.relief.mesh_path.empty() && !s.effects.has(Effect::SceneShadows);
   s.framing = can_fill ? Framing::Fill : Framing::Fit;
   if (auto* n = t.get("framing")) {
     const std::string f = string_of(*n, src, "framing");
@@ -194,7 +196,8 @@ void parse_framing(const toml::table& t, const Src& src, SceneDesc& s) {
     if (f == "fill" && !can_fill)
       fail(src.at(*n), "scene '" + s.name +
                            "': framing = \"fill\" needs the planar base drawn itself (no box "
-                           "proxy, no curved base, no baked mesh) and no 'distance'");
+                           "proxy, no curved base, no baked mesh), no 'distance' and no "
+                           "scene_shadows (its shadow map holds the quad whole)");
     s.framing = f == "fill" ? Framing::Fill : Framing::Fit;
   }
 }
@@ -239,6 +242,7 @@ const std::set<std::string> kSceneKeys = {
     "fov",
     "distance",
     "shadow_bias",
+    "shadow_map",
     "ambient",
     "diffuse",
     "specular",
@@ -358,6 +362,7 @@ ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string&
   parse_base(t, src, base_dir, s, canon, parsed.sites);
   parse_objects(t, src, base_dir, s, canon);
   parse_effect_options(t, src, node, s, canon);
+  parse_scene_shadows(t, src, node, s, canon);
   parse_meta_relief(t, src, base_dir, node, s, canon);
   parse_color_resolution(t, src, s, canon);
   apply_in_cube_scene(t, src, node, s);

@@ -7,7 +7,8 @@ namespace rl {
 
 const std::vector<Effect>& all_effects() {
   static const std::vector<Effect> effects = {Effect::SelfShadow, Effect::Silhouette,
-                                              Effect::DepthCorrect, Effect::AmbientOcclusion};
+                                              Effect::DepthCorrect, Effect::AmbientOcclusion,
+                                              Effect::SceneShadows};
   return effects;
 }
 
@@ -28,6 +29,8 @@ std::string effect_name(Effect e) {
       return "depth_correct";
     case Effect::AmbientOcclusion:
       return "ambient_occlusion";
+    case Effect::SceneShadows:
+      return "scene_shadows";
   }
   return "unknown";
 }

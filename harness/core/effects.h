@@ -15,6 +15,11 @@ enum class Effect : uint32_t {
   // Texture-space ambient occlusion (Limberger et al., Section IV): ambient light scaled by
   // the AO map at the hit; the truth samples the hemisphere with Embree.
   AmbientOcclusion = 1u << 3,
+  // Shadows among all the scene's surfaces -- the relief and the plain objects cast on each
+  // other and on themselves -- from a shadow map the light renders, the relief drawn into it at
+  // its found hit's depth (Policarpo & Oliveira 2006, Section 7; chapter 5, "Depth Correct");
+  // the truth traces a shadow ray from every visible point.
+  SceneShadows = 1u << 4,
   // Only effects something implements are declared, so `relieflab list` never advertises one
   // nothing does.
 };

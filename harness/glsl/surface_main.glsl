@@ -1,11 +1,16 @@
 // Surface pass: per fragment of the base, trace the view ray through the relief with the
 // technique's rl_intersect, shade the hit, and (only when the scene asks for self_shadow)
-// trace the shadow ray of Listing 5.3. With RL_GBUFFER it writes the G-buffer of
-// harness/core/gbuffer.h; without, colour only (the timing variant).
+// trace the shadow ray of Listing 5.3, (only for scene_shadows) look the hit up in the light's
+// shadow map. With RL_GBUFFER it writes the G-buffer of harness/core/gbuffer.h; without, colour
+// only (the timing variant). With RL_SHADOW_CASTER it is the relief drawn into that shadow map
+// from the light: the hit's depth only.
 #include "harness/glsl/relief_common.glsl"
 #include "harness/glsl/shading.glsl"
 #ifdef RL_AMBIENT_OCCLUSION
 #include "harness/glsl/ambient_occlusion.glsl"
+#endif
+#ifdef RL_SCENE_SHADOWS
+#include "harness/glsl/shadow_map.glsl"
 #endif
 
 in vec3 v_world;
@@ -54,6 +59,12 @@ vec3 rl_texture_direction(vec3 d, vec3 n) {
 }
 
 void main() {
+#if defined(RL_SHADOW_CASTER) && !defined(RL_DEPTH_CORRECT)
+  // Drawn into the shadow map at its base's depth: there is nothing to search.
+  o_color = vec4(0.0);
+  rl_count_fragment();
+  return;
+#endif
 #ifdef RL_MIPMAP
   // The footprint of this pixel on the texture, while control flow is still uniform.
   rl_uv_dx = dFdx(v_uv);
@@ -159,6 +170,11 @@ void main() {
   vec4 hit_clip = rl_view_projection * vec4(hit_world, 1.0);
   gl_FragDepth = clamp(0.5 * hit_clip.z / hit_clip.w + 0.5, 0.0, 1.0);
 #endif
+#ifdef RL_SHADOW_CASTER
+  o_color = vec4(0.0);
+  rl_count_fragment();
+  return;
+#endif
 #ifdef RL_HIT_ATTRIBUTES
   // The technique's own normal and colour of the hit (e.g. a multilayer map's layer).
   vec3 tn, albedo;
@@ -193,6 +209,16 @@ void main() {
     RlHit hl = rl_intersect(vec3(h.uv - sl.xy * h.depth, 0.0), sl);
     in_shadow = hl.hit && hl.depth < h.depth - rl_shadow_bias;
   }
+#endif
+#endif
+#ifdef RL_SCENE_SHADOWS
+  // Policarpo & Oliveira 2006, Section 7: what the light's shadow map holds -- the objects, and
+  // the relief at its found hits' depths -- shadows the hit as it does any surface.
+#ifdef RL_SHADOW_AT_BASE
+  // What a shadow map of the undisplaced surface gives: looked up where the base is drawn.
+  in_shadow = in_shadow || rl_in_scene_shadow(v_world, N);
+#else
+  in_shadow = in_shadow || rl_in_scene_shadow(hit_world, n);
 #endif
 #endif
 

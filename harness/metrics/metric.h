@@ -31,6 +31,7 @@ struct MetricInput {
   double depth_world = 1;          // world length of the relief's depth: the unit of pos_err_*
   double texel_world = 1;          // world width of one texel at this view: the unit of *_texels
   bool ambient_occlusion = false;  // the scene asked for ambient occlusion
+  bool scene_shadows = false;      // the scene asked for shadows among all its surfaces
   const GBuffer* footprint = nullptr;  // the truth's colour over pixel footprints, if asked for
 
   bool both_cover(size_t i) const { return technique.covered(i) && truth.covered(i); }

@@ -42,12 +42,13 @@ ImageMetrics measure_metrics(const MetricInput& in) {
 }
 
 ImageMetrics compare_gbuffers(const GBuffer& technique, const GBuffer& truth, double depth_world,
-                              double texel_world, bool ambient_occlusion) {
+                              double texel_world, bool ambient_occlusion, bool scene_shadows) {
   return measure_metrics({.technique = technique,
                           .truth = truth,
                           .depth_world = depth_world,
                           .texel_world = texel_world,
-                          .ambient_occlusion = ambient_occlusion});
+                          .ambient_occlusion = ambient_occlusion,
+                          .scene_shadows = scene_shadows});
 }
 
 bool measured_against_truth(const std::string& column) {

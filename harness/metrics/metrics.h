@@ -62,10 +62,11 @@ bool measured_against_truth(const std::string& column);
 // that returns another number of values than it declares columns.
 ImageMetrics measure_metrics(const MetricInput& in);
 
-// measure_metrics of the two G-buffers; `ambient_occlusion`: the scene asked for it, so the AO
-// columns are measured.
+// measure_metrics of the two G-buffers; `ambient_occlusion`, `scene_shadows`: the scene asked
+// for the effect, so its columns are measured.
 ImageMetrics compare_gbuffers(const GBuffer& technique, const GBuffer& truth, double depth_world,
-                              double texel_world, bool ambient_occlusion = false);
+                              double texel_world, bool ambient_occlusion = false,
+                              bool scene_shadows = false);
 
 double psnr_db(const GBuffer& a, const GBuffer& b);
 double ssim(const GBuffer& a, const GBuffer& b);

@@ -69,6 +69,15 @@ OpCost op_cost(const PixelOpCounts& c) {
   return out;
 }
 
+OpCost with_pass(const OpCost& frame, const OpCost& pass, double pixel_ratio) {
+  if (!(pass.counted_fragments > 0)) return frame;
+  OpCost out = frame;
+  for (int k = 0; k < kOpKinds; ++k)
+    out.warp_ops_per_px[k] += pass.warp_ops_per_px[k] * pixel_ratio;
+  out.counted_fragments += pass.counted_fragments;
+  return out;
+}
+
 OpCost OpCost::none() {
   OpCost out;
   out.warp_ops_per_px.fill(std::numeric_limits<double>::quiet_NaN());

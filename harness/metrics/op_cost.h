@@ -28,6 +28,11 @@ struct OpCost {
 
 OpCost op_cost(const PixelOpCounts& counts);
 
+// A frame's cost with that of another pass it draws first into a target of its own,
+// `pixel_ratio` times the frame's pixels (the shadow map of scene_shadows): per frame pixel, the
+// two added. A pass that shaded no fragment adds nothing.
+OpCost with_pass(const OpCost& frame, const OpCost& pass, double pixel_ratio);
+
 // The column of kind k's lockstep ops per pixel, e.g. "warp_float_ops".
 std::string warp_ops_column(int kind);
 

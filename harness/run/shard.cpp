@@ -45,6 +45,7 @@ double truth_group_cost(const SweepConfig& config, const std::vector<const Cell*
   double rays_per_pixel = 1;
   if (scene.effects.has(Effect::AmbientOcclusion)) rays_per_pixel += scene.ao.samples;
   if (scene.effects.has(Effect::SelfShadow)) rays_per_pixel += 1;
+  if (scene.effects.has(Effect::SceneShadows)) rays_per_pixel += 2;  // the relief, the objects
   // A truth ray costs about what a shaded pixel of a frame does on these machines (both are a
   // few hundred ns); each cell renders its G-buffer, warm-up and timed frames.
   double cost = pixels * rays_per_pixel;

@@ -44,6 +44,8 @@ std::unique_ptr<Asset> build_asset(const SweepConfig& config, const SceneDesc& s
     asset->truth_map =
         std::make_unique<ReliefMap>(build_relief_asset(scene, truth_res, truth_color));
   asset->objects = std::make_unique<ObjectPass>(scene.objects);
+  if (scene.effects.has(Effect::SceneShadows))
+    asset->shadow_map = std::make_unique<ShadowMapPass>(scene);
   stage("building the truth's Embree scene");
   if (scene.base.curved()) {
     // One base mesh for the GPU, the truth and the texel size.

@@ -42,11 +42,24 @@ OpCost count_ops(Technique& technique, const FrameInput& frame, int width, int h
                  int group_stride) {
   OpCountBuffer ops(width, height);
   RenderTarget target(width, height, RenderTarget::Kind::ColorOnly);
-  target.bind_and_clear();
-  ops.bind();
+  OpCost shadow_map_cost = OpCost::none();
+  PixelOpCounts counts;
   try {
     OpCountingScope counting(group_stride);
-    render_frame(technique, frame, RenderTarget::Kind::ColorOnly);
+    // The shadow map's pass first, into counts of its own size: the GPU pays for it too.
+    if (frame.shadow_map) {
+      const int size = frame.shadow_map->size();
+      OpCountBuffer shadow_ops(size, size);
+      shadow_ops.bind();
+      render_shadow_map(technique, frame);
+      PixelOpCounts shadow_counts = shadow_ops.read_back();
+      shadow_counts.group_stride = group_stride;
+      shadow_map_cost = op_cost(shadow_counts);
+    }
+    target.bind_and_clear();
+    ops.bind();
+    render_scene(technique, frame, RenderTarget::Kind::ColorOnly);
+    counts = ops.read_back();
   } catch (const GlError& e) {
     static std::set<std::string> warned;
     if (warned.insert(technique.info().name).second)
@@ -54,9 +67,10 @@ OpCost count_ops(Technique& technique, const FrameInput& frame, int width, int h
                    technique.info().name.c_str(), e.what());
     return OpCost::none();
   }
-  PixelOpCounts counts = ops.read_back();
   counts.group_stride = group_stride;
-  return op_cost(counts);
+  if (!frame.shadow_map) return op_cost(counts);
+  const double size = frame.shadow_map->size();
+  return with_pass(op_cost(counts), shadow_map_cost, size * size / (double(width) * height));
 }
 
 // The op counts of a cell's frame and its cost model's prediction. They feed the model only: a
@@ -115,7 +129,8 @@ CellMeasure measure_cell(const SweepConfig& config, const SceneDesc& scene, Asse
                    *asset.base,
                    camera,
                    scene.drawn_effects(),
-                   asset.objects.get()};
+                   asset.objects.get(),
+                   asset.shadow_map.get()};
   CellMeasure out;
   FragmentCounts counts;
   {
@@ -147,6 +162,7 @@ CellMeasure measure_cell(const SweepConfig& config, const SceneDesc& scene, Asse
                        .depth_world = scene.depth,
                        .texel_world = asset.metric_texel,
                        .ambient_occlusion = scene.effects.has(Effect::AmbientOcclusion),
+                       .scene_shadows = scene.effects.has(Effect::SceneShadows),
                        .footprint = truth.footprint.color.empty() ? nullptr : &truth.footprint});
   RenderTarget timing_target(cell.width, cell.height, RenderTarget::Kind::ColorOnly);
   out.timing = time_frames(

@@ -39,6 +39,7 @@ struct Asset {
   std::unique_ptr<GpuRelief> relief;
   std::unique_ptr<GpuBase> base;
   std::unique_ptr<ObjectPass> objects;
+  std::unique_ptr<ShadowMapPass> shadow_map;  // scene_shadows' light view, if asked for
   std::unique_ptr<SceneTruth> truth;
   double build_ms = 0;
   double texel_world = 0;  // world size of a texel on the base

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <stdexcept>
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -278,6 +280,47 @@ Camera make_camera(const SceneDesc& scene, const View& view, int width, int heig
   cam.up = camera_up(view);
   cam.near_plane = std::max(1e-3, distance - 2 * radius) * 0.5;
   cam.far_plane = distance + 4 * radius + 10 * scene.size;
+  return cam;
+}
+
+Camera light_camera(const SceneDesc& scene) {
+  // The bounds: the relief's (about the origin) and each object's sphere (a cube's corners).
+  glm::dvec3 centre(0, 0, -0.5 * scene.depth);
+  double radius = scene_radius(scene);
+  for (const SceneObject& o : scene.objects) {
+    const double r = o.shape == "cube" ? std::sqrt(3.0) * o.radius : o.radius;
+    const double d = glm::length(o.center - centre);
+    if (d + r <= radius) continue;
+    // The smallest sphere holding both.
+    const double grown = 0.5 * (radius + d + r);
+    if (d > 0) centre += (o.center - centre) * ((grown - radius) / d);
+    radius = grown;
+  }
+  const double distance = glm::length(scene.light_position - centre);
+  const auto fail = [&](const std::string& why) {
+    char at[96];
+    std::snprintf(at, sizeof at, "(%g, %g, %g)", scene.light_position.x, scene.light_position.y,
+                  scene.light_position.z);
+    throw std::runtime_error("scene '" + scene.name + "': scene_shadows: the light at " + at + " " +
+                             why);
+  };
+  if (scene.light_position.z <= 0) fail("is not above the base (z > 0)");
+  if (distance <= 1.01 * radius) {
+    char bounds[96];
+    std::snprintf(bounds, sizeof bounds, "%g of (%g, %g, %g)", radius, centre.x, centre.y,
+                  centre.z);
+    fail(std::string("lies within the scene's bounds (a sphere of radius ") + bounds +
+         "): its shadow map's view cannot hold them; move it further out");
+  }
+  Camera cam;
+  cam.eye = scene.light_position;
+  cam.target = centre;
+  const glm::dvec3 forward = (centre - cam.eye) / distance;
+  cam.up = std::abs(forward.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+  cam.fov_y_deg = 2 * glm::degrees(std::asin(radius / distance));
+  cam.near_plane = std::max(distance - radius, 1e-3 * distance);
+  cam.far_plane = distance + radius;
+  cam.width = cam.height = scene.shadow_map.size;
   return cam;
 }
 

@@ -143,6 +143,20 @@ struct SceneObject {
   glm::dvec3 albedo{0.85, 0.35, 0.2};
 };
 
+// The shadow map of scene_shadows (core/effects.h): rendered from the light, a perspective view
+// that holds the scene's bounds (the relief's slab and its objects), looked up per shaded point
+// at its nearest texel (no filtering, as the papers' shadow maps).
+struct ShadowMapDesc {
+  int size = 1024;  // texels on a side
+  // The relief drawn into it at the depth of its found hit (chapter 5, "Depth Correct"), or at
+  // its base's (what a shadow map of the undisplaced surface would hold).
+  bool corrected_depth = true;
+  // How far beyond the map's surface a point must lie to be in shadow: `bias` world units plus
+  // `slope_bias` times the surface's fall across one texel (harness/glsl/shadow_map.glsl).
+  double bias = 0.002;
+  double slope_bias = 1.0;
+};
+
 // How the camera frames a planar scene. Fit: the whole quad's bounding sphere in view (a
 // grazing view then sees a thin sliver). Fill: the relief fills the viewport at every view:
 // the quad is made long enough (more tiles) and the camera's field of view narrows with the
@@ -250,7 +264,8 @@ struct SceneDesc {
   double depth = 0.08;   // world depth of the relief (depth 1 in the map)
   bool quantize = true;  // 8-bit textures like the papers; false keeps float
   EffectSet effects;
-  AmbientOcclusionDesc ao;  // used when effects has AmbientOcclusion
+  AmbientOcclusionDesc ao;   // used when effects has AmbientOcclusion
+  ShadowMapDesc shadow_map;  // used when effects has SceneShadows
   // The effects a technique is asked to simulate: `effects`, less AO where ao.render is false
   // (the truth simulates `effects` whole).
   EffectSet drawn_effects() const {
@@ -349,6 +364,13 @@ struct Camera {
 };
 
 Camera make_camera(const SceneDesc& scene, const View& view, int width, int height);
+
+// The light's view of scene_shadows' shadow map: from the light toward the centre of the sphere
+// that holds the relief's slab and the scene's objects, its field of view just holding that
+// sphere, near and far planes tight about it; shadow_map.size texels square. Throws
+// std::runtime_error naming the scene when the light lies within the sphere or not above the
+// base (no perspective view from there holds the scene).
+Camera light_camera(const SceneDesc& scene);
 
 // Fill framing: the vertical field of view at an elevation, and how many times the scene's
 // footprint the quad must span so that every ray of views down to `min_elevation_deg` (at

@@ -44,7 +44,8 @@ SurfaceVariant ShaderTechnique::variant_of(const SceneDesc& scene) {
               scene.ao.update == AmbientOcclusionDesc::Update::Eq6 &&
               scene.ao.rescale(scene.depth) != 1.0,
           scene.meta.runtime() ? 1 + int(scene.meta.layers.size()) : 0,
-          scene.meta.runtime() ? scene.meta.ao_combine : MetaReliefDesc::AoCombine::Bake};
+          scene.meta.runtime() ? scene.meta.ao_combine : MetaReliefDesc::AoCombine::Bake, false,
+          scene.effects.has(Effect::SceneShadows) && !scene.shadow_map.corrected_depth};
 }
 
 bool ShaderTechnique::draws_back_faces(const SurfaceVariant& variant) const {
@@ -75,6 +76,9 @@ ProgramDesc ShaderTechnique::surface_program(EffectSet effects, RenderTarget::Ki
   if (draws_back_faces(variant)) d.defines["RL_TWO_SIDED"] = "1";
   if (variant.ao_eq6 && effects.has(Effect::AmbientOcclusion)) d.defines["RL_AO_EQ6"] = "1";
   if (variant.meta_layers > 0) d.defines["RL_META_LAYERS"] = std::to_string(variant.meta_layers);
+  if (variant.shadow_caster) d.defines["RL_SHADOW_CASTER"] = "1";
+  if (variant.shadow_at_base && effects.has(Effect::SceneShadows))
+    d.defines["RL_SHADOW_AT_BASE"] = "1";
   if (variant.meta_layers > 0 && effects.has(Effect::AmbientOcclusion)) {
     if (variant.meta_ao == MetaReliefDesc::AoCombine::Product)
       d.defines["RL_META_AO_PRODUCT"] = "1";
@@ -95,10 +99,16 @@ ProgramDesc ShaderTechnique::probe_program() const {
 
 void ShaderTechnique::render(const FrameInput& frame, RenderTarget::Kind target) {
   const SceneDesc& s = frame.scene;
-  const GLuint p =
-      ShaderLibrary::shared().program(surface_program(frame.effects, target, variant_of(s)));
+  SurfaceVariant variant = variant_of(s);
+  variant.shadow_caster = frame.shadow_caster;
+  const bool receives = frame.effects.has(Effect::SceneShadows) && !frame.shadow_caster;
+  if (receives && !frame.shadow_map)
+    throw std::logic_error("scene '" + s.name + "' asks for scene_shadows, but the frame of " +
+                           info().name + " has no shadow map");
+  const GLuint p = ShaderLibrary::shared().program(surface_program(frame.effects, target, variant));
   glUseProgram(p);
   set_scene_uniforms(p, s, frame.camera);
+  if (receives) frame.shadow_map->bind(p);
   const PlanarBase base = planar_base(s);
   glProgramUniform2f(p, glGetUniformLocation(p, "rl_uv_max"), float(s.tile), float(s.tile));
   set_uniform(p, "rl_eye_affine", base.texture_from_world(frame.camera.eye));

@@ -39,6 +39,10 @@ struct SurfaceVariant {
   int meta_layers = 0;     // a meta-relief combined per fetch: its layer count (RL_META_LAYERS)
   // ... with ambient_occlusion from its layers' AO maps combined per fetch (not from the bake's)
   MetaReliefDesc::AoCombine meta_ao = MetaReliefDesc::AoCombine::Bake;
+  bool shadow_caster = false;  // drawn into scene_shadows' shadow map: depth only
+  // scene_shadows with shadow_map.depth = "base": the relief casts and receives at its base
+  // surface, as an undisplaced surface would.
+  bool shadow_at_base = false;
 };
 
 class ShaderTechnique : public Technique {

@@ -13,7 +13,16 @@
 namespace rl {
 
 void render_frame(Technique& technique, const FrameInput& frame, RenderTarget::Kind target) {
-  if (frame.objects) frame.objects->draw(frame.scene, frame.camera, target);
+  render_shadow_map(technique, frame);
+  render_scene(technique, frame, target);
+}
+
+void render_shadow_map(Technique& technique, const FrameInput& frame) {
+  if (frame.shadow_map) frame.shadow_map->render(technique, frame);
+}
+
+void render_scene(Technique& technique, const FrameInput& frame, RenderTarget::Kind target) {
+  if (frame.objects) frame.objects->draw(frame.scene, frame.camera, target, frame.shadow_map);
   technique.render(frame, target);
 }
 

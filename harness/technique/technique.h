@@ -28,6 +28,7 @@
 #include "technique/contract.h"
 #include "technique/draws.h"
 #include "technique/object_pass.h"
+#include "technique/shadow_map_pass.h"
 
 namespace rl {
 
@@ -70,6 +71,11 @@ struct FrameInput {
   const Camera& camera;
   EffectSet effects;                    // exactly the scene's requested effects
   const ObjectPass* objects = nullptr;  // the scene's plain objects, if any
+  // scene_shadows: the light's shadow map, drawn before the frame; the relief and the objects
+  // receive its shadows.
+  const ShadowMapPass* shadow_map = nullptr;
+  // Drawing the relief into the shadow map (`camera` is the light's): only the depth counts.
+  bool shadow_caster = false;
 };
 
 // A tangent-space ray for ray-probe mode: (u, v, depth)(t) = origin + t * direction, with
@@ -152,9 +158,14 @@ class Described : public Base {
   }
 };
 
-// One frame of a cell into the bound target: the scene's objects, then the technique's relief
-// (which, with depth_correct, resolves visibility against them per pixel).
+// One frame of a cell into the bound target: the shadow map where the scene has one
+// (render_shadow_map), then the scene itself (render_scene).
 void render_frame(Technique& technique, const FrameInput& frame, RenderTarget::Kind target);
+// The light's shadow map of scene_shadows, if the frame has one; nothing otherwise.
+void render_shadow_map(Technique& technique, const FrameInput& frame);
+// The scene's objects, then the technique's relief (which, with depth_correct, resolves
+// visibility against them per pixel), each receiving the shadow map's shadows if it has one.
+void render_scene(Technique& technique, const FrameInput& frame, RenderTarget::Kind target);
 
 struct TechniqueEntry {
   TechniqueInfo info;

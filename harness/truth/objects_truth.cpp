@@ -48,12 +48,12 @@ ObjectHit ObjectsTruth::intersect(const glm::dvec3& origin, const glm::dvec3& di
 }
 
 void write_object_pixel(GBuffer& g, size_t i, const ObjectHit& h, const SceneDesc& scene,
-                        const glm::dvec3& view_dir) {
+                        const glm::dvec3& view_dir, bool in_shadow) {
   const glm::dvec3 to_light = glm::normalize(scene.light_position - h.position);
-  const glm::dvec3 c = shade(scene.material, h.albedo, h.normal, to_light, -view_dir, false);
+  const glm::dvec3 c = shade(scene.material, h.albedo, h.normal, to_light, -view_dir, in_shadow);
   g.color[i] = glm::vec4(glm::vec3(c), 1.0f);
   g.position[i] = glm::vec4(glm::vec3(h.position), 1.0f);
-  g.normal[i] = glm::vec4(glm::vec3(h.normal), 0.0f);
+  g.normal[i] = glm::vec4(glm::vec3(h.normal), in_shadow ? 1.0f : 0.0f);
   g.hit[i] = glm::vec4(0.0f, 0.0f, -1.0f, 0.0f);
   const glm::dvec3 ambient = scene.material.ambient * h.albedo;
   // Meshes traced as they are drawn: only Embree's rounding, at the scene's scale.

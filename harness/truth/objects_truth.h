@@ -33,9 +33,9 @@ class ObjectsTruth {
 };
 
 // Writes an object hit into pixel i as the object shader does (harness/glsl/object.frag):
-// shaded colour, position, normal, and layer -1 in the hit channel (metrics tell objects
-// from relief by it).
+// shaded colour (in shadow or not: scene_shadows), position, normal with the shadow flag, and
+// layer -1 in the hit channel (metrics tell objects from relief by it).
 void write_object_pixel(GBuffer& g, size_t i, const ObjectHit& h, const SceneDesc& scene,
-                        const glm::dvec3& view_dir);
+                        const glm::dvec3& view_dir, bool in_shadow = false);
 
 }  // namespace rl

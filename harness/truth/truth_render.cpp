@@ -58,8 +58,9 @@ constexpr double kFloor = 1e-4;     // depth units within which a hit counts as 
 
 // What a truth render counts besides its rays, from every core.
 struct TruthCounters {
-  ShardedCounter ao_rays;    // hemisphere directions sampled
-  ShardedCounter ao_traced;  // those traced (the truth counts them as shadow rays)
+  ShardedCounter ao_rays;             // hemisphere directions sampled
+  ShardedCounter ao_traced;           // those traced (the truth counts them as shadow rays)
+  ShardedCounter object_shadow_rays;  // scene_shadows' rays against the objects
   std::atomic<long> unresolved{0};
   std::atomic<long> beyond_quad{0};  // TruthStats::beyond_quad
 };
@@ -259,15 +260,48 @@ bool planar_in_shadow(const TruthSurface& truth, const PlanarBase& base, const S
   return truth.occluded(h.point, l, t_start, std::min(1.0, -h.point.z / l.z));
 }
 
+// scene_shadows: whether the way from world point `p` to the light meets a scene object.
+bool objects_block_light(const ObjectsTruth* objects, const SceneDesc& scene, const glm::dvec3& p,
+                         TruthCounters& counters) {
+  if (!objects || objects->empty()) return false;
+  const glm::dvec3 to_light = scene.light_position - p;
+  const double reach = glm::length(to_light);
+  const double start = 1e-4 * scene.size;  // off the surface the point lies on
+  if (!(reach > 2 * start)) return false;
+  ++counters.object_shadow_rays;
+  const glm::dvec3 dir = to_light / reach;
+  return objects->intersect(p + dir * start, dir, reach - 2 * start).hit;
+}
+
+// scene_shadows: whether the planar relief blocks the light's way to world point `p` (an
+// object's, or the relief's own) as the light sees it -- through its quad, as every eye does:
+// the light's ray toward p enters the relief's depth range through the quad's top and meets
+// the surface before p (the shadow map holds exactly that; light that would come in through
+// the depth range's sides, under the quad's edge, meets no relief, as no eye sees any there).
+bool relief_blocks_light(const TruthSurface& truth, const PlanarBase& base, const SceneDesc& scene,
+                         double bottom, const glm::dvec3& p) {
+  const double reach = glm::length(p - scene.light_position);
+  const glm::dvec3 o = base.texture_from_world(scene.light_position);
+  const glm::dvec3 d = base.texture_direction((p - scene.light_position) / reach);  // t: world
+  if (!(d.z > 0)) return false;
+  const double t_top = (0.0 - o.z) / d.z - kAboveTop / d.z;
+  const glm::dvec3 entry = o + d * t_top;
+  if (entry.x < 0 || entry.y < 0 || entry.x > scene.tile || entry.y > scene.tile) return false;
+  // Up to a hair before p, and no deeper than the relief goes.
+  const double t_end = std::min(reach - 1e-4 * scene.size, (bottom - o.z) / d.z);
+  return t_end > t_top && truth.occluded(entry, d, 0.0, t_end - t_top);
+}
+
 // The loop every truth render shares: one camera ray per pixel, on all cores; the scene's plain
 // objects, where one lies in front of the relief's hit; the ray counts. The render's own part,
 // `trace(g, i, eye, dir, in_front)`, traces the relief and writes pixel i, after asking
 // `in_front(distance)`, which writes the object pixel when an object lies nearer than the
-// relief's hit (any distance where it missed) and says so.
-template <typename Truth, typename Trace>
+// relief's hit (any distance where it missed) and says so; `object_in_shadow(hit)` says whether
+// that object point is in shadow (scene_shadows).
+template <typename Truth, typename Trace, typename ObjectInShadow>
 GBuffer trace_pixels(const Truth& truth, const SceneDesc& scene, const Camera& camera,
                      const ObjectsTruth* objects, AoTruthCache* ao_cache, TruthStats* stats,
-                     TruthCounters& counters, Trace trace) {
+                     TruthCounters& counters, Trace trace, ObjectInShadow object_in_shadow) {
   const auto start = std::chrono::steady_clock::now();
   const uint64_t primary0 = truth.primary_rays(), shadow0 = truth.shadow_rays();
   const size_t ao_reused0 = ao_cache ? ao_cache->reused() : 0;
@@ -282,7 +316,7 @@ GBuffer trace_pixels(const Truth& truth, const SceneDesc& scene, const Camera& c
           auto in_front = [&](double relief_distance) {
             if (!objects) return false;
             const ObjectHit oh = objects->intersect(eye, dir, relief_distance);
-            if (oh.hit) write_object_pixel(g, i, oh, scene, dir);
+            if (oh.hit) write_object_pixel(g, i, oh, scene, dir, object_in_shadow(oh));
             return oh.hit;
           };
           trace(g, i, eye, dir, in_front);
@@ -292,7 +326,8 @@ GBuffer trace_pixels(const Truth& truth, const SceneDesc& scene, const Camera& c
   if (stats) {
     stats->trace_ms = ms_since(start);
     stats->primary_rays = truth.primary_rays() - primary0;
-    stats->shadow_rays = truth.shadow_rays() - shadow0 - counters.ao_traced.load();
+    stats->shadow_rays = truth.shadow_rays() - shadow0 - counters.ao_traced.load() +
+                         counters.object_shadow_rays.load();
     stats->ao_rays = counters.ao_rays.load();
     stats->ao_cached_px = ao_cache ? ao_cache->reused() - ao_reused0 : 0;
     stats->unresolved = counters.unresolved.load();
@@ -312,6 +347,9 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
                      const ObjectsTruth* objects, AoTruthCache* ao_cache) {
   const PlanarBase base = planar_base(scene);
   const bool shadows = effects.has(Effect::SelfShadow);
+  // scene_shadows: every surface shadows every other and itself -- the relief as the light sees
+  // it through its quad (relief_blocks_light), and the objects.
+  const bool scene_shadows = effects.has(Effect::SceneShadows);
   const bool ambient_occlusion = effects.has(Effect::AmbientOcclusion);
   // Rays end just below the deepest point of the map (not clamped at 1: a map reaching depth 1
   // would put its deepest hits exactly on the end of the ray, where rounding can lose them).
@@ -346,7 +384,10 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
     const glm::dvec2 uv(h.point.x, h.point.y);
     const Surface surface = planar_surface(base, map, h, uv, dir);
     const glm::dvec3 to_light = glm::normalize(scene.light_position - world);
-    const bool in_shadow = shadows && planar_in_shadow(truth, base, scene, h, world);
+    const bool in_shadow =
+        (shadows && planar_in_shadow(truth, base, scene, h, world)) ||
+        (scene_shadows && (relief_blocks_light(truth, base, scene, bottom, world) ||
+                           objects_block_light(objects, scene, world, counters)));
     AoEstimate ao;
     if (ambient_occlusion) {
       // Hemisphere rays from the hit up to where they leave the relief at the top plane
@@ -372,7 +413,12 @@ GBuffer render_truth(const TruthSurface& truth, const ReliefMap& map, const Scen
         // supply its own (as DisplacedHit does).
         truth_hit_bound(vertical_world, rounding_world, base.normal(), n, n, dir, world));
   };
-  return trace_pixels(truth, scene, camera, objects, ao_cache, stats, counters, trace);
+  auto object_in_shadow = [&](const ObjectHit& oh) {
+    return scene_shadows && (objects_block_light(objects, scene, oh.position, counters) ||
+                             relief_blocks_light(truth, base, scene, bottom, oh.position));
+  };
+  return trace_pixels(truth, scene, camera, objects, ao_cache, stats, counters, trace,
+                      object_in_shadow);
 }
 
 namespace {
@@ -443,7 +489,10 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
                                        n, dir, h.position) +
                            off_ray);
   };
-  return trace_pixels(truth, scene, camera, objects, ao_cache, stats, counters, trace);
+  // scene_shadows is refused on curved bases (config/config_effects.h).
+  auto object_in_shadow = [](const ObjectHit&) { return false; };
+  return trace_pixels(truth, scene, camera, objects, ao_cache, stats, counters, trace,
+                      object_in_shadow);
 }
 
 }  // namespace

@@ -17,7 +17,8 @@ class ConeRelaxed final : public Described<ConeRelaxed, ShaderTechnique> {
             .citation =
                 "Policarpo & Oliveira 2007, 'Relaxed Cone Stepping for Relief Mapping', GPU Gems "
                 "3, chapter 18; conservative cones: Dummer 2006, 'Cone Step Mapping'",
-            .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
+            .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion,
+                        Effect::SceneShadows},
             .params = {{.name = "cone_steps",
                         .kind = ParamKind::Int,
                         .default_value = 32,

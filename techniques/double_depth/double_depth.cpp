@@ -16,7 +16,7 @@ class DoubleDepth final : public Described<DoubleDepth, ShaderTechnique> {
             .citation =
                 "Book chapter 5, 'Single RTM with Double Depth values (restricted 3D "
                 "objects)', Figures 5.14-5.15 (after Angel & Christ)",
-            .effects = {Effect::SelfShadow, Effect::DepthCorrect},
+            .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::SceneShadows},
             .params = {linear_steps_param(
                            32, "linear search samples down to depth 1 (Listing 5.3's search)"),
                        binary_steps_param(5, "binary search refinements (Listing 5.3: 5)")},

@@ -12,7 +12,8 @@ class MaxMipmap final : public Described<MaxMipmap, QuadtreeTechnique> {
             .citation =
                 "Tevs, Ihrke & Seidel 2008, 'Maximum Mipmaps for Fast, Accurate, and Scalable "
                 "Dynamic Height Field Rendering', I3D 2008",
-            .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
+            .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion,
+                        Effect::SceneShadows},
             .params = {},
             .draws = {.proxies = {Proxy::Base, Proxy::Box}},
             .contract = {

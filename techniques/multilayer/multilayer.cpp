@@ -18,7 +18,8 @@ class Multilayer final : public Described<Multilayer, ShaderTechnique> {
         .citation =
             "Policarpo & Oliveira 2006, 'Relief Mapping of Non-Height-Field Surface Details', "
             "Sections 3.1-3.2, Algorithms 1-2, Appendix A",
-        .effects = {Effect::SelfShadow, Effect::Silhouette, Effect::DepthCorrect},
+        .effects = {Effect::SelfShadow, Effect::Silhouette, Effect::DepthCorrect,
+                    Effect::SceneShadows},
         .params = {linear_steps_param(32, "linear search samples down to depth 1 (Algorithm 1)"),
                    binary_steps_param(5, "binary search refinements (Algorithm 2; Appendix A: 5)"),
                    {.name = "linear_filter",

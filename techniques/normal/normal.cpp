@@ -12,7 +12,7 @@ class NormalMapping final : public Described<NormalMapping, ShaderTechnique> {
             .citation =
                 "Book chapter 5, 'Parallax mapping' and Figure 5.9 (the normal-map baseline); "
                 "Chapter 3 bump mapping",
-            .effects = {Effect::DepthCorrect, Effect::AmbientOcclusion},
+            .effects = {Effect::DepthCorrect, Effect::AmbientOcclusion, Effect::SceneShadows},
             .params = {},
             .draws = {.reads = {Representation::Heightfield, Representation::Layers,
                                 Representation::MetaRuntime}},

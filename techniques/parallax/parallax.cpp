@@ -11,7 +11,7 @@ class ParallaxMapping final : public Described<ParallaxMapping, ShaderTechnique>
         .name = "parallax",
         .title = "Parallax (offset) mapping",
         .citation = "Book chapter 5, 'Parallax mapping', Listing 5.1 (after Kaneko et al. 2001)",
-        .effects = {Effect::DepthCorrect, Effect::AmbientOcclusion},
+        .effects = {Effect::DepthCorrect, Effect::AmbientOcclusion, Effect::SceneShadows},
         .params =
             {{.name = "offset_limiting",
               .kind = ParamKind::Bool,

@@ -13,7 +13,7 @@ class ParallaxOcclusion final : public Described<ParallaxOcclusion, ShaderTechni
             .citation =
                 "Tatarchuk 2006, 'Dynamic Parallax Occlusion Mapping with Approximate "
                 "Soft Shadows', I3D 2006",
-            .effects = {Effect::DepthCorrect, Effect::AmbientOcclusion},
+            .effects = {Effect::DepthCorrect, Effect::AmbientOcclusion, Effect::SceneShadows},
             .params = {{.name = "min_samples",
                         .kind = ParamKind::Int,
                         .default_value = 8,

@@ -18,7 +18,8 @@ class ReliefMapping final : public Described<ReliefMapping, ShaderTechnique> {
         .citation =
             "Book chapter 5, 'Relief Texture mapping', Listings 5.3 and 5.4 "
             "(Policarpo, Oliveira & Comba 2005)",
-        .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
+        .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion,
+                    Effect::SceneShadows},
         .params =
             {linear_steps_param(
                  10,

@@ -12,7 +12,8 @@ class ReliefExact final : public Described<ReliefExact, ShaderTechnique> {
             .citation =
                 "Baboud & Decoret 2006, Section 3.3 'Rasterization-based intersection' "
                 "(2D Amanatides & Woo 1987)",
-            .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
+            .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion,
+                        Effect::SceneShadows},
             .params = {},
             .draws = {.proxies = {Proxy::Base, Proxy::Box}},
             .contract = {

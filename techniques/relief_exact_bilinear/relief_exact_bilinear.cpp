@@ -13,7 +13,8 @@ class ReliefExactBilinear final : public Described<ReliefExactBilinear, ShaderTe
         .citation =
             "Beyond Baboud & Decoret 2006, Section 3.3: solves the saddle case of their "
             "Figure 3 exactly",
-        .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
+        .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion,
+                    Effect::SceneShadows},
         .params = {},
         .draws = {.proxies = {Proxy::Base, Proxy::Box}},
         .contract = {.answer = Answer::Exact,

@@ -13,7 +13,8 @@ class ReliefHierarchicalExact final : public Described<ReliefHierarchicalExact, 
         .citation =
             "Beyond the published work: Tevs, Ihrke & Seidel 2008's maximum-mipmap traversal "
             "over the bilinear cells, with relief_exact_bilinear's exact solve at level 0",
-        .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
+        .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion,
+                    Effect::SceneShadows},
         // Defaults: the fastest setting in GPU time by the H200's cost model
         // (results/exact-at-guess-cost); the packed blocks save fetches and cost more time.
         .params = {{.name = "start_level",

@@ -19,7 +19,8 @@ class ReliefRobust final : public Described<ReliefRobust, ShaderTechnique> {
         .citation =
             "Baboud & Decoret 2006, Sections 3.4-3.5 (safety radius, robust binary search, "
             "Figures 5-8, 12)",
-        .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
+        .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion,
+                    Effect::SceneShadows},
         .params =
             {{.name = "binary_steps",
               .kind = ParamKind::Int,

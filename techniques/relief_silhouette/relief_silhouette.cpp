@@ -16,7 +16,7 @@ class ReliefSilhouette final : public Described<ReliefSilhouette, ShaderTechniqu
             "Book chapter 5, 'Silhouette edges and Relief Texture mapping', Listings 5.5-5.7, "
             "Equations 5.1-5.3 (Oliveira & Policarpo 2005)",
         .effects = {Effect::Silhouette, Effect::SelfShadow, Effect::DepthCorrect,
-                    Effect::AmbientOcclusion},
+                    Effect::AmbientOcclusion, Effect::SceneShadows},
         .params =
             {linear_steps_param(10, "linear search samples over [0, t_max] (Listing 5.6: 10)"),
              binary_steps_param(

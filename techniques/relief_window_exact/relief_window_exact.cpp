@@ -22,7 +22,8 @@ class ReliefWindowExact final : public Described<ReliefWindowExact, ShaderTechni
             "Beyond the published work: the empty-space skipping of Tevs, Ihrke & "
             "Seidel 2008's maximum mipmaps without node alignment, over the bilinear "
             "cells, with relief_exact_bilinear's exact solve",
-        .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion},
+        .effects = {Effect::SelfShadow, Effect::DepthCorrect, Effect::AmbientOcclusion,
+                    Effect::SceneShadows},
         .params = {{.name = "start_level",
                     .kind = ParamKind::Int,
                     .default_value = 2,

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <random>
 #include <sstream>
 
@@ -65,14 +66,17 @@ Measured measure(const SceneDesc& scene, const std::string& technique, const Par
   m.truth = truth.render(map, scene, camera, scene.effects, &m.truth_stats);
   auto t = TechniqueRegistry::instance().create(technique, params, "test");
   t->prepare_scene(scene, map);
-  FrameInput frame{scene, map, relief, base, camera, scene.effects, &objects};
+  std::unique_ptr<ShadowMapPass> shadow_map;
+  if (scene.effects.has(Effect::SceneShadows)) shadow_map = std::make_unique<ShadowMapPass>(scene);
+  FrameInput frame{scene, map, relief, base, camera, scene.effects, &objects, shadow_map.get()};
   RenderTarget target(size, size, RenderTarget::Kind::GBuffer);
   target.bind_and_clear();
   render_frame(*t, frame, RenderTarget::Kind::GBuffer);
   target.read_back(m.technique);
   target.read_back_costs(m.counts);
   m.metrics = compare_gbuffers(m.technique, m.truth, scene.depth, texel_world(scene, res),
-                               scene.effects.has(Effect::AmbientOcclusion));
+                               scene.effects.has(Effect::AmbientOcclusion),
+                               scene.effects.has(Effect::SceneShadows));
   return m;
 }
 
