@@ -14,7 +14,7 @@ namespace rl {
 void parse_effect_options(const toml::table& t, const Src& src, const toml::node& scene_node,
                           SceneDesc& s, nlohmann::json& canon);
 
-// Reads `shadow_map` = { size, depth, bias } of scene table `t` into s.shadow_map and checks
+// Reads `shadow_map` = { size, depth, bias, slope_bias } of scene table `t` into s.shadow_map and checks
 // that the scene can have scene_shadows: a heightfield or multilayer relief drawn on its planar
 // base, in the plain projection, lit from above and from outside its bounds (objects included:
 // read after them). Enters the options into `canon` only when the scene asks for the effect.

@@ -31,6 +31,7 @@ bool rl_in_scene_shadow(vec3 world, vec3 n) {
   float distance = dot(world - rl_light_eye, rl_light_forward);
   float cos_light = clamp(abs(dot(n, normalize(rl_light_eye - world))), 0.05, 1.0);
   float slope = sqrt(1.0 - cos_light * cos_light) / cos_light;
-  float bias = rl_shadow_map_bias + rl_shadow_map_slope_bias * rl_shadow_map_texel * distance * slope;
+  float texel_world = rl_shadow_map_texel * distance;
+  float bias = rl_shadow_map_bias + rl_shadow_map_slope_bias * texel_world * slope;
   return distance > stored + bias;
 }
