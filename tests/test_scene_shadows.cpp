@@ -134,6 +134,39 @@ TEST(SceneShadows, WithoutTheEffectNoShadowMapCodeNoShadowRays) {
   EXPECT_FALSE(m.metrics.has("relief_shadow_disagree_pct"));
 }
 
+TEST(SceneShadows, HostileLightsAndMapsStayFiniteForEveryTechnique) {
+  // A light grazing the base from afar, one a thousand units off, and a 16-texel map: every
+  // technique that declares the effect (one added later included) draws finite pixels with a
+  // shadow flag of 0 or 1, and the truth traces its shadow rays.
+  struct Hostile {
+    const char* name;
+    glm::dvec3 light;
+    int size;
+  };
+  const Hostile cases[] = {{"grazing", {6.0, 0.5, 0.08}, 1024},
+                           {"far", {900.0, -300.0, 900.0}, 1024},
+                           {"tiny map", {0.6, -0.4, 1.6}, 16}};
+  int drawn = 0;
+  for (const Hostile& c : cases) {
+    SceneDesc scene = sphere_over("pyramids", 0.15, c.light, 0.14, 0.12);
+    scene.shadow_map.size = c.size;
+    for (const std::string& name : TechniqueRegistry::instance().names()) {
+      const TechniqueInfo& info = TechniqueRegistry::instance().find(name)->info;
+      if (!info.effects.has(Effect::SceneShadows) || !cannot_render(info, scene).empty()) continue;
+      SCOPED_TRACE(std::string(c.name) + " light, " + name);
+      const test::Measured m = test::measure(scene, name, {}, View{40, 30}, 48);
+      EXPECT_EQ(m.metrics.at("nonfinite_px"), 0);
+      EXPECT_GT(m.truth_stats.shadow_rays, 0u);
+      for (size_t i = 0; i < m.technique.size(); ++i) {
+        const float flag = m.technique.normal[i].w;
+        ASSERT_TRUE(flag == 0.0f || flag == 1.0f) << "pixel " << i << ": " << flag;
+      }
+      ++drawn;
+    }
+  }
+  EXPECT_GE(drawn, 3 * 14);
+}
+
 TEST(SceneShadows, AShadowMapPassAddsItsOpsPerFramePixel) {
   OpCost frame, pass;
   frame.warp_ops_per_px.fill(2.0);
