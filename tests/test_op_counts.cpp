@@ -14,6 +14,9 @@
 #include "gl/shader_library.h"
 #include "gl/spirv_op_counts.h"
 #include "metrics/op_cost.h"
+#include "relief/procedural.h"
+#include "support/test_support.h"
+#include "technique/technique.h"
 
 namespace rl {
 namespace {
@@ -137,6 +140,37 @@ TEST(OpCounts, AStridedCostIsTheMeanOfTheGroupsItCounted) {
   const OpCost cost = op_cost(c);
   EXPECT_DOUBLE_EQ(cost.warp_ops_per_px[0], 10.0);
   EXPECT_DOUBLE_EQ(cost.counted_fragments, 32.0);
+}
+
+TEST(OpCounts, AProbePassCountsEachRayAtItsPixel) {
+  // A ray-probe pass in its op-counting form writes each ray's ops at the ray's pixel (rows of
+  // up to 1024 rays): relief's search reads the map through RL_FETCH alone, so each ray's fetch
+  // ops are its own fetches plus the two reads of its origin and direction.
+  const ReliefMap map = make_procedural("sines", 32, {}, 10.0, "test");
+  const std::vector<ProbeRay> rays =
+      test::as_probe_rays(test::random_tangent_rays(1500, 20, 80, 0.08, 5, 0.0));
+  const ParamValues params = {{"linear_steps", 16}, {"binary_steps", 4}};
+  const std::vector<ProbeHit> hits = test::probe("relief", params, map, rays);
+  GlContext::shared();
+  GpuRelief relief(map);
+  auto t = TechniqueRegistry::instance().create("relief", params, "test");
+  t->prepare(map);
+  OpCountBuffer ops(1024, 2);
+  ops.bind();
+  {
+    OpCountingScope counting(1);
+    (void)t->probe(map, relief, rays, glm::dvec2(0.08));
+  }
+  const PixelOpCounts counts = ops.read_back();
+  for (size_t i = 0; i < 2048; ++i) {
+    const int x = int(i % 1024), y = int(i / 1024);
+    if (i >= rays.size()) {
+      EXPECT_EQ(counts.fragments[i], 1u) << "padding pixel " << i;  // shaded, no ray
+      continue;
+    }
+    ASSERT_EQ(counts.fragments[i], 1u) << "ray " << i;
+    EXPECT_EQ(at(counts, OpKind::Fetch, x, y), uint32_t(hits[i].fetches + 2)) << "ray " << i;
+  }
 }
 
 TEST(OpCounts, InstructionsAreClassifiedByKindAndWidth) {
