@@ -4,7 +4,7 @@
 # on this machine's renderer, priced by the NVIDIA H200 cost model, checked against the encoded
 # surface), then its digest and the README's verdicts. About a minute on 2 cores; run it on an
 # idle machine (the llvmpipe times are wall clock).
-#   scripts/secondary-rays-rows.sh [--meshes bunny,teapot,dragon] [--viewport 512] [--runs 5]
+#   scripts/secondary-rays-rows.sh [--meshes bunny,teapot,dragon] [--viewport 512] [--runs 7]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ -x build/bench/secondary_rays ] || cmake --build build -j"$(nproc)" --target secondary_rays
