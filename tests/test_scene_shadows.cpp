@@ -12,6 +12,8 @@
 #include "gl/context.h"
 #include "gl/shader_library.h"
 #include "metrics/op_cost.h"
+#include "run/cells.h"
+#include "run/memory_estimate.h"
 #include "support/test_support.h"
 #include "technique/shader_technique.h"
 
@@ -165,6 +167,30 @@ TEST(SceneShadows, HostileLightsAndMapsStayFiniteForEveryTechnique) {
     }
   }
   EXPECT_GE(drawn, 3 * 14);
+}
+
+TEST(SceneShadows, TheMemoryEstimateCountsTheShadowMap) {
+  auto estimate = [](const std::string& shadows) {
+    const std::string text = R"([sweep]
+name = "t"
+elevations = [45]
+viewports = [16]
+[[technique]]
+name = "relief"
+[[scene]]
+name = "lit"
+relief = { procedural = "sines", resolution = 64 }
+light = [0.6, -0.4, 1.6]
+)" + shadows;
+    const SweepConfig config = parse_sweep_config(text, "t.toml", ".");
+    return estimate_cell_memory(config, expand_cells(config).front());
+  };
+  const MemoryEstimate none = estimate("");
+  const MemoryEstimate big =
+      estimate("effects = [\"scene_shadows\"]\nshadow_map = { size = 8192 }\n");
+  // Its depth and, while its pass is counted, its op counts: 36 bytes a texel.
+  EXPECT_GE(big.bytes - none.bytes, 8192.0 * 8192.0 * 36);
+  EXPECT_NE(big.what.find("shadow map"), std::string::npos) << big.what;
 }
 
 TEST(SceneShadows, AShadowMapPassAddsItsOpsPerFramePixel) {

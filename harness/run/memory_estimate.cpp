@@ -14,6 +14,8 @@ constexpr double kBytesPerPixel = 300;      // 2 G-buffers of 5 vec4 + targets +
 constexpr double kBytesPerTexel = 100;      // map, colour, GPU copies, mip and AO levels
 constexpr double kBytesPerCellTexel = 20;   // distance, normal and colour per face texel
 constexpr double kFacesPerSurfaceCell = 3;  // domain faces of a grey cell, at most
+// scene_shadows' map: its depth, and the op counts of its pass while they are counted.
+constexpr double kBytesPerShadowTexel = 4 + 32;
 
 std::string gib(double bytes) {
   char text[32];
@@ -63,9 +65,15 @@ MemoryEstimate estimate_cell_memory(const SweepConfig& config, const Cell& cell)
     const double n = r.cells.grid > 0 ? r.cells.grid : r.cells.grid_max;
     cells = 6 * n * n * kFacesPerSurfaceCell * texels * kBytesPerCellTexel;  // texels per face
   }
+  const double shadow_map =
+      scene.effects.has(Effect::SceneShadows)
+          ? double(scene.shadow_map.size) * scene.shadow_map.size * kBytesPerShadowTexel
+          : 0;
   MemoryEstimate e;
-  e.bytes = viewport + maps + cells;
-  if (cells >= viewport && cells >= maps)
+  e.bytes = viewport + maps + cells + shadow_map;
+  if (shadow_map >= viewport && shadow_map >= maps && shadow_map >= cells)
+    e.what = "its shadow map (" + gib(shadow_map) + ")";
+  else if (cells >= viewport && cells >= maps)
     e.what = "its cell complex's maps (" + gib(cells) + ")";
   else if (maps >= viewport)
     e.what = "its relief maps (" + gib(maps) + ")";

@@ -20,8 +20,9 @@ struct MemoryEstimate {
 // The peak of one cell: the technique's and the truth's G-buffers and the render targets
 // (about 300 bytes a pixel), the relief map on the CPU and the GPU (about 100 bytes a texel,
 // per heightfield face), and a cell complex's domain-face maps (about 20 bytes a texel, an
-// upper bound on the faces a surface can cross: 6 N^2 cells with 3 faces each). An upper
-// bound in the common case, not a measurement.
+// upper bound on the faces a surface can cross: 6 N^2 cells with 3 faces each), and
+// scene_shadows' map (36 bytes a texel with its op counts). An upper bound in the common case,
+// not a measurement.
 MemoryEstimate estimate_cell_memory(const SweepConfig& config, const Cell& cell);
 
 // The machine's physical memory in bytes (0 when unknown).
