@@ -2,7 +2,8 @@
 // Section 7; chapter 5, "Depth Correct"): the truth's shadow of a sphere on a flat relief against
 // its closed form, the shadow map's against the truth's on displaced relief (at the hits' depth
 // and at the base's), the relief's shadow on an object, and that a scene without the effect
-// compiles no shadow-map code, draws no shadow map and traces no shadow ray.
+// compiles no shadow-map code, draws no shadow map and traces no shadow ray; and on a curved
+// base.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -106,6 +107,38 @@ TEST(SceneShadows, TheReliefShadowsAnObjectSunkIntoIt) {
   EXPECT_GT(by_relief, 50);
   EXPECT_GT(agreed, 0.8 * by_relief);
   EXPECT_LT(m.metrics.at("object_shadow_disagree_pct"), 10.0);
+}
+
+TEST(SceneShadows, OnACurvedBaseTheShadowFollowsTheDisplacedSurface) {
+  // Bricks on a sphere, a small sphere beside it lit from beyond: its shadow falls on the bricks
+  // (the world-space truth's shadow rays from the relief and from the object), and the map at
+  // the hits' depth agrees with the truth where the one at the base lights the mortar.
+  SceneDesc scene = test::curved_scene("sphere", "bricks", 256, 0.04);
+  scene.tile = 4;
+  scene.light_position = {1.2, -0.8, 1.4};
+  SceneObject ball;
+  ball.center = {0.55, -0.35, 0.3};
+  ball.radius = 0.12;
+  scene.objects = {ball};
+  scene.effects = {Effect::DepthCorrect, Effect::SceneShadows};
+  const test::Measured corrected =
+      test::measure(scene, "relief_exact_bilinear", {}, View{50, 330}, 160);
+  scene.shadow_map.corrected_depth = false;
+  const test::Measured base = test::measure(scene, "relief_exact_bilinear", {}, View{50, 330}, 160);
+  long relief_shadowed = 0, object_px = 0;
+  for (size_t i = 0; i < corrected.truth.size(); ++i) {
+    if (!corrected.truth.covered(i)) continue;
+    if (shows_object(corrected.truth, i))
+      ++object_px;
+    else
+      relief_shadowed += corrected.truth.shadowed(i);
+  }
+  EXPECT_GT(object_px, 100);
+  EXPECT_GT(relief_shadowed, 300);
+  EXPECT_GT(corrected.truth_stats.shadow_rays, corrected.truth_stats.primary_rays);
+  EXPECT_LT(corrected.metrics.at("relief_shadow_disagree_pct"), 2.0);
+  EXPECT_GT(base.metrics.at("relief_shadow_disagree_pct"),
+            1.5 * corrected.metrics.at("relief_shadow_disagree_pct"));
 }
 
 TEST(SceneShadows, WithoutTheEffectNoShadowMapCodeNoShadowRays) {

@@ -94,9 +94,8 @@ void parse_scene_shadows(const toml::table& t, const Src& src, const toml::node&
                                "': 'shadow_map' options are given but the scene does not ask "
                                "for the effect (add \"scene_shadows\" to 'effects')");
   if (!wanted) return;
-  // What the shadow map is built for: the relief on its planar base, seen from above.
+  // What the shadow map is built for: the relief drawn on its base, planar or curved.
   const std::string no = "scene '" + s.name + "': scene_shadows needs ";
-  if (s.base.curved()) fail(src.at(scene_node), no + "the planar base (not a curved one)");
   if (s.proxy == Proxy::Box || s.in_cube())
     fail(src.at(scene_node), no + "the relief drawn on its base (not in a box proxy)");
   if (s.impostor()) fail(src.at(scene_node), no + "a relief on its base (not an impostor)");

@@ -284,8 +284,9 @@ Camera make_camera(const SceneDesc& scene, const View& view, int width, int heig
 }
 
 Camera light_camera(const SceneDesc& scene) {
-  // The bounds: the relief's (about the origin) and each object's sphere (a cube's corners).
-  glm::dvec3 centre(0, 0, -0.5 * scene.depth);
+  // The bounds: the relief's (about the origin; a planar one's slab below it) and each object's
+  // sphere (a cube's corners).
+  glm::dvec3 centre(0, 0, scene.base.curved() ? 0.0 : -0.5 * scene.depth);
   double radius = scene_radius(scene);
   for (const SceneObject& o : scene.objects) {
     const double r = o.shape == "cube" ? std::sqrt(3.0) * o.radius : o.radius;
@@ -304,7 +305,7 @@ Camera light_camera(const SceneDesc& scene) {
     throw std::runtime_error("scene '" + scene.name + "': scene_shadows: the light at " + at + " " +
                              why);
   };
-  if (scene.light_position.z <= 0) fail("is not above the base (z > 0)");
+  if (!scene.base.curved() && scene.light_position.z <= 0) fail("is not above the base (z > 0)");
   if (distance <= 1.01 * radius) {
     char bounds[96];
     std::snprintf(bounds, sizeof bounds, "%g of (%g, %g, %g)", radius, centre.x, centre.y,

@@ -368,8 +368,8 @@ Camera make_camera(const SceneDesc& scene, const View& view, int width, int heig
 // The light's view of scene_shadows' shadow map: from the light toward the centre of the sphere
 // that holds the relief's slab and the scene's objects, its field of view just holding that
 // sphere, near and far planes tight about it; shadow_map.size texels square. Throws
-// std::runtime_error naming the scene when the light lies within the sphere or not above the
-// base (no perspective view from there holds the scene).
+// std::runtime_error naming the scene when the light lies within the sphere or, on the planar
+// base, not above it (no perspective view from there holds the scene).
 Camera light_camera(const SceneDesc& scene);
 
 // Fill framing: the vertical field of view at an elevation, and how many times the scene's

@@ -61,6 +61,9 @@ struct TruthCounters {
   ShardedCounter ao_rays;             // hemisphere directions sampled
   ShardedCounter ao_traced;           // those traced (the truth counts them as shadow rays)
   ShardedCounter object_shadow_rays;  // scene_shadows' rays against the objects
+  // scene_shadows' rays from objects against a world-space relief: traced as first hits (the
+  // truth counts them as primary rays), counted as shadow rays.
+  ShardedCounter relief_rays_from_objects;
   std::atomic<long> unresolved{0};
   std::atomic<long> beyond_quad{0};  // TruthStats::beyond_quad
 };
@@ -325,9 +328,11 @@ GBuffer trace_pixels(const Truth& truth, const SceneDesc& scene, const Camera& c
       256);
   if (stats) {
     stats->trace_ms = ms_since(start);
-    stats->primary_rays = truth.primary_rays() - primary0;
+    stats->primary_rays =
+        truth.primary_rays() - primary0 - counters.relief_rays_from_objects.load();
     stats->shadow_rays = truth.shadow_rays() - shadow0 - counters.ao_traced.load() +
-                         counters.object_shadow_rays.load();
+                         counters.object_shadow_rays.load() +
+                         counters.relief_rays_from_objects.load();
     stats->ao_rays = counters.ao_rays.load();
     stats->ao_cached_px = ao_cache ? ao_cache->reused() - ao_reused0 : 0;
     stats->unresolved = counters.unresolved.load();
@@ -440,6 +445,8 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
                            const Camera& camera, EffectSet effects, TruthStats* stats,
                            const ObjectsTruth* objects, AoTruthCache* ao_cache) {
   const bool shadows = effects.has(Effect::SelfShadow);
+  // scene_shadows: the displaced surface (or the pattern) and the objects shadow every point.
+  const bool scene_shadows = effects.has(Effect::SceneShadows);
   const bool ambient_occlusion = effects.has(Effect::AmbientOcclusion);
   const double far = camera.far_plane;
   const double vertical_world = truth.vertical_bound() * scene.depth;
@@ -467,6 +474,10 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
         in_shadow = occluded_from(truth, h, to_light, 1e-4 * scene.depth, reach);
       }
     }
+    if (scene_shadows && !in_shadow)
+      in_shadow = occluded_from(truth, h, to_light, 1e-4 * scene.depth,
+                                glm::length(scene.light_position - h.position)) ||
+                  objects_block_light(objects, scene, h.position, counters);
     AoEstimate ao;
     if (ambient_occlusion) {
       // Hemisphere rays about the base's normal, as far as they stay within the relief's shell
@@ -489,8 +500,16 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
                                        n, dir, h.position) +
                            off_ray);
   };
-  // scene_shadows is refused on curved bases (config/config_effects.h).
-  auto object_in_shadow = [](const ObjectHit&) { return false; };
+  auto object_in_shadow = [&](const ObjectHit& oh) {
+    if (!scene_shadows) return false;
+    if (objects_block_light(objects, scene, oh.position, counters)) return true;
+    const glm::dvec3 to_light = scene.light_position - oh.position;
+    const double reach = glm::length(to_light), start = 1e-4 * scene.size;
+    if (!(reach > 2 * start)) return false;
+    ++counters.relief_rays_from_objects;
+    const glm::dvec3 dir = to_light / reach;
+    return truth.intersect(oh.position + dir * start, dir, reach - 2 * start).hit;
+  };
   return trace_pixels(truth, scene, camera, objects, ao_cache, stats, counters, trace,
                       object_in_shadow);
 }
