@@ -48,8 +48,9 @@ OpCost count_ops(Technique& technique, const FrameInput& frame, int width, int h
     OpCountingScope counting(group_stride);
     // The shadow map's pass first, into counts of its own size: the GPU pays for it too. (With
     // op_count_stride > 1 the map then holds only the counted groups' depth, so the counted
-    // scene fragments may see more light than the timed frame's: only their shading's select
-    // differs.)
+    // scene fragments may see more light than the timed frame's: the lookup's ops do not depend
+    // on what it reads; only the shading's choice of its lit or shadowed colour does, a few
+    // float ops.)
     if (frame.shadow_map) {
       const int size = frame.shadow_map->size();
       OpCountBuffer shadow_ops(size, size);
