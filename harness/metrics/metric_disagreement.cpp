@@ -9,16 +9,26 @@
 namespace rl {
 namespace {
 
-// % of the jointly covered pixels where `differs(i)`.
-template <typename Differs>
-double disagree_pct(const MetricInput& in, Differs&& differs) {
+// % of the jointly covered pixels that `counts(i)` keeps where `differs(i)`; `if_none` where
+// there are none.
+template <typename Counts, typename Differs>
+double disagree_pct(const MetricInput& in, Counts&& counts, Differs&& differs,
+                    double if_none = 0.0) {
   long both = 0, differ = 0;
   for (size_t i = 0; i < in.truth.size(); ++i)
-    if (in.both_cover(i)) {
+    if (in.both_cover(i) && counts(i)) {
       ++both;
       differ += differs(i);
     }
-  return both ? 100.0 * double(differ) / double(both) : 0.0;
+  return both ? 100.0 * double(differ) / double(both) : if_none;
+}
+
+bool every_pixel(size_t) {
+  return true;
+}
+
+bool shadows_differ(const MetricInput& in, size_t i) {
+  return in.technique.shadowed(i) != in.truth.shadowed(i);
 }
 
 const MetricRegistrar shadow_agreement(
@@ -29,21 +39,18 @@ const MetricRegistrar shadow_agreement(
                      .compared(0.25, 0)
                      .scored()},
      .measure = [](const MetricInput& in) -> std::vector<double> {
-       return {disagree_pct(
-           in, [&](size_t i) { return in.technique.shadowed(i) != in.truth.shadowed(i); })};
+       return {disagree_pct(in, every_pixel, [&](size_t i) { return shadows_differ(in, i); })};
      }});
 
-// % of the jointly covered pixels where both show the relief (objects: false) or both show an
-// object whose shadow flag differs; NaN where there are none.
+// Of the pixels where both show the relief (objects: false) or both show an object, the % whose
+// shadow flags differ; NaN where there are none.
 double shadow_disagree_pct_on(const MetricInput& in, bool objects) {
-  long both = 0, differ = 0;
-  for (size_t i = 0; i < in.truth.size(); ++i)
-    if (in.both_cover(i) && shows_object(in.technique, i) == objects &&
-        shows_object(in.truth, i) == objects) {
-      ++both;
-      differ += in.technique.shadowed(i) != in.truth.shadowed(i);
-    }
-  return both ? 100.0 * double(differ) / double(both) : std::nan("");
+  return disagree_pct(
+      in,
+      [&](size_t i) {
+        return shows_object(in.technique, i) == objects && shows_object(in.truth, i) == objects;
+      },
+      [&](size_t i) { return shadows_differ(in, i); }, std::nan(""));
 }
 
 const MetricRegistrar shadow_agreement_by_receiver(
@@ -72,7 +79,7 @@ const MetricRegistrar object_agreement(
                      .compared(0.25, 0)
                      .scored()},
      .measure = [](const MetricInput& in) -> std::vector<double> {
-       return {disagree_pct(in, [&](size_t i) {
+       return {disagree_pct(in, every_pixel, [&](size_t i) {
          return shows_object(in.technique, i) != shows_object(in.truth, i);
        })};
      }});

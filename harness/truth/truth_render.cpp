@@ -263,17 +263,28 @@ bool planar_in_shadow(const TruthSurface& truth, const PlanarBase& base, const S
   return truth.occluded(h.point, l, t_start, std::min(1.0, -h.point.z / l.z));
 }
 
+// scene_shadows' shadow ray from world point `p`: toward the light, starting off the surface p
+// lies on and ending short of the light; none (length 0) where the light is that close.
+struct WayToLight {
+  glm::dvec3 origin{0}, direction{0};
+  double length = 0;
+};
+WayToLight way_to_light(const SceneDesc& scene, const glm::dvec3& p) {
+  const glm::dvec3 to_light = scene.light_position - p;
+  const double reach = glm::length(to_light), start = 1e-4 * scene.size;
+  if (!(reach > 2 * start)) return {};
+  const glm::dvec3 dir = to_light / reach;
+  return {p + dir * start, dir, reach - 2 * start};
+}
+
 // scene_shadows: whether the way from world point `p` to the light meets a scene object.
 bool objects_block_light(const ObjectsTruth* objects, const SceneDesc& scene, const glm::dvec3& p,
                          TruthCounters& counters) {
   if (!objects || objects->empty()) return false;
-  const glm::dvec3 to_light = scene.light_position - p;
-  const double reach = glm::length(to_light);
-  const double start = 1e-4 * scene.size;  // off the surface the point lies on
-  if (!(reach > 2 * start)) return false;
+  const WayToLight way = way_to_light(scene, p);
+  if (way.length <= 0) return false;
   ++counters.object_shadow_rays;
-  const glm::dvec3 dir = to_light / reach;
-  return objects->intersect(p + dir * start, dir, reach - 2 * start).hit;
+  return objects->intersect(way.origin, way.direction, way.length).hit;
 }
 
 // scene_shadows: whether the planar relief blocks the light's way to world point `p` (an
@@ -503,12 +514,10 @@ GBuffer render_world_truth(const WorldTruth& truth, const ReliefMap& map, const 
   auto object_in_shadow = [&](const ObjectHit& oh) {
     if (!scene_shadows) return false;
     if (objects_block_light(objects, scene, oh.position, counters)) return true;
-    const glm::dvec3 to_light = scene.light_position - oh.position;
-    const double reach = glm::length(to_light), start = 1e-4 * scene.size;
-    if (!(reach > 2 * start)) return false;
+    const WayToLight way = way_to_light(scene, oh.position);
+    if (way.length <= 0) return false;
     ++counters.relief_rays_from_objects;
-    const glm::dvec3 dir = to_light / reach;
-    return truth.intersect(oh.position + dir * start, dir, reach - 2 * start).hit;
+    return truth.intersect(way.origin, way.direction, way.length).hit;
   };
   return trace_pixels(truth, scene, camera, objects, ao_cache, stats, counters, trace,
                       object_in_shadow);
