@@ -14,6 +14,7 @@ packages=(
   libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri # headless GL 4.5 via EGL
   libtomlplusplus-dev                 # sweep configs
   glslang-dev spirv-tools libspirv-cross-c-shared-dev # op counts: GLSL to SPIR-V, counted, and back
+  glslang-tools                       # glslang's CMake config names glslangValidator; only suggested by glslang-dev
   libcli11-dev                        # command line
   nlohmann-json3-dev                  # run manifests
   libsqlite3-dev                      # result store (atomic, resumable)
