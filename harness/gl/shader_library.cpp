@@ -65,9 +65,11 @@ GLuint compile(GLenum stage, const ComposedSource& src, const std::string& owner
   if (!ok) {
     const std::string log = info_log(shader, glGetShaderiv, glGetShaderInfoLog);
     glDeleteShader(shader);
-    throw GlError("technique '" + owner +
-                  "': " + (stage == GL_VERTEX_SHADER ? "vertex" : "fragment") +
-                  " shader failed to compile:\n" + map_glsl_log(log, src.files));
+    const char* name = stage == GL_VERTEX_SHADER     ? "vertex"
+                       : stage == GL_GEOMETRY_SHADER ? "geometry"
+                                                     : "fragment";
+    throw GlError("technique '" + owner + "': " + name + " shader failed to compile:\n" +
+                  map_glsl_log(log, src.files));
   }
   return shader;
 }
@@ -97,13 +99,14 @@ struct QuietCompiler {
   bool quiet;
 };
 
-GLuint link(GLuint v, GLuint f, const std::string& owner, const ComposedSource& fs) {
+// `g`, the geometry stage, may be 0 (none).
+GLuint link(GLuint v, GLuint g, GLuint f, const std::string& owner, const ComposedSource& fs) {
   GLuint program = glCreateProgram();
-  glAttachShader(program, v);
-  glAttachShader(program, f);
+  for (GLuint stage : {v, g, f})
+    if (stage) glAttachShader(program, stage);
   glLinkProgram(program);
-  glDeleteShader(v);
-  glDeleteShader(f);
+  for (GLuint stage : {v, g, f})
+    if (stage) glDeleteShader(stage);
   GLint ok = 0;
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
   if (!ok) {
@@ -116,7 +119,7 @@ GLuint link(GLuint v, GLuint f, const std::string& owner, const ComposedSource& 
 }
 
 std::string cache_key(const ProgramDesc& d) {
-  std::string key = d.owner + "|" + d.vertex_file;
+  std::string key = d.owner + "|" + d.vertex_file + "|" + d.geometry_file;
   for (const auto& f : d.fragment_files) key += "|" + f;
   for (const auto& [k, v] : d.defines) key += "|" + k + "=" + v;
   return key;
@@ -174,17 +177,19 @@ ShaderLibrary::Entry& ShaderLibrary::entry(const ProgramDesc& plain) {
   ComposedSource fs = compose_glsl(desc.fragment_files, desc.defines);
   const bool counting = desc.defines.count("RL_COUNT_OPS") > 0;
   if (counting) fs.text = counting_form(fs.text, desc.owner, OpCountingScope::group_stride());
-  GLuint v = compile(GL_VERTEX_SHADER, vs, desc.owner);
-  GLuint f = 0;
+  GLuint v = compile(GL_VERTEX_SHADER, vs, desc.owner), g = 0, f = 0;
   try {
+    if (!desc.geometry_file.empty())
+      g = compile(GL_GEOMETRY_SHADER, compose_glsl({desc.geometry_file}, desc.defines), desc.owner);
     QuietCompiler quiet(counting);
     f = compile(GL_FRAGMENT_SHADER, fs, desc.owner);
   } catch (...) {
     glDeleteShader(v);
+    if (g) glDeleteShader(g);
     throw;
   }
   Entry e;
-  e.program = link(v, f, desc.owner, fs);
+  e.program = link(v, g, f, desc.owner, fs);
   e.fragment_source = fs.text;
   return programs_.emplace(key, std::move(e)).first->second;
 }

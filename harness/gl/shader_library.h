@@ -19,6 +19,7 @@ struct ProgramDesc {
   std::string vertex_file;                  // e.g. "harness/glsl/base.vert"
   std::vector<std::string> fragment_files;  // composed in order, e.g. {technique, main}
   Defines defines;
+  std::string geometry_file;  // optional, e.g. "harness/glsl/cell_sampling_geom.glsl"
 };
 
 struct ComposedSource {

@@ -1,0 +1,227 @@
+#include "gpu/cell_gpu_sampling.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <epoxy/gl.h>
+
+#include "core/error.h"
+#include "gl/context.h"
+#include "gl/shader_library.h"
+
+namespace rl {
+namespace {
+
+// Per grey cell (in cells() order), the mesh triangles whose bounding box meets the cell's: the
+// paper draws "the mesh triangles intersecting the cell"; a box test keeps every one of them
+// (and some that only come near), and the fragment stage drops points outside the cell.
+std::vector<std::vector<uint32_t>> triangles_per_cell(const CellComplex& cc) {
+  const int n = cc.grid();
+  const TriangleMesh& mesh = cc.mesh();
+  std::vector<std::vector<uint32_t>> out(cc.cells().size());
+  const double slack = 1e-6;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    glm::dvec3 lo(1e30), hi(-1e30);
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec3 p = glm::dvec3(mesh.positions[mesh.triangles[t][k]]) * double(n);
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    const glm::ivec3 from = glm::clamp(glm::ivec3(glm::floor(lo - slack)), 0, n - 1);
+    const glm::ivec3 to = glm::clamp(glm::ivec3(glm::floor(hi + slack)), 0, n - 1);
+    for (int k = from.z; k <= to.z; ++k)
+      for (int j = from.y; j <= to.y; ++j)
+        for (int i = from.x; i <= to.x; ++i)
+          if (cc.cell(i, j, k).state == CellState::Grey)
+            out[cc.index(i, j, k)].push_back(uint32_t(t));
+  }
+  return out;
+}
+
+// The mesh's vertices and, cell after cell, the indices of its triangles; where each cell's
+// start (in indices) and count.
+struct CellDrawBuffers {
+  GLuint vao = 0, vertices = 0, indices = 0;
+  std::vector<size_t> first, count;
+
+  explicit CellDrawBuffers(const CellComplex& cc) {
+    const TriangleMesh& mesh = cc.mesh();
+    std::vector<uint32_t> index;
+    for (const std::vector<uint32_t>& tris : triangles_per_cell(cc)) {
+      first.push_back(index.size());
+      for (uint32_t t : tris)
+        for (int k = 0; k < 3; ++k) index.push_back(mesh.triangles[t][k]);
+      count.push_back(index.size() - first.back());
+    }
+    glCreateVertexArrays(1, &vao);
+    glCreateBuffers(1, &vertices);
+    glCreateBuffers(1, &indices);
+    glNamedBufferStorage(vertices, GLsizeiptr(mesh.positions.size() * sizeof(glm::vec3)),
+                         mesh.positions.data(), 0);
+    glNamedBufferStorage(indices, GLsizeiptr(std::max<size_t>(1, index.size()) * 4),
+                         index.empty() ? nullptr : index.data(), 0);
+    glVertexArrayVertexBuffer(vao, 0, vertices, 0, sizeof(glm::vec3));
+    glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, 0, 0);
+    glEnableVertexArrayAttrib(vao, 0);
+    glVertexArrayElementBuffer(vao, indices);
+  }
+  ~CellDrawBuffers() {
+    glDeleteVertexArrays(1, &vao);
+    glDeleteBuffers(1, &vertices);
+    glDeleteBuffers(1, &indices);
+  }
+  CellDrawBuffers(const CellDrawBuffers&) = delete;
+  CellDrawBuffers& operator=(const CellDrawBuffers&) = delete;
+};
+
+// One face's map: a float colour (the distance) and a depth buffer (the same, for the test).
+struct FaceTarget {
+  GLuint fbo = 0, color = 0, depth = 0;
+
+  explicit FaceTarget(int res) {
+    glCreateTextures(GL_TEXTURE_2D, 1, &color);
+    glTextureStorage2D(color, 1, GL_R32F, res, res);
+    glCreateRenderbuffers(1, &depth);
+    glNamedRenderbufferStorage(depth, GL_DEPTH_COMPONENT32F, res, res);
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, color, 0);
+    glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw GlError("cell complex GPU sampling: the face's render target is incomplete");
+  }
+  ~FaceTarget() {
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &color);
+    glDeleteRenderbuffers(1, &depth);
+  }
+  FaceTarget(const FaceTarget&) = delete;
+  FaceTarget& operator=(const FaceTarget&) = delete;
+};
+
+void set_face_uniforms(GLuint program, const CellComplex& cc, const CellComplex::DomainFace& df) {
+  const int n = cc.grid();
+  const CellProjection& p = cc.cells()[df.cell].config.projection;
+  const glm::vec3 origin(float(df.cell % n), float((df.cell / n) % n), float(df.cell / (n * n)));
+  glProgramUniform3fv(program, glGetUniformLocation(program, "rl_cell_origin"), 1, &origin.x);
+  glProgramUniform1i(program, glGetUniformLocation(program, "rl_face"), df.face);
+  glProgramUniform1i(program, glGetUniformLocation(program, "rl_projection"), int(p.type));
+  const glm::vec3 point(p.point);
+  glProgramUniform3fv(program, glGetUniformLocation(program, "rl_projection_point"), 1, &point.x);
+  glProgramUniform1i(program, glGetUniformLocation(program, "rl_projection_axis"), p.axis);
+}
+
+// The geometry shader's first-level pieces per edge where it cuts (cell_sampling_geom.glsl).
+constexpr int kSplits = 5;
+
+GLuint sampling_program(int splits) {
+  return ShaderLibrary::shared().program({"cell_complex GPU sampling",
+                                          "harness/glsl/cell_sampling.vert",
+                                          {"harness/glsl/cell_sampling_frag.glsl"},
+                                          {{"RL_CELL_SPLITS", std::to_string(splits)}},
+                                          "harness/glsl/cell_sampling_geom.glsl"});
+}
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+CellGpuSampling sample_cell_distances_on_gpu(const CellComplex& cc,
+                                             const CellGpuSamplingOptions& options) {
+  GlContext::shared();
+  // Cells whose triangles are cut (axial ones, with a threshold) draw through the geometry
+  // shader's instanced form; the others through one invocation per triangle.
+  const GLuint whole = sampling_program(1), cut = sampling_program(kSplits);
+  const int res = cc.resolution();
+  for (GLuint program : {whole, cut}) {
+    glProgramUniform1f(program, glGetUniformLocation(program, "rl_grid"), float(cc.grid()));
+    glProgramUniform1f(program, glGetUniformLocation(program, "rl_res"), float(res));
+    glProgramUniform1f(program, glGetUniformLocation(program, "rl_subdivide_texels"),
+                       float(options.subdivide_texels));
+  }
+  CellDrawBuffers draws(cc);
+  FaceTarget target(res);
+  const size_t texels = size_t(res) * res;
+  CellGpuSampling out;
+  out.distance.assign(cc.domain_faces().size() * texels, 1.0f);
+
+  glFinish();
+  const auto t0 = std::chrono::steady_clock::now();
+  glBindFramebuffer(GL_FRAMEBUFFER, target.fbo);
+  glViewport(0, 0, res, res);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  glBindVertexArray(draws.vao);
+  const GLfloat far_distance = 1.0f, far_depth = 1.0f;
+  for (size_t f = 0; f < cc.domain_faces().size(); ++f) {
+    const CellComplex::DomainFace& df = cc.domain_faces()[f];
+    const bool axial = cc.cells()[df.cell].config.projection.type == CellProjection::Type::Axial;
+    const GLuint program = axial && options.subdivide_texels > 0 ? cut : whole;
+    glUseProgram(program);
+    set_face_uniforms(program, cc, df);
+    glClearNamedFramebufferfv(target.fbo, GL_COLOR, 0, &far_distance);
+    glClearNamedFramebufferfv(target.fbo, GL_DEPTH, 0, &far_depth);
+    const size_t count = draws.count[df.cell];
+    if (count)
+      glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(draws.first[df.cell] * sizeof(uint32_t)));
+    glReadPixels(0, 0, res, res, GL_RED, GL_FLOAT, out.distance.data() + f * texels);
+    ++out.face_draws;
+    out.triangles += long(count / 3);
+  }
+  glFinish();
+  out.ms = ms_since(t0);
+  glBindVertexArray(0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return out;
+}
+
+CellSamplingAgreement compare_cell_sampling(const CellComplex& cc, const std::vector<float>& gpu) {
+  const int res = cc.resolution();
+  const size_t texels = size_t(res) * res;
+  if (gpu.size() != cc.domain_faces().size() * texels)
+    throw std::invalid_argument("compare_cell_sampling: the GPU maps are not the complex's size");
+  CellSamplingAgreement out;
+  std::array<std::vector<double>, 4> errors;
+  for (size_t f = 0; f < cc.domain_faces().size(); ++f) {
+    const CellComplex::DomainFace& df = cc.domain_faces()[f];
+    const CellProjection& p = cc.cells()[df.cell].config.projection;
+    CellSamplingAgreement::PerType& type = out.types[int(p.type)];
+    for (size_t t = 0; t < texels; ++t) {
+      const size_t at = f * texels + t;
+      const bool cpu_hit = cc.crossings()[at] > 0, gpu_hit = gpu[at] < 1.0f;
+      ++type.texels;
+      type.cpu_hits += cpu_hit;
+      type.one_sided += cpu_hit != gpu_hit;
+      if (!cpu_hit || !gpu_hit) continue;
+      ++type.both_hit;
+      const glm::dvec2 st((double(t % res) + 0.5) / res, (double(t / res) + 0.5) / res);
+      const double length = face_line(p, df.face, st).length;
+      const double cpu_d = cc.distance()[at] / cc.distance_scale();
+      const double err = std::abs(double(gpu[at]) - cpu_d) * length * res;
+      type.within_half += err <= 0.5;
+      errors[int(p.type)].push_back(err);
+    }
+  }
+  for (int k = 0; k < 4; ++k) {
+    std::vector<double>& e = errors[k];
+    if (e.empty()) continue;
+    CellSamplingAgreement::PerType& type = out.types[k];
+    double sum = 0;
+    for (double x : e) sum += x;
+    type.err_texels_mean = sum / double(e.size());
+    type.err_texels_max = *std::max_element(e.begin(), e.end());
+    const size_t p99 = std::min(e.size() - 1, size_t(0.99 * double(e.size())));
+    std::nth_element(e.begin(), e.begin() + long(p99), e.end());
+    type.err_texels_p99 = e[p99];
+  }
+  return out;
+}
+
+}  // namespace rl

@@ -1,0 +1,56 @@
+#pragma once
+// A cell complex's distance maps sampled on the GPU, as Apaza & Andujar build them (Section
+// 3.3.2): for every grey cell and each of its domain faces, an orthographic view of that face,
+// the mesh triangles that may cross the cell drawn through a geometry shader that projects them
+// by the cell's projection, and a fragment shader that writes each surface point's distance from
+// its face point as its depth, so that the depth test keeps the nearest
+// (harness/glsl/cell_sampling_*.glsl). relief/cell_complex.h samples the same maps on the CPU by
+// casting every texel's own projection line; the two agree where the projection maps triangles
+// onto triangles (perspective, planar, parallel), and the GPU's bend where it does not (axial)
+// unless long edges are cut first.
+#include <array>
+#include <vector>
+
+#include "relief/cell_complex.h"
+
+namespace rl {
+
+struct CellGpuSamplingOptions {
+  // In axial cells, cut a triangle whose projected edges are longer than this many face texels
+  // into up to 8 x 8 pieces first; 0: never (the projection's curves drawn as chords).
+  double subdivide_texels = 0;
+};
+
+struct CellGpuSampling {
+  // Per texel of every domain face, in CellComplex::distance()'s order: the nearest surface
+  // point's distance from the face point as a share of the projection line in the cell; 1 where
+  // no surface point projects there.
+  std::vector<float> distance;
+  double ms = 0;        // every face drawn and read back: the wall clock after glFinish
+  long face_draws = 0;  // domain faces drawn
+  long triangles = 0;   // mesh triangles submitted, over every face drawn
+};
+
+// Needs the process's GL context (gl/context.h); throws GlError where the driver refuses.
+CellGpuSampling sample_cell_distances_on_gpu(const CellComplex& cells,
+                                             const CellGpuSamplingOptions& options);
+
+// How the GPU's maps compare with the CPU's (CellComplex::distance()), per projection type
+// (CellProjection::Type's order): texels whose line meets the surface on one side only, and the
+// position error in face texels (|difference of d| x the line's length) where both do.
+struct CellSamplingAgreement {
+  struct PerType {
+    long texels = 0;       // of this type's domain faces
+    long cpu_hits = 0;     // texels whose projection line meets the surface (CPU)
+    long both_hit = 0;     // ... and the GPU's map holds a surface point there too
+    long one_sided = 0;    // a surface point on one side only
+    long within_half = 0;  // of both_hit, within half a face texel of the CPU's point
+    double err_texels_max = 0, err_texels_p99 = 0, err_texels_mean = 0;
+  };
+  std::array<PerType, 4> types;
+};
+
+CellSamplingAgreement compare_cell_sampling(const CellComplex& cells,
+                                            const std::vector<float>& gpu_distance);
+
+}  // namespace rl

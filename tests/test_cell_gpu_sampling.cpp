@@ -1,0 +1,98 @@
+// Section 3.3.2's GPU sampling of a cell complex's distance maps (gpu/cell_gpu_sampling.h)
+// against the CPU's per-texel projection lines (relief/cell_complex.h): on a tessellated sphere
+// (perspective and parallel cells) and on the Stanford bunny (axial ones too). The two agree to
+// rounding where the cell's projection maps triangles onto triangles; in axial cells, whose
+// projection bends straight edges (Figure 3), only once long edges are cut, as the paper's
+// geometry shader does. Tolerances in face texels (64 or 32 per cell side).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "gpu/cell_gpu_sampling.h"
+#include "support/test_support.h"
+
+namespace rl {
+namespace {
+
+using Type = CellProjection::Type;
+
+// The mesh scaled into [0.02, 0.98]^3, as the cube's texture space holds it.
+TriangleMesh in_unit_cube(TriangleMesh mesh) {
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const glm::vec3& p : mesh.positions) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  const float scale = 0.96f / std::max(std::max(hi.x - lo.x, hi.y - lo.y), hi.z - lo.z);
+  for (glm::vec3& p : mesh.positions) p = 0.5f + (p - 0.5f * (lo + hi)) * scale;
+  mesh.lo = glm::dvec3(0.5f + (lo - 0.5f * (lo + hi)) * scale);
+  mesh.hi = glm::dvec3(0.5f + (hi - 0.5f * (lo + hi)) * scale);
+  return mesh;
+}
+
+void print(const char* what, const CellSamplingAgreement& a) {
+  for (int k = 0; k < 4; ++k) {
+    const CellSamplingAgreement::PerType& t = a.types[k];
+    if (!t.texels) continue;
+    std::printf(
+        "%s, %s: %ld texels, %ld hit on the CPU, %ld on one side only; error p99 %.3g, "
+        "max %.3g texels\n",
+        what, projection_type_name(Type(k)), t.texels, t.cpu_hits, t.one_sided, t.err_texels_p99,
+        t.err_texels_max);
+  }
+}
+
+// Where the projection is linear: the same texels hit, the same points to float rounding (a
+// 32-bit float of d against a 16-bit quantised one: 1/65535 of a line of up to ~1.7 cells).
+void expect_linear_agreement(const CellSamplingAgreement::PerType& t) {
+  ASSERT_GT(t.cpu_hits, 1000);
+  EXPECT_LE(double(t.one_sided), 1e-4 * double(t.texels));
+  EXPECT_GE(double(t.within_half), (1 - 1e-4) * double(t.both_hit));
+  EXPECT_LT(t.err_texels_p99, 0.01);
+}
+
+TEST(CellGpuSampling, PerspectiveAndParallelCellsMatchTheProjectionLines) {
+  const TriangleMesh sphere = test::uv_sphere({0.5, 0.5, 0.5}, 0.37, 96, 48);
+  const CellComplex cc = CellComplex::build(sphere, {.grid = 4, .resolution = 64});
+  const CellGpuSampling gpu = sample_cell_distances_on_gpu(cc, {});
+  EXPECT_EQ(gpu.face_draws, long(cc.domain_faces().size()));
+  const CellSamplingAgreement a = compare_cell_sampling(cc, gpu.distance);
+  print("sphere", a);
+  expect_linear_agreement(a.types[int(Type::Perspective)]);
+  expect_linear_agreement(a.types[int(Type::Parallel)]);
+}
+
+TEST(CellGpuSampling, AxialCellsAgreeOnlyOnceLongEdgesAreCut) {
+  const TriangleMesh bunny =
+      in_unit_cube(load_mesh(std::string(RELIEFLAB_SOURCE_DIR) + "/assets/meshes/bunny.obj"));
+  const CellComplex cc = CellComplex::build(bunny, {.grid = 8, .resolution = 32});
+  const CellSamplingAgreement chords =
+      compare_cell_sampling(cc, sample_cell_distances_on_gpu(cc, {}).distance);
+  const CellSamplingAgreement cut =
+      compare_cell_sampling(cc, sample_cell_distances_on_gpu(cc, {.subdivide_texels = 1}).distance);
+  print("bunny, edges drawn as chords", chords);
+  print("bunny, edges cut to a texel", cut);
+  const CellSamplingAgreement::PerType &bent = chords.types[int(Type::Axial)],
+                                       &fixed = cut.types[int(Type::Axial)];
+  ASSERT_GT(bent.cpu_hits, 1000);
+  // As chords, the projected triangles miss or cover the wrong texels...
+  EXPECT_GT(double(bent.one_sided), 0.02 * double(bent.texels));
+  EXPECT_GT(bent.err_texels_p99, 1.0);
+  // ...cut, they follow the curves.
+  EXPECT_LE(double(fixed.one_sided), 0.005 * double(fixed.texels));
+  EXPECT_GE(double(fixed.within_half), 0.999 * double(fixed.both_hit));
+  EXPECT_LT(fixed.err_texels_p99, 0.05);
+  // Cutting touches only the axial cells.
+  expect_linear_agreement(cut.types[int(Type::Perspective)]);
+  EXPECT_EQ(cut.types[int(Type::Perspective)].one_sided,
+            chords.types[int(Type::Perspective)].one_sided);
+}
+
+TEST(CellGpuSampling, MapsOfTheWrongSizeAreRefused) {
+  const CellComplex cc = CellComplex::build(test::uv_sphere({0.5, 0.5, 0.5}, 0.3, 24, 12),
+                                            {.grid = 2, .resolution = 8});
+  EXPECT_THROW(compare_cell_sampling(cc, std::vector<float>(7, 1.0f)), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rl
