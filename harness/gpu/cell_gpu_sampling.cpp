@@ -206,6 +206,7 @@ CellSamplingAgreement compare_cell_sampling(const CellComplex& cc, const std::ve
       const double cpu_d = cc.distance()[at] / cc.distance_scale();
       const double err = std::abs(double(gpu[at]) - cpu_d) * length * res;
       type.within_half += err <= 0.5;
+      type.over_one += err > 1.0;
       errors[int(p.type)].push_back(err);
     }
   }

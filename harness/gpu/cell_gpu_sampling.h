@@ -45,6 +45,7 @@ struct CellSamplingAgreement {
     long both_hit = 0;     // ... and the GPU's map holds a surface point there too
     long one_sided = 0;    // a surface point on one side only
     long within_half = 0;  // of both_hit, within half a face texel of the CPU's point
+    long over_one = 0;     // of both_hit, more than a face texel from it
     double err_texels_max = 0, err_texels_p99 = 0, err_texels_mean = 0;
   };
   std::array<PerType, 4> types;
