@@ -11,10 +11,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "bench_support.h"
 #include "config/config.h"
 #include "gl/context.h"
 #include "gpu/cell_gpu_sampling.h"
@@ -22,25 +22,6 @@
 
 namespace rl {
 namespace {
-
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  for (std::string item; std::getline(in, item, ',');) out.push_back(item);
-  return out;
-}
-
-// The mesh's cell complex as Table 1 builds it (grid by the occluded-fragment rule, 64^2 maps).
-SweepConfig mesh_config(const std::string& mesh) {
-  const std::string file = mesh == "dragon" ? "dragon_res3.ply" : mesh + ".obj";
-  const std::string toml =
-      "[sweep]\nname = \"cell-gpu-sampling\"\nelevations = [30]\nviewports = [64]\n"
-      "[[scene]]\nname = \"" +
-      mesh + "\"\nrelief = { cells = \"assets/meshes/" + file +
-      "\", up = \"y\", grid = \"auto\", resolution = 64 }\n"
-      "[[technique]]\nname = \"cell_complex\"\n";
-  return parse_sweep_config(toml, "cell_gpu_sampling", RELIEFLAB_SOURCE_DIR);
-}
 
 // The fastest of `runs` samplings after one to warm up (the first compiles the program).
 CellGpuSampling fastest_sampling(const CellComplex& cc, double subdivide, int runs) {
@@ -82,7 +63,7 @@ void run(const std::vector<std::string>& meshes, int runs) {
       "pos_err_texels_mean,pos_err_texels_p99,pos_err_texels_max,"
       "triangles_drawn,gpu_sample_ms,cpu_sample_ms,cpu_maps\n");
   for (const std::string& mesh : meshes) {
-    const SweepConfig config = mesh_config(mesh);
+    const SweepConfig config = bench::table1_mesh_config(mesh, "cell_gpu_sampling");
     const ReliefMap map = build_relief_asset(config.scenes.front(), 64);
     for (double subdivide : {0.0, 4.0, 1.0})
       print_rows(mesh, *map.cells, subdivide, fastest_sampling(*map.cells, subdivide, runs));
@@ -97,7 +78,7 @@ int main(int argc, char** argv) {
   int runs = 3;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--meshes"))
-      meshes = rl::split(argv[i + 1]);
+      meshes = rl::bench::split(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--runs"))
       runs = std::atoi(argv[i + 1]);
     else {

@@ -22,10 +22,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "bench_support.h"
 #include "config/config.h"
 #include "core/cost_model.h"
 #include "core/ray_box.h"
@@ -41,13 +41,6 @@ namespace rl {
 namespace {
 
 const glm::dvec3 kCentre(0.5);  // of the object's cube [0, 1]^3, where every ray lives
-
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  for (std::string item; std::getline(in, item, ',');) out.push_back(item);
-  return out;
-}
 
 glm::dvec3 direction_at(double elevation_deg, double azimuth_deg) {
   const double el = glm::radians(elevation_deg), az = glm::radians(azimuth_deg);
@@ -221,18 +214,6 @@ Measured measure(Technique& t, const ReliefMap& map, const GpuRelief& relief, co
   return m;
 }
 
-// A scene of the mesh as a cell complex, as apaza-table2 builds it.
-SweepConfig mesh_config(const std::string& mesh) {
-  const std::string file = mesh == "dragon" ? "dragon_res3.ply" : mesh + ".obj";
-  const std::string toml =
-      "[sweep]\nname = \"secondary-rays\"\nelevations = [30]\n"
-      "viewports = [64]\n[[scene]]\nname = \"" +
-      mesh + "\"\nrelief = { cells = \"assets/meshes/" + file +
-      "\", up = \"y\", grid = \"auto\", resolution = 64 }\n"
-      "[[technique]]\nname = \"cell_complex\"\n";
-  return parse_sweep_config(toml, "secondary_rays", RELIEFLAB_SOURCE_DIR);
-}
-
 // One row per set: its time, op cost and price over the empty pass's (the "none" set, first),
 // per ray that meets the cube.
 void print_row(const std::string& mesh, int grid, const char* set, int viewport, const Measured& m,
@@ -253,7 +234,7 @@ void run(const std::vector<std::string>& meshes, int viewport, int runs) {
       "mesh,grid,rays,viewport,active_rays,hit_pct,probe_ms,over_empty_ms,mrays_per_s,"
       "fetches_mean,warp_fetch_ops_per_ray,model_frame_ms,model_ns_per_ray,disagree_pct\n");
   for (const std::string& mesh : meshes) {
-    const SweepConfig config = mesh_config(mesh);
+    const SweepConfig config = bench::table1_mesh_config(mesh, "secondary_rays");
     const SceneDesc& scene = config.scenes.front();
     const ReliefMap map = build_relief_asset(scene, 64);
     GpuRelief relief(map);
@@ -276,7 +257,7 @@ int main(int argc, char** argv) {
   int viewport = 512, runs = 7;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--meshes"))
-      meshes = rl::split(argv[i + 1]);
+      meshes = rl::bench::split(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--viewport"))
       viewport = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--runs"))

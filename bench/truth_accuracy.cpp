@@ -12,10 +12,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "bench_support.h"
 #include "core/parallel.h"
 #include "relief/heightfield_reference.h"
 #include "scene/base_mesh.h"
@@ -25,13 +25,6 @@
 
 namespace rl {
 namespace {
-
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  for (std::string item; std::getline(in, item, ',');) out.push_back(item);
-  return out;
-}
 
 SceneDesc study_scene(const std::string& name) {
   SceneDesc scene;
@@ -126,11 +119,11 @@ int main(int argc, char** argv) {
   for (int a = 1; a + 1 < argc; a += 2) {
     const std::string flag = argv[a], value = argv[a + 1];
     if (flag == "--maps")
-      maps = split(value);
+      maps = bench::split(value);
     else if (flag == "--sizes")
-      sizes = split(value);
+      sizes = bench::split(value);
     else if (flag == "--elevations")
-      elevations = split(value);
+      elevations = bench::split(value);
     else if (flag == "--viewport")
       viewport = std::stoi(value);
     else {
