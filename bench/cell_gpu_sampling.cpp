@@ -3,8 +3,9 @@
 // projects them by the cell's projection, the depth test keeping the nearest surface point
 // (gpu/cell_gpu_sampling.h) -- against the CPU's sampling, which casts every texel's own
 // projection line (relief/cell_complex.h). Per mesh, setting (axial edges cut or not) and
-// projection type: how many texels see the surface on one side only, and how far apart the two
-// put it where both do, in face texels; and what each sampling took on this machine.
+// projection type: how many texels see the surface on one side only (and how many of those at an
+// end of the projection line), how far apart the two put it where both do, in face texels, and
+// what each sampling took on this machine.
 //
 // Rows to stdout (scripts/cell-gpu-sampling-rows.sh makes results/apaza-gpu-sampling/rows.csv).
 //   cell_gpu_sampling [--meshes bunny,teapot,dragon] [--runs 3]
@@ -43,14 +44,15 @@ void print_rows(const std::string& mesh, const CellComplex& cc, double subdivide
     const CellSamplingAgreement::PerType& t = a.types[k];
     if (t.texels == 0) continue;
     const double texels = double(t.texels), both = std::max<double>(1, double(t.both_hit));
-    std::printf("%s,%d,%zu,%g,%s,%ld,%.4g,%.4g,%.4g,%.4g,%ld,%ld,%.4g,%.4g,%.4g,%ld,%.4g,%.4g,%s\n",
-                mesh.c_str(), cc.grid(), cc.domain_faces().size(), subdivide,
-                projection_type_name(CellProjection::Type(k)), t.texels,
-                100.0 * texels / double(all), 100.0 * double(t.cpu_hits) / texels,
-                100.0 * double(t.one_sided) / texels, 100.0 * double(t.within_half) / both,
-                t.one_sided, t.over_one, t.err_texels_mean, t.err_texels_p99, t.err_texels_max,
-                gpu.triangles, gpu.ms, cc.stats().sample_ms,
-                cc.stats().from_cache ? "cache" : "built");
+    std::printf(
+        "%s,%d,%zu,%g,%s,%ld,%.4g,%.4g,%.4g,%.4g,%ld,%ld,%ld,%ld,%.4g,%.4g,%.4g,%ld,%.4g,%.4g,%s\n",
+        mesh.c_str(), cc.grid(), cc.domain_faces().size(), subdivide,
+        projection_type_name(CellProjection::Type(k)), t.texels, 100.0 * texels / double(all),
+        100.0 * double(t.cpu_hits) / texels, 100.0 * double(t.one_sided) / texels,
+        100.0 * double(t.within_half) / both, t.one_sided, t.one_sided_at_ends,
+        t.one_sided - t.one_sided_at_ends, t.over_one, t.err_texels_mean, t.err_texels_p99,
+        t.err_texels_max, gpu.triangles, gpu.ms, cc.stats().sample_ms,
+        cc.stats().from_cache ? "cache" : "built");
   }
   std::fflush(stdout);
 }
@@ -59,7 +61,8 @@ void run(const std::vector<std::string>& meshes, int runs) {
   GlContext::shared();
   std::printf(
       "mesh,grid,domain_faces,subdivide_texels,projection,texels,texels_pct,cpu_hit_pct,"
-      "one_sided_pct,within_half_texel_pct,one_sided_texels,over_one_texel,"
+      "one_sided_pct,within_half_texel_pct,one_sided_texels,one_sided_at_line_ends,"
+      "one_sided_elsewhere,over_one_texel,"
       "pos_err_texels_mean,pos_err_texels_p99,pos_err_texels_max,"
       "triangles_drawn,gpu_sample_ms,cpu_sample_ms,cpu_maps\n");
   for (const std::string& mesh : meshes) {

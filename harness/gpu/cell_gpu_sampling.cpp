@@ -198,12 +198,16 @@ CellSamplingAgreement compare_cell_sampling(const CellComplex& cc, const std::ve
       const bool cpu_hit = cc.crossings()[at] > 0, gpu_hit = gpu[at] < 1.0f;
       ++type.texels;
       type.cpu_hits += cpu_hit;
-      type.one_sided += cpu_hit != gpu_hit;
+      const double cpu_d = cc.distance()[at] / cc.distance_scale();
+      if (cpu_hit != gpu_hit) {
+        const double d = gpu_hit ? double(gpu[at]) : cpu_d;
+        ++type.one_sided;
+        type.one_sided_at_ends += d < 1e-4 || d > 0.99;
+      }
       if (!cpu_hit || !gpu_hit) continue;
       ++type.both_hit;
       const glm::dvec2 st((double(t % res) + 0.5) / res, (double(t / res) + 0.5) / res);
       const double length = face_line(p, df.face, st).length;
-      const double cpu_d = cc.distance()[at] / cc.distance_scale();
       const double err = std::abs(double(gpu[at]) - cpu_d) * length * res;
       type.within_half += err <= 0.5;
       type.over_one += err > 1.0;

@@ -40,10 +40,13 @@ CellGpuSampling sample_cell_distances_on_gpu(const CellComplex& cells,
 // position error in face texels (|difference of d| x the line's length) where both do.
 struct CellSamplingAgreement {
   struct PerType {
-    long texels = 0;       // of this type's domain faces
-    long cpu_hits = 0;     // texels whose projection line meets the surface (CPU)
-    long both_hit = 0;     // ... and the GPU's map holds a surface point there too
-    long one_sided = 0;    // a surface point on one side only
+    long texels = 0;     // of this type's domain faces
+    long cpu_hits = 0;   // texels whose projection line meets the surface (CPU)
+    long both_hit = 0;   // ... and the GPU's map holds a surface point there too
+    long one_sided = 0;  // a surface point on one side only
+    // ... that lies at an end of its projection line: on the face itself (d < 1e-4) or within
+    // 1% of the line's inner end (d > 0.99: the centre or axis, where every line meets)
+    long one_sided_at_ends = 0;
     long within_half = 0;  // of both_hit, within half a face texel of the CPU's point
     long over_one = 0;     // of both_hit, more than a face texel from it
     double err_texels_max = 0, err_texels_p99 = 0, err_texels_mean = 0;
