@@ -4,13 +4,4 @@
 # projection lines (bench/cell_gpu_sampling.cpp), then its digest and the README's verdicts.
 # About a minute and a half on 2 cores; run it on an idle machine (the times are wall clock).
 #   scripts/cell-gpu-sampling-rows.sh [--meshes bunny,teapot,dragon] [--runs 3]
-set -euo pipefail
-cd "$(dirname "$0")/.."
-[ -x build/bench/cell_gpu_sampling ] || cmake --build build -j"$(nproc)" --target cell_gpu_sampling
-dest=results/apaza-gpu-sampling
-mkdir -p "$dest"
-build/bench/cell_gpu_sampling "$@" > "$dest/rows.csv.tmp"
-mv "$dest/rows.csv.tmp" "$dest/rows.csv"
-python3 scripts/outputs_record.py "$dest" rows.csv
-build/relieflab verify --write "$dest"
-echo "$dest/rows.csv: $(($(wc -l < "$dest/rows.csv") - 1)) rows"
+exec "$(dirname "$0")/study-rows.sh" cell_gpu_sampling apaza-gpu-sampling "$@"

@@ -5,13 +5,4 @@
 # surface), then its digest and the README's verdicts. About two minutes on 2 cores; run it on an
 # idle machine (the llvmpipe times are wall clock).
 #   scripts/secondary-rays-rows.sh [--meshes bunny,teapot,dragon] [--viewport 512] [--runs 7]
-set -euo pipefail
-cd "$(dirname "$0")/.."
-[ -x build/bench/secondary_rays ] || cmake --build build -j"$(nproc)" --target secondary_rays
-dest=results/apaza-secondary-rays
-mkdir -p "$dest"
-build/bench/secondary_rays "$@" > "$dest/rows.csv.tmp"
-mv "$dest/rows.csv.tmp" "$dest/rows.csv"
-python3 scripts/outputs_record.py "$dest" rows.csv
-build/relieflab verify --write "$dest"
-echo "$dest/rows.csv: $(($(wc -l < "$dest/rows.csv") - 1)) rows"
+exec "$(dirname "$0")/study-rows.sh" secondary_rays apaza-secondary-rays "$@"
