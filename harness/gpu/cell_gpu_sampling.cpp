@@ -177,8 +177,11 @@ CellGpuSampling sample_cell_distances_on_gpu(const CellComplex& cc,
   }
   glFinish();
   out.ms = ms_since(t0);
+  // GL's defaults back, for whatever draws next in this context.
   glBindVertexArray(0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glUseProgram(0);
+  glDisable(GL_DEPTH_TEST);
   return out;
 }
 
