@@ -16,20 +16,6 @@ namespace {
 
 using Type = CellProjection::Type;
 
-// The mesh scaled into [0.02, 0.98]^3, as the cube's texture space holds it.
-TriangleMesh in_unit_cube(TriangleMesh mesh) {
-  glm::vec3 lo(1e30f), hi(-1e30f);
-  for (const glm::vec3& p : mesh.positions) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  const float scale = 0.96f / std::max(std::max(hi.x - lo.x, hi.y - lo.y), hi.z - lo.z);
-  for (glm::vec3& p : mesh.positions) p = 0.5f + (p - 0.5f * (lo + hi)) * scale;
-  mesh.lo = glm::dvec3(0.5f + (lo - 0.5f * (lo + hi)) * scale);
-  mesh.hi = glm::dvec3(0.5f + (hi - 0.5f * (lo + hi)) * scale);
-  return mesh;
-}
-
 void print(const char* what, const CellSamplingAgreement& a) {
   for (int k = 0; k < 4; ++k) {
     const CellSamplingAgreement::PerType& t = a.types[k];
@@ -63,8 +49,10 @@ TEST(CellGpuSampling, PerspectiveAndParallelCellsMatchTheProjectionLines) {
 }
 
 TEST(CellGpuSampling, AxialCellsAgreeOnlyOnceLongEdgesAreCut) {
-  const TriangleMesh bunny =
-      in_unit_cube(load_mesh(std::string(RELIEFLAB_SOURCE_DIR) + "/assets/meshes/bunny.obj"));
+  // In its bounding cube's texture space, y up, as a scene's cell complex has it.
+  const TriangleMesh file =
+      load_mesh(std::string(RELIEFLAB_SOURCE_DIR) + "/assets/meshes/bunny.obj");
+  const TriangleMesh bunny = to_frame(file, cell_frame(file, 1));
   const CellComplex cc = CellComplex::build(bunny, {.grid = 8, .resolution = 32});
   const CellSamplingAgreement chords =
       compare_cell_sampling(cc, sample_cell_distances_on_gpu(cc, {}).distance);

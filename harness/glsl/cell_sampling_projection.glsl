@@ -14,8 +14,8 @@ float rl_face_side() {
   return float(rl_face % 2);
 }
 
-// The axis along which a central projection (perspective, or axial across its axis) divides:
-// the face's own. Its line's inner end for a point q: the centre, or the axis' foot at q.
+// The inner end of the projection line through q, for the central projections: the centre
+// (perspective), or the axis' foot at q (axial).
 vec3 rl_projection_inner(vec3 q) {
   vec3 inner = rl_projection_point;
   if (rl_projection == 1) inner[rl_projection_axis] = q[rl_projection_axis];

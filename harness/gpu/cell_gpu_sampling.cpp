@@ -6,6 +6,7 @@
 
 #include <epoxy/gl.h>
 
+#include "core/elapsed.h"
 #include "core/error.h"
 #include "gl/context.h"
 #include "gl/shader_library.h"
@@ -121,10 +122,6 @@ GLuint sampling_program(int splits) {
                                           {"harness/glsl/cell_sampling_frag.glsl"},
                                           {{"RL_CELL_SPLITS", std::to_string(splits)}},
                                           "harness/glsl/cell_sampling_geom.glsl"});
-}
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace
