@@ -14,28 +14,30 @@
 namespace rl {
 namespace {
 
-// Per grey cell (in cells() order), the mesh triangles whose bounding box meets the cell's: the
-// paper draws "the mesh triangles intersecting the cell"; a box test keeps every one of them
-// (and some that only come near), and the fragment stage drops points outside the cell.
+// Per grey cell (in cells() order), the mesh triangles intersecting it, as the paper draws them:
+// the exact test the classification made the cell grey by (triangle_overlaps_box, with its
+// hair of padding), over the cells the triangle's bounding box meets.
 std::vector<std::vector<uint32_t>> triangles_per_cell(const CellComplex& cc) {
   const int n = cc.grid();
   const TriangleMesh& mesh = cc.mesh();
   std::vector<std::vector<uint32_t>> out(cc.cells().size());
-  const double slack = 1e-6;
+  const double slack = 1e-6, pad = 1e-9;
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-    glm::dvec3 lo(1e30), hi(-1e30);
-    for (int k = 0; k < 3; ++k) {
-      const glm::dvec3 p = glm::dvec3(mesh.positions[mesh.triangles[t][k]]) * double(n);
-      lo = glm::min(lo, p);
-      hi = glm::max(hi, p);
-    }
+    glm::dvec3 corner[3];
+    for (int k = 0; k < 3; ++k) corner[k] = glm::dvec3(mesh.positions[mesh.triangles[t][k]]);
+    const glm::dvec3 lo = glm::min(corner[0], glm::min(corner[1], corner[2])) * double(n);
+    const glm::dvec3 hi = glm::max(corner[0], glm::max(corner[1], corner[2])) * double(n);
     const glm::ivec3 from = glm::clamp(glm::ivec3(glm::floor(lo - slack)), 0, n - 1);
     const glm::ivec3 to = glm::clamp(glm::ivec3(glm::floor(hi + slack)), 0, n - 1);
     for (int k = from.z; k <= to.z; ++k)
       for (int j = from.y; j <= to.y; ++j)
-        for (int i = from.x; i <= to.x; ++i)
-          if (cc.cell(i, j, k).state == CellState::Grey)
+        for (int i = from.x; i <= to.x; ++i) {
+          if (cc.cell(i, j, k).state != CellState::Grey) continue;
+          const glm::dvec3 box_lo = glm::dvec3(i, j, k) / double(n) - pad;
+          const glm::dvec3 box_hi = glm::dvec3(i + 1, j + 1, k + 1) / double(n) + pad;
+          if (triangle_overlaps_box(corner[0], corner[1], corner[2], box_lo, box_hi))
             out[cc.index(i, j, k)].push_back(uint32_t(t));
+        }
   }
   return out;
 }
