@@ -1,9 +1,9 @@
-// Section 3.3.2's GPU sampling of a cell complex's distance maps (gpu/cell_gpu_sampling.h)
-// against the CPU's per-texel projection lines (relief/cell_complex.h): on a tessellated sphere
-// (perspective and parallel cells) and on the Stanford bunny (axial ones too). The two agree to
-// rounding where the cell's projection maps triangles onto triangles; in axial cells, whose
-// projection bends straight edges (Figure 3), only once long edges are cut, as the paper's
-// geometry shader does. Tolerances in face texels (64 or 32 per cell side).
+// Section 3.3.2's GPU sampling of a cell complex's distance and normal maps
+// (gpu/cell_gpu_sampling.h) against the CPU's per-texel projection lines (relief/cell_complex.h):
+// on a tessellated sphere (perspective and parallel cells) and on the Stanford bunny (axial ones
+// too). The two agree to rounding where the cell's projection maps triangles onto triangles; in
+// axial cells, whose projection bends straight edges (Figure 3), only once long edges are cut, as
+// the paper's geometry shader does. Tolerances in face texels (64 or 32 per cell side).
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -22,10 +22,18 @@ void print(const char* what, const CellSamplingAgreement& a) {
     if (!t.texels) continue;
     std::printf(
         "%s, %s: %ld texels, %ld hit on the CPU, %ld on one side only (%ld at a line's end); "
-        "error p99 %.3g, max %.3g texels\n",
+        "error p99 %.3g, max %.3g texels; normals p99 %.3g, max %.3g deg, %ld over 1 deg\n",
         what, projection_type_name(Type(k)), t.texels, t.cpu_hits, t.one_sided, t.one_sided_at_ends,
-        t.err_texels_p99, t.err_texels_max);
+        t.err_texels_p99, t.err_texels_max, t.normal_err_deg_p99, t.normal_err_deg_max,
+        t.normal_over_1deg);
   }
+}
+
+// The same triangle's normal, to float rounding; a line through a triangle's edge, or one that
+// grazes the surface where two triangles lie within rounding along it, may report either.
+void expect_same_normals(const CellSamplingAgreement::PerType& t) {
+  EXPECT_LT(t.normal_err_deg_p99, 1e-3);
+  EXPECT_LE(double(t.normal_over_1deg), 5e-3 * double(t.both_hit));
 }
 
 // Where the projection is linear: the same texels hit, the same points to float rounding (a
@@ -35,14 +43,15 @@ void expect_linear_agreement(const CellSamplingAgreement::PerType& t) {
   EXPECT_LE(double(t.one_sided), 1e-4 * double(t.texels));
   EXPECT_GE(double(t.within_half), (1 - 1e-4) * double(t.both_hit));
   EXPECT_LT(t.err_texels_p99, 0.01);
+  expect_same_normals(t);
 }
 
 TEST(CellGpuSampling, PerspectiveAndParallelCellsMatchTheProjectionLines) {
   const TriangleMesh sphere = test::uv_sphere({0.5, 0.5, 0.5}, 0.37, 96, 48);
   const CellComplex cc = CellComplex::build(sphere, {.grid = 4, .resolution = 64});
-  const CellGpuSampling gpu = sample_cell_distances_on_gpu(cc, {});
+  const CellGpuSampling gpu = sample_cell_maps_on_gpu(cc, {});
   EXPECT_EQ(gpu.face_draws, long(cc.domain_faces().size()));
-  const CellSamplingAgreement a = compare_cell_sampling(cc, gpu.distance);
+  const CellSamplingAgreement a = compare_cell_sampling(cc, gpu);
   print("sphere", a);
   expect_linear_agreement(a.types[int(Type::Perspective)]);
   expect_linear_agreement(a.types[int(Type::Parallel)]);
@@ -54,10 +63,9 @@ TEST(CellGpuSampling, AxialCellsAgreeOnlyOnceLongEdgesAreCut) {
       load_mesh(std::string(RELIEFLAB_SOURCE_DIR) + "/assets/meshes/bunny.obj");
   const TriangleMesh bunny = to_frame(file, cell_frame(file, 1));
   const CellComplex cc = CellComplex::build(bunny, {.grid = 8, .resolution = 32});
-  const CellSamplingAgreement chords =
-      compare_cell_sampling(cc, sample_cell_distances_on_gpu(cc, {}).distance);
+  const CellSamplingAgreement chords = compare_cell_sampling(cc, sample_cell_maps_on_gpu(cc, {}));
   const CellSamplingAgreement cut =
-      compare_cell_sampling(cc, sample_cell_distances_on_gpu(cc, {.subdivide_texels = 1}).distance);
+      compare_cell_sampling(cc, sample_cell_maps_on_gpu(cc, {.subdivide_texels = 1}));
   print("bunny, edges drawn as chords", chords);
   print("bunny, edges cut to a texel", cut);
   const CellSamplingAgreement::PerType &bent = chords.types[int(Type::Axial)],
@@ -66,6 +74,7 @@ TEST(CellGpuSampling, AxialCellsAgreeOnlyOnceLongEdgesAreCut) {
   // As chords, the projected triangles miss or cover the wrong texels...
   EXPECT_GT(double(bent.one_sided), 0.02 * double(bent.texels));
   EXPECT_GT(bent.err_texels_p99, 1.0);
+  EXPECT_GT(bent.normal_err_deg_p99, 1.0);  // points of other triangles
   // ...cut, they follow the curves: what still differs is where a line meets the surface at
   // its end, on the face or at the axis, where every line of the cell meets.
   EXPECT_LE(double(fixed.one_sided), 0.005 * double(fixed.texels));
@@ -73,6 +82,7 @@ TEST(CellGpuSampling, AxialCellsAgreeOnlyOnceLongEdgesAreCut) {
   EXPECT_LT(double(bent.one_sided_at_ends), 0.1 * double(bent.one_sided));
   EXPECT_GE(double(fixed.within_half), 0.999 * double(fixed.both_hit));
   EXPECT_LT(fixed.err_texels_p99, 0.05);
+  expect_same_normals(fixed);
   // Cutting touches only the axial cells.
   expect_linear_agreement(cut.types[int(Type::Perspective)]);
   EXPECT_EQ(cut.types[int(Type::Perspective)].one_sided,
@@ -82,7 +92,10 @@ TEST(CellGpuSampling, AxialCellsAgreeOnlyOnceLongEdgesAreCut) {
 TEST(CellGpuSampling, MapsOfTheWrongSizeAreRefused) {
   const CellComplex cc = CellComplex::build(test::uv_sphere({0.5, 0.5, 0.5}, 0.3, 24, 12),
                                             {.grid = 2, .resolution = 8});
-  EXPECT_THROW(compare_cell_sampling(cc, std::vector<float>(7, 1.0f)), std::invalid_argument);
+  CellGpuSampling wrong;
+  wrong.distance.assign(7, 1.0f);
+  wrong.normal.assign(7, glm::vec3(0.0f));
+  EXPECT_THROW(compare_cell_sampling(cc, wrong), std::invalid_argument);
 }
 
 }  // namespace

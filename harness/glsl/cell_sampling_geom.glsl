@@ -18,7 +18,8 @@
 layout(triangles, invocations = RL_CELL_SPLITS * RL_CELL_SPLITS) in;
 layout(triangle_strip, max_vertices = 80) out;
 in vec3 v_position[];
-out vec3 g_local;  // the cell-local point a fragment stands for
+out vec3 g_local;        // the cell-local point a fragment stands for
+flat out vec3 g_normal;  // its triangle's: the CPU's maps hold the hit triangle's (Embree's Ng)
 
 uniform vec3 rl_cell_origin;  // the cell's lowest corner, in cells
 uniform float rl_grid;        // N
@@ -47,8 +48,10 @@ vec4 rl_face_clip(vec3 q) {
   return vec4(2.0 * st - 1.0, 0.0, 1.0);
 }
 
-void rl_emit(vec3 q) {
+// n: the mesh triangle's normal, whatever piece of it is drawn.
+void rl_emit(vec3 q, vec3 n) {
   g_local = q;
+  g_normal = n;
   gl_Position = rl_face_clip(q);
   EmitVertex();
 }
@@ -61,14 +64,14 @@ float rl_projected_texels(vec3 q0, vec3 q1, vec3 q2) {
 }
 
 // Cuts into k x k pieces, emitted as strips of rows of the barycentric grid.
-void rl_emit_pieces(vec3 q0, vec3 q1, vec3 q2, int k) {
+void rl_emit_pieces(vec3 q0, vec3 q1, vec3 q2, int k, vec3 n) {
   vec3 e1 = (q1 - q0) / float(k), e2 = (q2 - q0) / float(k);
   for (int r = 0; r < k; ++r) {
     for (int i = 0; i < k - r; ++i) {
-      rl_emit(q0 + e1 * float(i) + e2 * float(r));
-      rl_emit(q0 + e1 * float(i) + e2 * float(r + 1));
+      rl_emit(q0 + e1 * float(i) + e2 * float(r), n);
+      rl_emit(q0 + e1 * float(i) + e2 * float(r + 1), n);
     }
-    rl_emit(q0 + e1 * float(k - r) + e2 * float(r));
+    rl_emit(q0 + e1 * float(k - r) + e2 * float(r), n);
     EndPrimitive();
   }
 }
@@ -94,11 +97,13 @@ bool rl_first_piece(int id, int m, vec3 q[3], out vec3 piece[3]) {
 void main() {
   vec3 q[3];
   for (int v = 0; v < 3; ++v) q[v] = v_position[v] * rl_grid - rl_cell_origin;
+  // Embree's geometric normal of triangle (v0, v1, v2), (v1 - v0) x (v2 - v0), here unit.
+  vec3 n = normalize(cross(v_position[1] - v_position[0], v_position[2] - v_position[0]));
   bool cut = rl_projection == 1 && rl_subdivide_texels > 0.0;
   float pieces = cut ? rl_projected_texels(q[0], q[1], q[2]) / rl_subdivide_texels : 1.0;
   int m = clamp(int(ceil(pieces / float(RL_CELL_PIECES))), 1, RL_CELL_SPLITS);
   vec3 piece[3];
   if (!rl_first_piece(gl_InvocationID, m, q, piece)) return;
   int k = clamp(int(ceil(pieces / float(m))), 1, RL_CELL_PIECES);
-  rl_emit_pieces(piece[0], piece[1], piece[2], k);
+  rl_emit_pieces(piece[0], piece[1], piece[2], k, n);
 }

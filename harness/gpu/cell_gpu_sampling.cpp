@@ -79,17 +79,23 @@ struct CellDrawBuffers {
   CellDrawBuffers& operator=(const CellDrawBuffers&) = delete;
 };
 
-// One face's map: a float colour (the distance) and a depth buffer (the same, for the test).
+// One face's maps: float colours (the distance; the normal) and a depth buffer (the distance
+// again, for the test).
 struct FaceTarget {
-  GLuint fbo = 0, color = 0, depth = 0;
+  GLuint fbo = 0, color = 0, normal = 0, depth = 0;
 
   explicit FaceTarget(int res) {
     glCreateTextures(GL_TEXTURE_2D, 1, &color);
     glTextureStorage2D(color, 1, GL_R32F, res, res);
+    glCreateTextures(GL_TEXTURE_2D, 1, &normal);
+    glTextureStorage2D(normal, 1, GL_RGBA32F, res, res);  // RGB32F need not be renderable
     glCreateRenderbuffers(1, &depth);
     glNamedRenderbufferStorage(depth, GL_DEPTH_COMPONENT32F, res, res);
     glCreateFramebuffers(1, &fbo);
     glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, color, 0);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, normal, 0);
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(fbo, 2, buffers);
     glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
     if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw GlError("cell complex GPU sampling: the face's render target is incomplete");
@@ -97,6 +103,7 @@ struct FaceTarget {
   ~FaceTarget() {
     glDeleteFramebuffers(1, &fbo);
     glDeleteTextures(1, &color);
+    glDeleteTextures(1, &normal);
     glDeleteRenderbuffers(1, &depth);
   }
   FaceTarget(const FaceTarget&) = delete;
@@ -126,10 +133,32 @@ GLuint sampling_program(int splits) {
                                           "harness/glsl/cell_sampling_geom.glsl"});
 }
 
+// Mean, 99th percentile and largest of `v` (reordered); zeros when it is empty.
+struct Spread {
+  double mean = 0, p99 = 0, max = 0;
+};
+
+Spread spread_of(std::vector<double>& v) {
+  Spread s;
+  if (v.empty()) return s;
+  for (double x : v) s.mean += x;
+  s.mean /= double(v.size());
+  s.max = *std::max_element(v.begin(), v.end());
+  const size_t p99 = std::min(v.size() - 1, size_t(0.99 * double(v.size())));
+  std::nth_element(v.begin(), v.begin() + long(p99), v.end());
+  s.p99 = v[p99];
+  return s;
+}
+
+// In double, and by atan2: acos of a float dot product near 1 cannot resolve below ~0.02 deg.
+double degrees_between(glm::dvec3 a, glm::dvec3 b) {
+  return glm::degrees(std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)));
+}
+
 }  // namespace
 
-CellGpuSampling sample_cell_distances_on_gpu(const CellComplex& cc,
-                                             const CellGpuSamplingOptions& options) {
+CellGpuSampling sample_cell_maps_on_gpu(const CellComplex& cc,
+                                        const CellGpuSamplingOptions& options) {
   GlContext::shared();
   // Cells whose triangles are cut (axial ones, with a threshold) draw through the geometry
   // shader's instanced form; the others through one invocation per triangle.
@@ -146,6 +175,8 @@ CellGpuSampling sample_cell_distances_on_gpu(const CellComplex& cc,
   const size_t texels = size_t(res) * res;
   CellGpuSampling out;
   out.distance.assign(cc.domain_faces().size() * texels, 1.0f);
+  out.normal.assign(out.distance.size(), glm::vec3(0.0f));
+  std::vector<glm::vec4> face_normal(texels);
 
   glFinish();
   const auto t0 = std::chrono::steady_clock::now();
@@ -157,7 +188,7 @@ CellGpuSampling sample_cell_distances_on_gpu(const CellComplex& cc,
   glDisable(GL_CULL_FACE);
   glDisable(GL_BLEND);
   glBindVertexArray(draws.vao);
-  const GLfloat far_distance = 1.0f, far_depth = 1.0f;
+  const GLfloat far_distance = 1.0f, far_depth = 1.0f, no_normal[4] = {0, 0, 0, 0};
   for (size_t f = 0; f < cc.domain_faces().size(); ++f) {
     const CellComplex::DomainFace& df = cc.domain_faces()[f];
     const bool axial = cc.cells()[df.cell].config.projection.type == CellProjection::Type::Axial;
@@ -165,12 +196,17 @@ CellGpuSampling sample_cell_distances_on_gpu(const CellComplex& cc,
     glUseProgram(program);
     set_face_uniforms(program, cc, df);
     glClearNamedFramebufferfv(target.fbo, GL_COLOR, 0, &far_distance);
+    glClearNamedFramebufferfv(target.fbo, GL_COLOR, 1, no_normal);
     glClearNamedFramebufferfv(target.fbo, GL_DEPTH, 0, &far_depth);
     const size_t count = draws.count[df.cell];
     if (count)
       glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT,
                      reinterpret_cast<const void*>(draws.first[df.cell] * sizeof(uint32_t)));
+    glNamedFramebufferReadBuffer(target.fbo, GL_COLOR_ATTACHMENT0);
     glReadPixels(0, 0, res, res, GL_RED, GL_FLOAT, out.distance.data() + f * texels);
+    glNamedFramebufferReadBuffer(target.fbo, GL_COLOR_ATTACHMENT1);
+    glReadPixels(0, 0, res, res, GL_RGBA, GL_FLOAT, face_normal.data());
+    for (size_t t = 0; t < texels; ++t) out.normal[f * texels + t] = glm::vec3(face_normal[t]);
     ++out.face_draws;
     out.triangles += long(count / 3);
   }
@@ -184,25 +220,26 @@ CellGpuSampling sample_cell_distances_on_gpu(const CellComplex& cc,
   return out;
 }
 
-CellSamplingAgreement compare_cell_sampling(const CellComplex& cc, const std::vector<float>& gpu) {
+CellSamplingAgreement compare_cell_sampling(const CellComplex& cc, const CellGpuSampling& gpu) {
   const int res = cc.resolution();
   const size_t texels = size_t(res) * res;
-  if (gpu.size() != cc.domain_faces().size() * texels)
+  if (gpu.distance.size() != cc.domain_faces().size() * texels ||
+      gpu.normal.size() != gpu.distance.size())
     throw std::invalid_argument("compare_cell_sampling: the GPU maps are not the complex's size");
   CellSamplingAgreement out;
-  std::array<std::vector<double>, 4> errors;
+  std::array<std::vector<double>, 4> errors, angles;
   for (size_t f = 0; f < cc.domain_faces().size(); ++f) {
     const CellComplex::DomainFace& df = cc.domain_faces()[f];
     const CellProjection& p = cc.cells()[df.cell].config.projection;
     CellSamplingAgreement::PerType& type = out.types[int(p.type)];
     for (size_t t = 0; t < texels; ++t) {
       const size_t at = f * texels + t;
-      const bool cpu_hit = cc.crossings()[at] > 0, gpu_hit = gpu[at] < 1.0f;
+      const bool cpu_hit = cc.crossings()[at] > 0, gpu_hit = gpu.distance[at] < 1.0f;
       ++type.texels;
       type.cpu_hits += cpu_hit;
       const double cpu_d = cc.distance()[at] / cc.distance_scale();
       if (cpu_hit != gpu_hit) {
-        const double d = gpu_hit ? double(gpu[at]) : cpu_d;
+        const double d = gpu_hit ? double(gpu.distance[at]) : cpu_d;
         ++type.one_sided;
         type.one_sided_at_ends += d < 1e-4 || d > 0.99;
       }
@@ -210,23 +247,24 @@ CellSamplingAgreement compare_cell_sampling(const CellComplex& cc, const std::ve
       ++type.both_hit;
       const glm::dvec2 st((double(t % res) + 0.5) / res, (double(t / res) + 0.5) / res);
       const double length = face_line(p, df.face, st).length;
-      const double err = std::abs(double(gpu[at]) - cpu_d) * length * res;
+      const double err = std::abs(double(gpu.distance[at]) - cpu_d) * length * res;
       type.within_half += err <= 0.5;
       type.over_one += err > 1.0;
       errors[int(p.type)].push_back(err);
+      const double angle = degrees_between(gpu.normal[at], cc.normal()[at]);
+      type.normal_over_1deg += angle > 1.0;
+      angles[int(p.type)].push_back(angle);
     }
   }
   for (int k = 0; k < 4; ++k) {
-    std::vector<double>& e = errors[k];
-    if (e.empty()) continue;
     CellSamplingAgreement::PerType& type = out.types[k];
-    double sum = 0;
-    for (double x : e) sum += x;
-    type.err_texels_mean = sum / double(e.size());
-    type.err_texels_max = *std::max_element(e.begin(), e.end());
-    const size_t p99 = std::min(e.size() - 1, size_t(0.99 * double(e.size())));
-    std::nth_element(e.begin(), e.begin() + long(p99), e.end());
-    type.err_texels_p99 = e[p99];
+    const Spread e = spread_of(errors[k]), a = spread_of(angles[k]);
+    type.err_texels_mean = e.mean;
+    type.err_texels_p99 = e.p99;
+    type.err_texels_max = e.max;
+    type.normal_err_deg_mean = a.mean;
+    type.normal_err_deg_p99 = a.p99;
+    type.normal_err_deg_max = a.max;
   }
   return out;
 }

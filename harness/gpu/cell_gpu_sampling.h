@@ -1,9 +1,9 @@
 #pragma once
-// A cell complex's distance maps sampled on the GPU, as Apaza & Andujar build them (Section
-// 3.3.2): for every grey cell and each of its domain faces, an orthographic view of that face,
-// the mesh triangles that may cross the cell drawn through a geometry shader that projects them
+// A cell complex's distance and normal maps sampled on the GPU, as Apaza & Andujar build them
+// (Section 3.3.2): for every grey cell and each of its domain faces, an orthographic view of that
+// face, the mesh triangles that cross the cell drawn through a geometry shader that projects them
 // by the cell's projection, and a fragment shader that writes each surface point's distance from
-// its face point as its depth, so that the depth test keeps the nearest
+// its face point as its depth, so that the depth test keeps the nearest, and its normal beside it
 // (harness/glsl/cell_sampling_*.glsl). relief/cell_complex.h samples the same maps on the CPU by
 // casting every texel's own projection line; the two agree where the projection maps triangles
 // onto triangles (perspective, planar, parallel), and the GPU's bend where it does not (axial)
@@ -26,18 +26,22 @@ struct CellGpuSampling {
   // point's distance from the face point as a share of the projection line in the cell; 1 where
   // no surface point projects there.
   std::vector<float> distance;
+  // Per texel, the unit normal of the surface point's triangle (Embree's Ng convention, as the
+  // CPU's maps hold it); 0 where there is none.
+  std::vector<glm::vec3> normal;
   double ms = 0;        // every face drawn and read back: the wall clock after glFinish
   long face_draws = 0;  // domain faces drawn
   long triangles = 0;   // mesh triangles submitted, over every face drawn
 };
 
 // Needs the process's GL context (gl/context.h); throws GlError where the driver refuses.
-CellGpuSampling sample_cell_distances_on_gpu(const CellComplex& cells,
-                                             const CellGpuSamplingOptions& options);
+CellGpuSampling sample_cell_maps_on_gpu(const CellComplex& cells,
+                                        const CellGpuSamplingOptions& options);
 
 // How the GPU's maps compare with the CPU's (CellComplex::distance()), per projection type
 // (CellProjection::Type's order): texels whose line meets the surface on one side only, and the
-// position error in face texels (|difference of d| x the line's length) where both do.
+// position error in face texels (|difference of d| x the line's length) and the angle between
+// the two normals where both do.
 struct CellSamplingAgreement {
   struct PerType {
     long texels = 0;     // of this type's domain faces
@@ -50,11 +54,13 @@ struct CellSamplingAgreement {
     long within_half = 0;  // of both_hit, within half a face texel of the CPU's point
     long over_one = 0;     // of both_hit, more than a face texel from it
     double err_texels_max = 0, err_texels_p99 = 0, err_texels_mean = 0;
+    long normal_over_1deg = 0;  // of both_hit, normals more than a degree apart
+    double normal_err_deg_max = 0, normal_err_deg_p99 = 0, normal_err_deg_mean = 0;
   };
   std::array<PerType, 4> types;
 };
 
-CellSamplingAgreement compare_cell_sampling(const CellComplex& cells,
-                                            const std::vector<float>& gpu_distance);
+// Throws std::invalid_argument when the GPU's maps are not the complex's size.
+CellSamplingAgreement compare_cell_sampling(const CellComplex& cells, const CellGpuSampling& gpu);
 
 }  // namespace rl
