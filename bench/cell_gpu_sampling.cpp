@@ -5,7 +5,8 @@
 // projection line (relief/cell_complex.h). Per mesh, setting (axial edges cut or not) and
 // projection type: how many texels see the surface on one side only (and how many of those at an
 // end of the projection line), how far apart the two put it where both do, in face texels, the
-// angle between their normals there, and what each sampling took on this machine.
+// angle between their normals there, how many fragments each counts per texel (the GPU in the
+// stencil buffer, Section 3.3.3), and what each sampling took on this machine.
 //
 // Rows to stdout (scripts/cell-gpu-sampling-rows.sh makes results/apaza-gpu-sampling/rows.csv).
 //   cell_gpu_sampling [--meshes bunny,teapot,dragon] [--runs 3]
@@ -54,6 +55,12 @@ void print_rows(const std::string& mesh, const CellComplex& cc, double subdivide
     std::printf("%ld,%.4g,%.4g,%.4g,%.4g,", t.normal_over_1deg,
                 100.0 * double(t.normal_over_1deg) / both, t.normal_err_deg_mean,
                 t.normal_err_deg_p99, t.normal_err_deg_max);
+    const auto ratio = [](long part, long whole) {
+      return whole ? double(part) / double(whole) : 0.0;
+    };
+    std::printf("%ld,%ld,%.4g,%.4g,%.4g,", t.gpu_fragments, t.cpu_fragments,
+                ratio(t.gpu_occluded, t.gpu_fragments), ratio(t.cpu_occluded, t.cpu_fragments),
+                100.0 * double(t.fragment_counts_differ) / texels);
     std::printf("%ld,%.4g,%.4g,%s\n", gpu.triangles, gpu.ms, cc.stats().sample_ms,
                 cc.stats().from_cache ? "cache" : "built");
   }
@@ -67,8 +74,10 @@ void run(const std::vector<std::string>& meshes, int runs) {
       "one_sided_pct,within_half_texel_pct,one_sided_texels,one_sided_at_line_ends,"
       "one_sided_elsewhere,over_one_texel,"
       "pos_err_texels_mean,pos_err_texels_p99,pos_err_texels_max,"
-      "normal_over_1deg,normal_over_1deg_pct,normal_err_deg_mean,normal_err_deg_p99,normal_err_deg_"
-      "max,"
+      "normal_over_1deg,normal_over_1deg_pct,"
+      "normal_err_deg_mean,normal_err_deg_p99,normal_err_deg_max,"
+      "gpu_fragments,cpu_fragments,gpu_occluded_ratio,cpu_occluded_ratio,"
+      "fragment_counts_differ_pct,"
       "triangles_drawn,gpu_sample_ms,cpu_sample_ms,cpu_maps\n");
   for (const std::string& mesh : meshes) {
     const SweepConfig config = bench::table1_mesh_config(mesh, "cell_gpu_sampling");

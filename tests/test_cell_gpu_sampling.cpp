@@ -6,6 +6,7 @@
 // the paper's geometry shader does. Tolerances in face texels (64 or 32 per cell side).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "gpu/cell_gpu_sampling.h"
@@ -22,10 +23,12 @@ void print(const char* what, const CellSamplingAgreement& a) {
     if (!t.texels) continue;
     std::printf(
         "%s, %s: %ld texels, %ld hit on the CPU, %ld on one side only (%ld at a line's end); "
-        "error p99 %.3g, max %.3g texels; normals p99 %.3g, max %.3g deg, %ld over 1 deg\n",
+        "error p99 %.3g, max %.3g texels; normals p99 %.3g, max %.3g deg, %ld over 1 deg; "
+        "fragments %ld (%ld occluded) against %ld (%ld), %ld texels' counts differ\n",
         what, projection_type_name(Type(k)), t.texels, t.cpu_hits, t.one_sided, t.one_sided_at_ends,
         t.err_texels_p99, t.err_texels_max, t.normal_err_deg_p99, t.normal_err_deg_max,
-        t.normal_over_1deg);
+        t.normal_over_1deg, t.gpu_fragments, t.gpu_occluded, t.cpu_fragments, t.cpu_occluded,
+        t.fragment_counts_differ);
   }
 }
 
@@ -36,6 +39,13 @@ void expect_same_normals(const CellSamplingAgreement::PerType& t) {
   EXPECT_LE(double(t.normal_over_1deg), 5e-3 * double(t.both_hit));
 }
 
+// Section 3.3.3's count of the fragments that project onto each texel: the stencil's against the
+// line's crossings, texel by texel; `differ` of the texels may part (where the line ends).
+void expect_same_fragments(const CellSamplingAgreement::PerType& t, double differ) {
+  EXPECT_LE(double(t.fragment_counts_differ), differ * double(t.texels));
+  EXPECT_LE(std::abs(double(t.gpu_occluded - t.cpu_occluded)), 1e-3 * double(t.cpu_fragments));
+}
+
 // Where the projection is linear: the same texels hit, the same points to float rounding (a
 // 32-bit float of d against a 16-bit quantised one: 1/65535 of a line of up to ~1.7 cells).
 void expect_linear_agreement(const CellSamplingAgreement::PerType& t) {
@@ -44,6 +54,7 @@ void expect_linear_agreement(const CellSamplingAgreement::PerType& t) {
   EXPECT_GE(double(t.within_half), (1 - 1e-4) * double(t.both_hit));
   EXPECT_LT(t.err_texels_p99, 0.01);
   expect_same_normals(t);
+  expect_same_fragments(t, 1e-4);
 }
 
 TEST(CellGpuSampling, PerspectiveAndParallelCellsMatchTheProjectionLines) {
@@ -75,6 +86,7 @@ TEST(CellGpuSampling, AxialCellsAgreeOnlyOnceLongEdgesAreCut) {
   EXPECT_GT(double(bent.one_sided), 0.02 * double(bent.texels));
   EXPECT_GT(bent.err_texels_p99, 1.0);
   EXPECT_GT(bent.normal_err_deg_p99, 1.0);  // points of other triangles
+  EXPECT_GT(double(bent.fragment_counts_differ), 0.02 * double(bent.texels));
   // ...cut, they follow the curves: what still differs is where a line meets the surface at
   // its end, on the face or at the axis, where every line of the cell meets.
   EXPECT_LE(double(fixed.one_sided), 0.005 * double(fixed.texels));
@@ -83,6 +95,7 @@ TEST(CellGpuSampling, AxialCellsAgreeOnlyOnceLongEdgesAreCut) {
   EXPECT_GE(double(fixed.within_half), 0.999 * double(fixed.both_hit));
   EXPECT_LT(fixed.err_texels_p99, 0.05);
   expect_same_normals(fixed);
+  expect_same_fragments(fixed, 0.005);
   // Cutting touches only the axial cells.
   expect_linear_agreement(cut.types[int(Type::Perspective)]);
   EXPECT_EQ(cut.types[int(Type::Perspective)].one_sided,

@@ -79,8 +79,8 @@ struct CellDrawBuffers {
   CellDrawBuffers& operator=(const CellDrawBuffers&) = delete;
 };
 
-// One face's maps: float colours (the distance; the normal) and a depth buffer (the distance
-// again, for the test).
+// One face's maps: float colours (the distance; the normal) and a depth-stencil buffer (the
+// distance again, for the test; the fragments counted).
 struct FaceTarget {
   GLuint fbo = 0, color = 0, normal = 0, depth = 0;
 
@@ -90,13 +90,13 @@ struct FaceTarget {
     glCreateTextures(GL_TEXTURE_2D, 1, &normal);
     glTextureStorage2D(normal, 1, GL_RGBA32F, res, res);  // RGB32F need not be renderable
     glCreateRenderbuffers(1, &depth);
-    glNamedRenderbufferStorage(depth, GL_DEPTH_COMPONENT32F, res, res);
+    glNamedRenderbufferStorage(depth, GL_DEPTH32F_STENCIL8, res, res);
     glCreateFramebuffers(1, &fbo);
     glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, color, 0);
     glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, normal, 0);
     const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glNamedFramebufferDrawBuffers(fbo, 2, buffers);
-    glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depth);
     if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw GlError("cell complex GPU sampling: the face's render target is incomplete");
   }
@@ -150,6 +150,15 @@ Spread spread_of(std::vector<double>& v) {
   return s;
 }
 
+// One texel's fragments, as the GPU's stencil and the CPU's crossings count them.
+void count_fragments(int gpu, int cpu, CellSamplingAgreement::PerType& type) {
+  type.gpu_fragments += gpu;
+  type.cpu_fragments += cpu;
+  type.gpu_occluded += std::max(0, gpu - 1);
+  type.cpu_occluded += std::max(0, cpu - 1);
+  type.fragment_counts_differ += gpu != cpu;
+}
+
 // In double, and by atan2: acos of a float dot product near 1 cannot resolve below ~0.02 deg.
 double degrees_between(glm::dvec3 a, glm::dvec3 b) {
   return glm::degrees(std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)));
@@ -176,6 +185,7 @@ CellGpuSampling sample_cell_maps_on_gpu(const CellComplex& cc,
   CellGpuSampling out;
   out.distance.assign(cc.domain_faces().size() * texels, 1.0f);
   out.normal.assign(out.distance.size(), glm::vec3(0.0f));
+  out.fragments.assign(out.distance.size(), 0);
   std::vector<glm::vec4> face_normal(texels);
 
   glFinish();
@@ -185,6 +195,11 @@ CellGpuSampling sample_cell_maps_on_gpu(const CellComplex& cc,
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
+  // Every fragment the shader keeps adds one to its texel's stencil, occluded or not.
+  glEnable(GL_STENCIL_TEST);
+  glStencilFunc(GL_ALWAYS, 0, 0xff);
+  glStencilOp(GL_KEEP, GL_INCR, GL_INCR);
+  glStencilMask(0xff);
   glDisable(GL_CULL_FACE);
   glDisable(GL_BLEND);
   glBindVertexArray(draws.vao);
@@ -197,7 +212,7 @@ CellGpuSampling sample_cell_maps_on_gpu(const CellComplex& cc,
     set_face_uniforms(program, cc, df);
     glClearNamedFramebufferfv(target.fbo, GL_COLOR, 0, &far_distance);
     glClearNamedFramebufferfv(target.fbo, GL_COLOR, 1, no_normal);
-    glClearNamedFramebufferfv(target.fbo, GL_DEPTH, 0, &far_depth);
+    glClearNamedFramebufferfi(target.fbo, GL_DEPTH_STENCIL, 0, far_depth, 0);
     const size_t count = draws.count[df.cell];
     if (count)
       glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT,
@@ -207,6 +222,10 @@ CellGpuSampling sample_cell_maps_on_gpu(const CellComplex& cc,
     glNamedFramebufferReadBuffer(target.fbo, GL_COLOR_ATTACHMENT1);
     glReadPixels(0, 0, res, res, GL_RGBA, GL_FLOAT, face_normal.data());
     for (size_t t = 0; t < texels; ++t) out.normal[f * texels + t] = glm::vec3(face_normal[t]);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);  // rows of `res` bytes
+    glReadPixels(0, 0, res, res, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE,
+                 out.fragments.data() + f * texels);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
     ++out.face_draws;
     out.triangles += long(count / 3);
   }
@@ -217,6 +236,7 @@ CellGpuSampling sample_cell_maps_on_gpu(const CellComplex& cc,
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glUseProgram(0);
   glDisable(GL_DEPTH_TEST);
+  glDisable(GL_STENCIL_TEST);
   return out;
 }
 
@@ -224,7 +244,7 @@ CellSamplingAgreement compare_cell_sampling(const CellComplex& cc, const CellGpu
   const int res = cc.resolution();
   const size_t texels = size_t(res) * res;
   if (gpu.distance.size() != cc.domain_faces().size() * texels ||
-      gpu.normal.size() != gpu.distance.size())
+      gpu.normal.size() != gpu.distance.size() || gpu.fragments.size() != gpu.distance.size())
     throw std::invalid_argument("compare_cell_sampling: the GPU maps are not the complex's size");
   CellSamplingAgreement out;
   std::array<std::vector<double>, 4> errors, angles;
@@ -237,6 +257,7 @@ CellSamplingAgreement compare_cell_sampling(const CellComplex& cc, const CellGpu
       const bool cpu_hit = cc.crossings()[at] > 0, gpu_hit = gpu.distance[at] < 1.0f;
       ++type.texels;
       type.cpu_hits += cpu_hit;
+      count_fragments(gpu.fragments[at], cc.crossings()[at], type);
       const double cpu_d = cc.distance()[at] / cc.distance_scale();
       if (cpu_hit != gpu_hit) {
         const double d = gpu_hit ? double(gpu.distance[at]) : cpu_d;

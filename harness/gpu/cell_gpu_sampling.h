@@ -4,8 +4,9 @@
 // face, the mesh triangles that cross the cell drawn through a geometry shader that projects them
 // by the cell's projection, and a fragment shader that writes each surface point's distance from
 // its face point as its depth, so that the depth test keeps the nearest, and its normal beside it
-// (harness/glsl/cell_sampling_*.glsl). relief/cell_complex.h samples the same maps on the CPU by
-// casting every texel's own projection line; the two agree where the projection maps triangles
+// (harness/glsl/cell_sampling_*.glsl); the stencil buffer counts the fragments per texel, whose
+// occluded share Section 3.3.3 chooses the grid size by. relief/cell_complex.h samples the same
+// maps on the CPU by casting every texel's own projection line; the two agree where the projection maps triangles
 // onto triangles (perspective, planar, parallel), and the GPU's bend where it does not (axial)
 // unless long edges are cut first.
 #include <array>
@@ -29,6 +30,9 @@ struct CellGpuSampling {
   // Per texel, the unit normal of the surface point's triangle (Embree's Ng convention, as the
   // CPU's maps hold it); 0 where there is none.
   std::vector<glm::vec3> normal;
+  // Per texel, how many fragments (surface points of the cell) project onto it, counted in the
+  // stencil buffer as Section 3.3.3 estimates the occluded fragments (at most 255).
+  std::vector<uint8_t> fragments;
   double ms = 0;        // every face drawn and read back: the wall clock after glFinish
   long face_draws = 0;  // domain faces drawn
   long triangles = 0;   // mesh triangles submitted, over every face drawn
@@ -38,10 +42,10 @@ struct CellGpuSampling {
 CellGpuSampling sample_cell_maps_on_gpu(const CellComplex& cells,
                                         const CellGpuSamplingOptions& options);
 
-// How the GPU's maps compare with the CPU's (CellComplex::distance()), per projection type
-// (CellProjection::Type's order): texels whose line meets the surface on one side only, and the
-// position error in face texels (|difference of d| x the line's length) and the angle between
-// the two normals where both do.
+// How the GPU's maps compare with the CPU's (CellComplex::distance(), normal(), crossings()), per
+// projection type (CellProjection::Type's order): texels whose line meets the surface on one side
+// only; the position error in face texels (|difference of d| x the line's length) and the angle
+// between the two normals where both do; and the fragments counted per texel.
 struct CellSamplingAgreement {
   struct PerType {
     long texels = 0;     // of this type's domain faces
@@ -56,6 +60,10 @@ struct CellSamplingAgreement {
     double err_texels_max = 0, err_texels_p99 = 0, err_texels_mean = 0;
     long normal_over_1deg = 0;  // of both_hit, normals more than a degree apart
     double normal_err_deg_max = 0, normal_err_deg_p99 = 0, normal_err_deg_mean = 0;
+    // Fragments per texel: the GPU's stencil count against the CPU's crossings of the line.
+    long gpu_fragments = 0, cpu_fragments = 0;  // over the type's texels
+    long gpu_occluded = 0, cpu_occluded = 0;    // of those, behind a texel's first
+    long fragment_counts_differ = 0;            // texels whose two counts differ
   };
   std::array<PerType, 4> types;
 };
