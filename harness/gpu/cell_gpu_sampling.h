@@ -6,9 +6,9 @@
 // its face point as its depth, so that the depth test keeps the nearest, and its normal beside it
 // (harness/glsl/cell_sampling_*.glsl); the stencil buffer counts the fragments per texel, whose
 // occluded share Section 3.3.3 chooses the grid size by. relief/cell_complex.h samples the same
-// maps on the CPU by casting every texel's own projection line; the two agree where the projection maps triangles
-// onto triangles (perspective, planar, parallel), and the GPU's bend where it does not (axial)
-// unless long edges are cut first.
+// maps on the CPU by casting every texel's own projection line; the two agree where the
+// projection maps triangles onto triangles (perspective, planar, parallel), and the GPU's bend
+// where it does not (axial) unless long edges are cut first.
 #include <array>
 #include <vector>
 
