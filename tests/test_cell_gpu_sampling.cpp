@@ -102,6 +102,35 @@ TEST(CellGpuSampling, AxialCellsAgreeOnlyOnceLongEdgesAreCut) {
             chords.types[int(Type::Perspective)].one_sided);
 }
 
+// What a scene with sampling = "gpu" draws: the complex with the GPU's maps taken in. The CPU's
+// own maps taken in give back the complex unchanged; the GPU's move each distance by at most a
+// few of its 16-bit steps (a 32-bit float against the CPU's quantised line).
+TEST(CellGpuSampling, SampledMapsReplaceTheComplexsOwn) {
+  const CellComplex cc = CellComplex::build(test::uv_sphere({0.5, 0.5, 0.5}, 0.37, 96, 48),
+                                            {.grid = 4, .resolution = 32});
+  std::vector<float> own(cc.distance().size());
+  for (size_t t = 0; t < own.size(); ++t)
+    own[t] = cc.crossings()[t] ? float(cc.distance()[t] / cc.distance_scale()) : 1.0f;
+  const CellComplex same = cc.with_sampled_maps(own, cc.normal());
+  EXPECT_EQ(same.distance(), cc.distance());
+  EXPECT_EQ(same.normal(), cc.normal());
+
+  const CellComplex gpu = with_gpu_sampled_maps(cc);
+  long hits = 0, moved = 0;
+  for (size_t t = 0; t < cc.distance().size(); ++t) {
+    if (!cc.crossings()[t]) {
+      EXPECT_EQ(gpu.distance()[t], cc.distance()[t]);  // a missed line keeps the CPU's d
+      continue;
+    }
+    ++hits;
+    moved += std::abs(int(gpu.distance()[t]) - int(cc.distance()[t])) > 4;
+  }
+  ASSERT_GT(hits, 1000);
+  EXPECT_LE(double(moved), 1e-3 * double(hits));
+  EXPECT_THROW((void)cc.with_sampled_maps(std::vector<float>(3, 1.0f), cc.normal()),
+               std::invalid_argument);
+}
+
 TEST(CellGpuSampling, MapsOfTheWrongSizeAreRefused) {
   const CellComplex cc = CellComplex::build(test::uv_sphere({0.5, 0.5, 0.5}, 0.3, 24, 12),
                                             {.grid = 2, .resolution = 8});

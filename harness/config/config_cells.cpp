@@ -6,10 +6,10 @@ namespace rl {
 
 void parse_cells_relief(const toml::table& t, const Src& src, const std::string& base_dir,
                         ReliefSourceDesc& r, nlohmann::json& canon) {
-  check_keys(
-      t,
-      {"cells", "grid", "resolution", "up", "threshold", "grid_max", "distance_bits", "subdivide"},
-      src, "a cell-complex relief");
+  check_keys(t,
+             {"cells", "grid", "resolution", "up", "threshold", "grid_max", "distance_bits",
+              "subdivide", "sampling"},
+             src, "a cell-complex relief");
   const toml::node& mn = *t.get("cells");
   r.mesh_path = resolve_path(string_of(mn, src, "cells"), base_dir, src, mn);
   r.cells.active = true;
@@ -45,12 +45,22 @@ void parse_cells_relief(const toml::table& t, const Src& src, const std::string&
       fail(src.at(*n), "'distance_bits' must be 16 (Table 1) or 8");
   }
   if (auto* n = t.get("subdivide")) r.cells.subdivide = positive_int(*n, src, "subdivide", 0, 4);
+  if (auto* n = t.get("sampling")) {
+    const std::string s = string_of(*n, src, "sampling");
+    if (s != "cpu" && s != "gpu")
+      fail(src.at(*n),
+           "'sampling' must be \"cpu\" (each texel's projection line traced) or "
+           "\"gpu\" (the maps drawn through a geometry shader, Section 3.3.2), got \"" +
+               s + "\"");
+    r.cells.gpu_sampling = s == "gpu";
+  }
   canon["cells"] = true;
   canon["subdivide"] = r.cells.subdivide;
   canon["up"] = r.mesh_up;
   canon["grid"] = r.cells.grid;
   canon["resolution"] = res;
   canon["distance_bits"] = r.cells.distance_bits;
+  if (r.cells.gpu_sampling) canon["sampling"] = "gpu";  // named only when set: keys stay
   if (r.cells.grid == 0) {
     canon["threshold"] = r.cells.threshold;
     canon["grid_max"] = r.cells.grid_max;

@@ -240,6 +240,11 @@ CellGpuSampling sample_cell_maps_on_gpu(const CellComplex& cc,
   return out;
 }
 
+CellComplex with_gpu_sampled_maps(const CellComplex& cc) {
+  const CellGpuSampling gpu = sample_cell_maps_on_gpu(cc, {.subdivide_texels = 1});
+  return cc.with_sampled_maps(gpu.distance, gpu.normal);
+}
+
 CellSamplingAgreement compare_cell_sampling(const CellComplex& cc, const CellGpuSampling& gpu) {
   const int res = cc.resolution();
   const size_t texels = size_t(res) * res;

@@ -42,6 +42,10 @@ struct CellGpuSampling {
 CellGpuSampling sample_cell_maps_on_gpu(const CellComplex& cells,
                                         const CellGpuSamplingOptions& options);
 
+// The complex with the distance and normal maps sampled on the GPU, axial cells' triangles cut to
+// a face texel (CellComplex::with_sampled_maps): what a scene with cells sampling = "gpu" draws.
+CellComplex with_gpu_sampled_maps(const CellComplex& cells);
+
 // How the GPU's maps compare with the CPU's (CellComplex::distance(), normal(), crossings()), per
 // projection type (CellProjection::Type's order): texels whose line meets the surface on one side
 // only; the position error in face texels (|difference of d| x the line's length) and the angle

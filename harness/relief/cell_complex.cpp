@@ -452,6 +452,27 @@ CellComplex CellComplex::build(const TriangleMesh& mesh, const CellComplexOption
   return cc;
 }
 
+CellComplex CellComplex::with_sampled_maps(const std::vector<float>& distance,
+                                           const std::vector<glm::vec3>& normal) const {
+  if (distance.size() != distance_.size() || normal.size() != distance_.size())
+    throw std::invalid_argument(
+        "CellComplex::with_sampled_maps: the maps are not the complex's size");
+  CellComplex out = *this;
+  std::vector<uint8_t> found(distance.size());
+  for (size_t t = 0; t < distance.size(); ++t) {
+    found[t] = distance[t] < 1.0f;
+    if (found[t]) {
+      out.distance_[t] = uint16_t(std::lround(double(distance[t]) * distance_scale()));
+      out.normal_[t] = normal[t];
+    } else if (crossings_[t] > 0) {
+      out.distance_[t] = uint16_t(std::lround(distance_scale()));  // the CPU's point, not found
+    }
+  }
+  std::vector<glm::vec3> color = color_;  // dilated already; only the normals are new
+  dilate_attributes(found, res_, out.normal_, color);
+  return out;
+}
+
 size_t CellComplex::gpu_bytes() const {
   const size_t texels = faces_.size() * size_t(res_) * res_;
   // Distance + inside flag (2 x 16 or 2 x 8 bits), normal and colour RGBA8, the cell table.

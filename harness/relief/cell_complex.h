@@ -120,6 +120,14 @@ class CellComplex {
 
   // Builds the complex of `mesh` (already in texture space, inside [0, 1]^3).
   static CellComplex build(const TriangleMesh& mesh, const CellComplexOptions& options);
+  // The same complex with its distance and normal maps sampled elsewhere (the GPU's, Section
+  // 3.3.2: gpu/cell_gpu_sampling.h), each res x res per domain face like distance(): d in
+  // [0, 1) where a surface point projects onto the texel, 1 where none does, and that point's
+  // unit normal. A line that misses the surface keeps the CPU's d (0 for one inside all along);
+  // a texel without a point takes its neighbours' normal, as build() dilates them. Throws
+  // std::invalid_argument when the maps are not the complex's size.
+  CellComplex with_sampled_maps(const std::vector<float>& distance,
+                                const std::vector<glm::vec3>& normal) const;
   // The complex as bytes (everything but the mesh), and back with its mesh; false when the
   // bytes are not a complex of this version.
   std::vector<uint8_t> serialize() const;

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "core/elapsed.h"
+#include "gpu/cell_gpu_sampling.h"
 #include "gpu/gpu_ao_map.h"
 #include "relief/ao_map.h"
 #include "relief/cell_complex.h"
@@ -33,6 +34,11 @@ std::unique_ptr<Asset> build_asset(const SweepConfig& config, const SceneDesc& s
   stage(scene.relief.cells.active ? "building the relief (a cubic cell complex)"
                                   : "building the relief map");
   asset->map = build_relief_asset(scene, cell.texture_res);
+  if (asset->map.cells && scene.relief.cells.gpu_sampling) {
+    stage("sampling the cell complex's maps on the GPU");
+    asset->map.cells =
+        std::make_shared<const CellComplex>(with_gpu_sampled_maps(*asset->map.cells));
+  }
   if (asset->map.cells) asset->projection_bend = projection_bend(*asset->map.cells);
   // The truth's own map where the scene gives it another depth resolution (truth_resolution)
   // or another colour map (truth_color_resolution).

@@ -92,6 +92,9 @@ struct ReliefSourceDesc {
     int grid_max = 16;        // ... or at most this N
     int distance_bits = 16;   // 16 (Table 1) or 8
     int subdivide = 0;        // midpoint-subdivide the mesh this many times first (x4 each)
+    // The distance and normal maps drawn on the GPU (Section 3.3.2, gpu/cell_gpu_sampling.h)
+    // instead of the CPU's per-texel projection lines; the rest of the complex is the CPU's.
+    bool gpu_sampling = false;
   } cells;
   MapSize native;  // size when texture_res = 0 ("native")
   // A non-height-field pattern generated as a mesh (relief/pattern_mesh.h): weave, helix.
