@@ -33,12 +33,14 @@ std::unique_ptr<Asset> build_asset(const SweepConfig& config, const SceneDesc& s
   auto asset = std::make_unique<Asset>();
   stage(scene.relief.cells.active ? "building the relief (a cubic cell complex)"
                                   : "building the relief map");
-  asset->map = build_relief_asset(scene, cell.texture_res);
-  if (asset->map.cells && scene.relief.cells.gpu_sampling) {
+  // A cell complex whose maps the scene has drawn on the GPU (cells sampling = "gpu").
+  auto take_gpu_maps = [&](ReliefMap& map) {
+    if (!map.cells || !scene.relief.cells.gpu_sampling) return;
     stage("sampling the cell complex's maps on the GPU");
-    asset->map.cells =
-        std::make_shared<const CellComplex>(with_gpu_sampled_maps(*asset->map.cells));
-  }
+    map.cells = std::make_shared<const CellComplex>(with_gpu_sampled_maps(*map.cells));
+  };
+  asset->map = build_relief_asset(scene, cell.texture_res);
+  take_gpu_maps(asset->map);
   if (asset->map.cells) asset->projection_bend = projection_bend(*asset->map.cells);
   // The truth's own map where the scene gives it another depth resolution (truth_resolution)
   // or another colour map (truth_color_resolution).
@@ -46,9 +48,11 @@ std::unique_ptr<Asset> build_asset(const SweepConfig& config, const SceneDesc& s
   const int truth_color =
       scene.truth_color_texture_res > 0 ? scene.truth_color_texture_res : scene.color_texture_res;
   if (scene.relief.size_at(truth_res) != scene.relief.size_at(cell.texture_res) ||
-      truth_color != scene.color_texture_res)
+      truth_color != scene.color_texture_res) {
     asset->truth_map =
         std::make_unique<ReliefMap>(build_relief_asset(scene, truth_res, truth_color));
+    take_gpu_maps(*asset->truth_map);
+  }
   asset->objects = std::make_unique<ObjectPass>(scene.objects);
   if (scene.effects.has(Effect::SceneShadows))
     asset->shadow_map = std::make_unique<ShadowMapPass>(scene);
