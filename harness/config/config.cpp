@@ -202,6 +202,7 @@ void enter_scene(SweepConfig& c, json& canon, std::set<std::string>& scene_names
     fail(src.at(n), "duplicate scene name '" + c.scenes.back().name + "'");
   canon["scenes"][c.scenes.back().name] = sc;
   c.scene_canonical[c.scenes.back().name] = sc.dump();
+  c.scene_inputs[c.scenes.back().name] = parsed.inputs;
   c.scene_sites[c.scenes.back().name] = {parsed.sites.scene, parsed.sites.relief};
 }
 

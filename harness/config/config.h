@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "config/scene_input.h"
 #include "core/cost_model.h"
 #include "core/params.h"
 #include "scene/scene.h"
@@ -83,6 +84,9 @@ struct SweepConfig {
   std::vector<TableSpec> tables;
   std::vector<PlotSpec> plots;                         // Pareto plots of error against cost
   std::map<std::string, std::string> scene_canonical;  // per scene: text of what defines it
+  // Per scene: every file it reads, in the role it is read in, with its content digest (the
+  // rows' provenance names them: run/provenance.h).
+  std::map<std::string, std::vector<SceneInput>> scene_inputs;
   // Per scene: "file:line" of its [[scene]] table and of its relief = { ... }, so that an asset
   // that fails to load later is reported where the config asked for it.
   std::map<std::string, std::pair<std::string, std::string>> scene_sites;

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "config/config_toml.h"
+#include "config/scene_input.h"
 #include "scene/scene.h"
 
 namespace rl {
@@ -23,6 +24,7 @@ struct ParsedScene {
   SceneDesc scene;
   nlohmann::json canon;  // what defines the scene's results (keys cells; see run/cells.h)
   SceneSites sites;
+  std::vector<SceneInput> inputs;  // filled by read_scene_files(), in a fixed order
 };
 
 ParsedScene parse_scene(const toml::table& t, const Src& src, const std::string& base_dir,

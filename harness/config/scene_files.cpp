@@ -3,8 +3,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/code_digest.h"
 #include "core/error.h"
-#include "core/hash.h"
 #include "relief/image_backend.h"
 #include "relief/mesh_bake.h"
 #include "scene/base_mesh.h"
@@ -15,9 +15,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A file's content hash, hex.
+// A file's content hash, hex (read once per run: core/code_digest.h).
 std::string content_hash(const std::string& path) {
-  return hex64(file_content_hash(path));
+  return file_digest(path);
 }
 
 std::string file_name(const std::string& path) {
@@ -27,6 +27,20 @@ std::string file_name(const std::string& path) {
 // "file.obj:0123abcd...": a file's name and content hash, as canonical descriptions hold it.
 std::string file_id(const std::string& path) {
   return file_name(path) + ":" + content_hash(path);
+}
+
+// The roles an image relief's files are read in (relief/image_io.cpp's load_relief_images): a
+// normal map's RGB is the normal and its alpha the depth unless a depth file is given, whose
+// first channel is then the depth.
+void note_relief_images(const ReliefSourceDesc& r, const std::string& prefix,
+                        std::vector<SceneInput>& inputs) {
+  auto note = [&](const std::string& path, const std::string& role) {
+    if (!path.empty()) inputs.push_back({prefix + role, path, content_hash(path)});
+  };
+  note(r.normal_path,
+       r.depth_path.empty() ? "normal (RGB normal; depth from alpha)" : "normal (RGB normal)");
+  note(r.depth_path, "depth (channel 0)");
+  note(r.color_path, "color (RGB)");
 }
 
 // An image relief's native size, and its files' hashes into its canonical description.
@@ -56,10 +70,18 @@ void read_scene_files(ParsedScene& parsed) {
     }
   };
   read_relief_images(r, canon["relief"], parsed.sites.relief);
-  for (size_t i = 0; i < s.meta.layers.size(); ++i)
+  note_relief_images(r, "relief ", parsed.inputs);
+  for (size_t i = 0; i < s.meta.layers.size(); ++i) {
     read_relief_images(s.meta.layers[i].relief, canon["meta_relief"]["layers"][i]["relief"],
                        parsed.sites.relief);
-  if (!r.mesh_path.empty()) canon["relief"]["mesh"] = file_id(r.mesh_path);
+    note_relief_images(s.meta.layers[i].relief, "meta_relief layer " + std::to_string(i + 1) + " ",
+                       parsed.inputs);
+  }
+  if (!r.mesh_path.empty()) {
+    canon["relief"]["mesh"] = file_id(r.mesh_path);
+    parsed.inputs.push_back({r.cells.active ? "relief cells (mesh)" : "relief mesh", r.mesh_path,
+                             content_hash(r.mesh_path)});
+  }
   if (!r.mesh_path.empty() && !s.base.curved()) {
     // A baked mesh keeps its proportions: the relief depth follows from the footprint.
     const BakeFrame frame = relief_bake_frame(r, mesh_at(parsed.sites.relief, r.mesh_path));
@@ -77,10 +99,14 @@ void read_scene_files(ParsedScene& parsed) {
       throw ConfigError(parsed.sites.base + ": scene '" + s.name + "': " + e.what());
     }
     canon["base_file"] = file_id(s.base.path);
+    parsed.inputs.push_back({"base mesh", s.base.path, content_hash(s.base.path)});
   }
   for (size_t i = 0; i < s.objects.size(); ++i) {
     const std::string& shape = s.objects[i].shape;
-    if (shape != "sphere" && shape != "cube") canon["objects"][i][0] = file_id(shape);
+    if (shape == "sphere" || shape == "cube") continue;
+    canon["objects"][i][0] = file_id(shape);
+    parsed.inputs.push_back(
+        {"object " + std::to_string(i + 1) + " mesh", shape, content_hash(shape)});
   }
 }
 

@@ -6,12 +6,18 @@
 #include <fstream>
 
 #include "core/atomic_write.h"
+#include "core/code_digest.h"
 #include "core/hash.h"
 
 namespace rl {
 namespace {
 
 constexpr char kMagic[8] = {'R', 'L', 'P', 'C', 'A', 'C', 'H', 'E'};
+
+// The entry's identity: what the caller asked for and the code that computes it.
+std::string with_code(const std::string& options, const std::source_location& where) {
+  return options + " code=" + precompute_code_digest(where);
+}
 
 std::filesystem::path cache_path(const std::string& folder, const std::string& options,
                                  uint64_t map_hash) {
@@ -41,8 +47,9 @@ std::string precompute_cache_dir() {
   return (std::filesystem::temp_directory_path() / "relieflab-cache").string();
 }
 
-bool read_precompute_cache(const std::string& folder, const std::string& options, uint64_t map_hash,
-                           void* out, size_t bytes) {
+bool read_precompute_cache(const std::string& folder, const std::string& asked, uint64_t map_hash,
+                           void* out, size_t bytes, std::source_location where) {
+  const std::string options = with_code(asked, where);
   // Anything but a regular file (a FIFO planted in the cache would block the run) is a miss.
   std::error_code ec;
   if (!std::filesystem::is_regular_file(cache_path(folder, options, map_hash), ec)) return false;
@@ -64,8 +71,9 @@ bool read_precompute_cache(const std::string& folder, const std::string& options
          fnv1a64(out, bytes) == checksum;
 }
 
-void write_precompute_cache(const std::string& folder, const std::string& options,
-                            uint64_t map_hash, const void* data, size_t bytes) {
+void write_precompute_cache(const std::string& folder, const std::string& asked, uint64_t map_hash,
+                            const void* data, size_t bytes, std::source_location where) {
+  const std::string options = with_code(asked, where);
   const std::filesystem::path path = cache_path(folder, options, map_hash);
   std::error_code ec;
   std::filesystem::create_directories(path.parent_path(), ec);

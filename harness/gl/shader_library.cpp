@@ -1,10 +1,12 @@
 #include "gl/shader_library.h"
 
+#include <algorithm>
 #include <regex>
 #include <set>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/hash.h"
 #include "gl/context.h"
 #include "gl/embedded_files.h"
 #include "gl/op_count_buffer.h"
@@ -125,7 +127,38 @@ std::string cache_key(const ProgramDesc& d) {
   return key;
 }
 
+std::vector<ProgramUses*>& active_recorders() {
+  static std::vector<ProgramUses*> recorders;
+  return recorders;
+}
+
 }  // namespace
+
+ProgramUses::ProgramUses() {
+  active_recorders().push_back(this);
+}
+
+ProgramUses::~ProgramUses() {
+  auto& r = active_recorders();
+  r.erase(std::find(r.begin(), r.end(), this));
+}
+
+void ProgramUses::note(const ProgramDesc& desc) {
+  if (active_recorders().empty()) return;
+  const std::string key = cache_key(desc);
+  for (ProgramUses* r : active_recorders()) r->programs_.emplace(key, desc);
+}
+
+std::string program_digest(const ProgramDesc& desc) {
+  static std::map<std::string, std::string> memo;  // embedded files never change once loaded
+  const std::string key = cache_key(desc);
+  if (auto it = memo.find(key); it != memo.end()) return it->second;
+  std::string text = compose_glsl({desc.vertex_file}, desc.defines).text;
+  if (!desc.geometry_file.empty())
+    text += "\n--geometry--\n" + compose_glsl({desc.geometry_file}, desc.defines).text;
+  text += "\n--fragment--\n" + compose_glsl(desc.fragment_files, desc.defines).text;
+  return memo[key] = hex64(fnv1a64(text));
+}
 
 ComposedSource compose_glsl(const std::vector<std::string>& files, const Defines& defines) {
   ComposedSource out;
@@ -166,6 +199,7 @@ ShaderLibrary& ShaderLibrary::shared() {
 }
 
 ShaderLibrary::Entry& ShaderLibrary::entry(const ProgramDesc& plain) {
+  ProgramUses::note(plain);
   ProgramDesc desc = plain;
   // The stride is part of the key: a program gated for one stride is not another's.
   if (OpCountingScope::active())

@@ -32,6 +32,29 @@ ComposedSource compose_glsl(const std::vector<std::string>& files, const Defines
 // Rewrites "0:12(5): error" (Mesa) and "0(12) : error" (NVIDIA) to "file:12: error".
 std::string map_glsl_log(const std::string& log, const std::vector<std::string>& files);
 
+// The digest of what `desc` compiles (16 hex digits): each stage's source after its includes,
+// with its defines, composed from the sources embedded now, without a GL context. A stored
+// row names the programs it was drawn by, so an edited shader re-measures the rows that drew
+// with it and no other. Throws GlError as compose_glsl does for a missing file.
+std::string program_digest(const ProgramDesc& desc);
+
+// While alive, records every program requested through ShaderLibrary, compiled or found in
+// its cache, as its caller described it (before the op-counting define): what a cell's frame
+// was drawn with. Recorders nest; each sees the requests made during its own life.
+class ProgramUses {
+ public:
+  ProgramUses();
+  ~ProgramUses();
+  ProgramUses(const ProgramUses&) = delete;
+  ProgramUses& operator=(const ProgramUses&) = delete;
+  // By the library's cache key, so a program requested for every frame is listed once.
+  const std::map<std::string, ProgramDesc>& programs() const { return programs_; }
+  static void note(const ProgramDesc& desc);
+
+ private:
+  std::map<std::string, ProgramDesc> programs_;
+};
+
 class ShaderLibrary {
  public:
   static ShaderLibrary& shared();

@@ -9,6 +9,7 @@
 #include "config/config_toml.h"
 #include "core/columns.h"
 #include "core/error.h"
+#include "output/provenance.h"
 #include "output/result_store.h"
 #include "technique/technique.h"
 
@@ -58,6 +59,19 @@ void read_tolerances(const std::string& path, std::map<std::string, MetricTolera
 
 namespace {
 
+// The technique's parameters as the row names them: each declared one where this process knows
+// the technique, else the row's own `setting` (a plugin `compare` was not given).
+std::string setting_of(const nlohmann::ordered_json& row) {
+  const TechniqueEntry* e =
+      TechniqueRegistry::instance().find(row.value("technique", std::string()));
+  if (!e) return row.value("setting", std::string());
+  std::string s;
+  for (const ParamSpec& p : e->info.params)
+    if (row.contains(p.name) && row[p.name].is_number())
+      s += (s.empty() ? "" : " ") + p.name + "=" + format_param(p, row[p.name].get<double>());
+  return s;
+}
+
 // What a cell is, whatever the config around it: technique, its parameters, scene, view,
 // viewport, texture resolution (as the rows hold them).
 std::string identity(const nlohmann::ordered_json& row) {
@@ -65,10 +79,7 @@ std::string identity(const nlohmann::ordered_json& row) {
   for (const char* f :
        {"technique", "scene", "elevation_deg", "azimuth_deg", "viewport", "texture_res"})
     id[f] = row.value(f, nlohmann::ordered_json());
-  if (const TechniqueEntry* e =
-          TechniqueRegistry::instance().find(row.value("technique", std::string())))
-    for (const ParamSpec& p : e->info.params)
-      id[p.name] = row.value(p.name, nlohmann::ordered_json());
+  id["setting"] = setting_of(row);
   return id.dump();
 }
 
@@ -79,12 +90,22 @@ std::string describe_cell(const nlohmann::ordered_json& row) {
   std::string s = row.value("scene", std::string("?")) + view + " " +
                   row.value("viewport", std::string()) + " tex " +
                   row.value("texture_size", std::string());
-  if (const TechniqueEntry* e =
-          TechniqueRegistry::instance().find(row.value("technique", std::string())))
-    for (const ParamSpec& p : e->info.params)
-      if (row.contains(p.name) && row[p.name].is_number())
-        s += " " + p.name + "=" + format_param(p, row[p.name].get<double>());
-  return s;
+  const std::string setting = setting_of(row);
+  return setting.empty() ? s : s + " " + setting;
+}
+
+// The provenance parts two matched rows differ in, joined ("" when they agree, or when neither
+// records one: two runs stored before rows did).
+std::string provenance_difference(const nlohmann::ordered_json& b,
+                                  const nlohmann::ordered_json& n) {
+  const Provenance pb = Provenance::parse(b.value("measured_from", std::string()));
+  const Provenance pn = Provenance::parse(n.value("measured_from", std::string()));
+  if (pb.parts.empty() && pn.parts.empty()) return "";
+  if (pb.parts.empty() || pn.parts.empty())
+    return pb.parts.empty() ? "unrecorded in the base" : "unrecorded in the new run";
+  std::string out;
+  for (const std::string& part : differing_parts(pb, pn)) out += (out.empty() ? "" : ", ") + part;
+  return out;
 }
 
 bool number_at(const nlohmann::ordered_json& row, const std::string& k, double& v) {
@@ -95,6 +116,8 @@ bool number_at(const nlohmann::ordered_json& row, const std::string& k, double& 
 
 void compare_cell(const nlohmann::ordered_json& b, const nlohmann::ordered_json& n,
                   const std::map<std::string, MetricTolerance>& tolerances, Comparison& out) {
+  const std::string differs = provenance_difference(b, n);
+  if (!differs.empty()) ++out.measured_from_differs[differs];
   for (const auto& [metric, tol] : tolerances) {
     double vb = 0, vn = 0;
     const bool has_b = number_at(b, metric, vb), has_n = number_at(n, metric, vn);
@@ -103,13 +126,16 @@ void compare_cell(const nlohmann::ordered_json& b, const nlohmann::ordered_json&
     if (has_b != has_n) {
       // An error column that became empty (nothing measured) or appeared: a change to see.
       (has_b ? out.worse : out.better)
-          .push_back({technique, metric, describe_cell(n), has_b ? vb : NAN, has_n ? vn : NAN});
+          .push_back(
+              {technique, metric, describe_cell(n), has_b ? vb : NAN, has_n ? vn : NAN, differs});
       continue;
     }
     const double worse_by = tol.lower_is_better ? vn - vb : vb - vn;
     const double allowed = std::max(tol.abs, tol.rel * std::abs(vb));
-    if (worse_by > allowed) out.worse.push_back({technique, metric, describe_cell(n), vb, vn});
-    if (-worse_by > allowed) out.better.push_back({technique, metric, describe_cell(n), vb, vn});
+    if (worse_by > allowed)
+      out.worse.push_back({technique, metric, describe_cell(n), vb, vn, differs});
+    if (-worse_by > allowed)
+      out.better.push_back({technique, metric, describe_cell(n), vb, vn, differs});
   }
 }
 
@@ -197,8 +223,9 @@ std::string format_comparison(const Comparison& c) {
         out += "  " + g + "\n";
         group = g;
       }
-      std::snprintf(line, sizeof line, "    %s: %.6g -> %.6g\n", ch.cell.c_str(), ch.base, ch.now);
+      std::snprintf(line, sizeof line, "    %s: %.6g -> %.6g", ch.cell.c_str(), ch.base, ch.now);
       out += line;
+      out += ch.measured_from.empty() ? "\n" : " (measured from other " + ch.measured_from + ")\n";
     }
   };
   section("WORSE beyond tolerance", c.worse);
@@ -211,6 +238,14 @@ std::string format_comparison(const Comparison& c) {
   };
   one_side("only in the base run", c.only_base);
   one_side("only in the new run", c.only_new);
+  if (!c.measured_from_differs.empty()) {
+    size_t n = 0;
+    for (const auto& [parts, cells] : c.measured_from_differs) n += cells;
+    out += std::to_string(n) +
+           " matched cell(s) were measured from other code or inputs (output/provenance.h):\n";
+    for (const auto& [parts, cells] : c.measured_from_differs)
+      out += "    " + std::to_string(cells) + " differ in " + parts + "\n";
+  }
   const std::string incomplete = c.incomplete();
   std::snprintf(line, sizeof line,
                 "%zu cells matched (%zu by key, %zu by identity): %zu worse, %zu better, %zu "

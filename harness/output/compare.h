@@ -35,12 +35,18 @@ void read_tolerances(const std::string& path, std::map<std::string, MetricTolera
 struct CellChange {
   std::string technique, metric, cell;  // cell: scene, view, viewport, texture and parameters
   double base = 0, now = 0;
+  // The parts of the two rows' provenance that differ ("programs, technique_code"), "" when
+  // they were measured from the same code and inputs (output/provenance.h).
+  std::string measured_from;
 };
 
 struct Comparison {
   std::vector<CellChange> worse, better;
   std::vector<std::string> only_base, only_new;  // cells present on one side only
   size_t matched_by_key = 0, matched_by_identity = 0;
+  // Matched cells whose rows were measured from other code or inputs, by the parts that differ:
+  // what a regression check reads beside the numbers (which change came from the code).
+  std::map<std::string, size_t> measured_from_differs;
   // Cells of the base run absent from the new run are tolerated (comparing a subset on
   // purpose); by default they fail the comparison.
   bool allow_missing = false;

@@ -68,6 +68,20 @@ bool has_rows_table(sqlite3* db) {
   return found;
 }
 
+// Whether `schema`'s rows table has `column`.
+bool has_column(sqlite3* db, const char* schema, const char* column) {
+  const std::string sql = std::string("PRAGMA ") + schema + ".table_info(rows)";
+  sqlite3_stmt* s = nullptr;
+  if (sqlite3_prepare_v2(db, sql.c_str(), -1, &s, nullptr) != SQLITE_OK) return false;
+  bool found = false;
+  while (!found && sqlite3_step(s) == SQLITE_ROW) {
+    const unsigned char* name = sqlite3_column_text(s, 1);
+    found = name && std::string(reinterpret_cast<const char*>(name)) == column;
+  }
+  sqlite3_finalize(s);
+  return found;
+}
+
 // Opens `path` for reading only: as it is ("mode=ro", seeing rows a live run has not yet
 // checkpointed), else, where even that needs a write (read-only media), as an unchanging file.
 sqlite3* open_read_only(const std::string& path) {
@@ -105,8 +119,13 @@ ResultStore::ResultStore(const std::string& path, Access access) : path_(path) {
                   "CREATE TABLE IF NOT EXISTS rows ("
                   " key TEXT PRIMARY KEY,"
                   " row TEXT NOT NULL,"
-                  " written_at TEXT DEFAULT CURRENT_TIMESTAMP)",
+                  " written_at TEXT DEFAULT CURRENT_TIMESTAMP,"
+                  " programs TEXT)",
                   "create table");
+  // A store made before rows recorded their programs gains the column; its rows have none, so
+  // a run measures them again (run/cell_provenance.h).
+  if (!has_column(db_, "main", "programs"))
+    exec_with_retry(db_, "ALTER TABLE rows ADD COLUMN programs TEXT", "add the programs column");
 }
 
 ResultStore::~ResultStore() {
@@ -132,12 +151,48 @@ std::optional<nlohmann::ordered_json> ResultStore::row(const std::string& key) c
   return nlohmann::ordered_json::parse(reinterpret_cast<const char*>(text));
 }
 
+std::string ResultStore::programs(const std::string& key) const {
+  if (!has_column(db_, "main", "programs")) return "";  // a read-only store of before
+  Statement st(db_, "SELECT programs FROM rows WHERE key = ?");
+  sqlite3_bind_text(st.s, 1, key.c_str(), -1, SQLITE_TRANSIENT);
+  if (sqlite3_step(st.s) != SQLITE_ROW) return "";
+  const unsigned char* text = sqlite3_column_text(st.s, 0);
+  return text ? reinterpret_cast<const char*>(text) : "";
+}
+
 void ResultStore::insert(const std::string& key, const nlohmann::ordered_json& row) {
   Statement st(db_, "INSERT OR IGNORE INTO rows (key, row) VALUES (?, ?)");
   const std::string text = row.dump();
   sqlite3_bind_text(st.s, 1, key.c_str(), -1, SQLITE_TRANSIENT);
   sqlite3_bind_text(st.s, 2, text.c_str(), -1, SQLITE_TRANSIENT);
   check(sqlite3_step(st.s), db_, "insert row");
+}
+
+void ResultStore::put(const std::string& key, const nlohmann::ordered_json& row,
+                      const std::string& programs, const std::string& replacing) {
+  if (!replacing.empty() && replacing != key) {
+    check(sqlite3_exec(db_, "BEGIN IMMEDIATE", nullptr, nullptr, nullptr), db_, "begin");
+    try {
+      put(key, row, programs);
+      erase(replacing);
+    } catch (...) {
+      sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+      throw;
+    }
+    check(sqlite3_exec(db_, "COMMIT", nullptr, nullptr, nullptr), db_, "commit");
+    return;
+  }
+  Statement st(db_,
+               "INSERT OR REPLACE INTO rows (key, row, written_at, programs) VALUES (?, ?, "
+               "CURRENT_TIMESTAMP, ?)");
+  const std::string text = row.dump();
+  sqlite3_bind_text(st.s, 1, key.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(st.s, 2, text.c_str(), -1, SQLITE_TRANSIENT);
+  if (programs.empty())
+    sqlite3_bind_null(st.s, 3);
+  else
+    sqlite3_bind_text(st.s, 3, programs.c_str(), -1, SQLITE_TRANSIENT);
+  check(sqlite3_step(st.s), db_, "store row");
 }
 
 void ResultStore::erase(const std::string& key) {
@@ -154,11 +209,13 @@ size_t ResultStore::merge_from(const std::string& other_path) {
   sqlite3_bind_text(attach.s, 1, other_path.c_str(), -1, SQLITE_TRANSIENT);
   check(sqlite3_step(attach.s), db_, "attach " + other_path);
   const int before = sqlite3_total_changes(db_);
-  check(sqlite3_exec(db_,
-                     "INSERT OR IGNORE INTO rows (key, row, written_at) SELECT key, row, "
-                     "written_at FROM other.rows",
-                     nullptr, nullptr, nullptr),
-        db_, "merge");
+  // A shard's store made before rows recorded their programs has no such column.
+  const std::string sql =
+      std::string(
+          "INSERT OR IGNORE INTO rows (key, row, written_at, programs) SELECT key, row, "
+          "written_at, ") +
+      (has_column(db_, "other", "programs") ? "programs" : "NULL") + " FROM other.rows";
+  check(sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, nullptr), db_, "merge");
   const size_t merged = size_t(sqlite3_total_changes(db_) - before);
   check(sqlite3_exec(db_, "DETACH DATABASE other", nullptr, nullptr, nullptr), db_, "detach");
   return merged;

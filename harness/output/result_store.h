@@ -1,9 +1,11 @@
 #pragma once
 // The result store: one SQLite database per output folder, one row per sweep cell keyed by a
-// stable hash of everything that determines the cell. Each row is committed in its own
-// transaction (WAL journal), so a sweep killed midway loses at most the cell in flight, and a
-// re-run skips every key already present: nothing is redone, nothing duplicated. Stores from
-// shards run elsewhere merge by key.
+// stable hash of what the config varies (run/cells.h), each row naming what it was measured
+// from (its `measured_from` column) with the programs it drew with beside it
+// (output/provenance.h). Each row is committed in its own transaction (WAL journal), so a sweep
+// killed midway loses at most the cell in flight, and a re-run reuses every row measured from
+// what it has now: nothing is redone, nothing duplicated, nothing stale kept. Stores from shards
+// run elsewhere merge by key.
 #include <map>
 #include <optional>
 #include <set>
@@ -29,8 +31,18 @@ class ResultStore {
 
   std::set<std::string> keys() const;
   std::optional<nlohmann::ordered_json> row(const std::string& key) const;
+  // The programs the row of `key` was drawn with (run/cell_provenance.h), "" when the store has
+  // none for it (a row stored before they were recorded).
+  std::string programs(const std::string& key) const;
   // Inserts the row; an existing key is left untouched (first result wins).
   void insert(const std::string& key, const nlohmann::ordered_json& row);
+  // Stores the row and its programs under `key`, replacing a row already there (one measured
+  // from other code or inputs) in one statement: a kill leaves the old row or the new one,
+  // never a mix.
+  // With `replacing`, the row stored under that older key (the same cell before its key
+  // changed) is removed in the same transaction.
+  void put(const std::string& key, const nlohmann::ordered_json& row,
+           const std::string& programs = "", const std::string& replacing = "");
   // Removes a row (one found corrupt, so that its cell is measured again).
   void erase(const std::string& key);
   // Copies every row of another store whose key this one lacks; returns how many. Throws

@@ -57,6 +57,27 @@ Image read_image(const std::string& path) {
   return img;
 }
 
+// Whether channel `c` takes more than one 8-bit step of values over the image.
+bool channel_varies(const Image& img, int c) {
+  float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      lo = std::min(lo, img.at(x, y, c));
+      hi = std::max(hi, img.at(x, y, c));
+    }
+  return hi - lo > 1.5f / 255;
+}
+
+// Whether some texel's red, green and blue differ by more than an 8-bit step (not a grey image).
+bool has_colour(const Image& img) {
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      if (std::abs(img.at(x, y, 0) - img.at(x, y, 1)) > 1.5f / 255 ||
+          std::abs(img.at(x, y, 1) - img.at(x, y, 2)) > 1.5f / 255)
+        return true;
+  return false;
+}
+
 // Bilinear resample of one image to (w, h), used only for colour maps of a different size.
 Image resized(const Image& img, int w, int h) {
   if (img.width == w && img.height == h) return img;
@@ -217,6 +238,20 @@ ReliefMap load_relief_images(const ReliefImageSource& src, double depth_per_texe
   }
   map.quantized = false;  // set only by quantize_8bit(), which makes every channel exact
   return map;
+}
+
+std::string depth_file_alpha_problem(const std::string& depth_path) {
+  ImageHeader header;
+  std::string error;
+  if (image_backend().read_header(depth_path, header, error) && header.channels < 4) return "";
+  const Image img = read_image(depth_path);
+  if (img.channels < 4 || !channel_varies(img, 3) || !has_colour(img)) return "";
+  const std::string name = std::filesystem::path(depth_path).filename().string();
+  return name +
+         " is read as a depth map from its first channel (red), but its red, green and blue "
+         "differ and its alpha channel holds a surface of its own: it looks like a normal map "
+         "with height in alpha; did you mean `normal = \"" +
+         name + "\"` (normals from RGB, the depth from alpha)?";
 }
 
 void write_png(const std::string& path, int width, int height, int channels,

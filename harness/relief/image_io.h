@@ -31,6 +31,12 @@ struct ReliefImageSource {
 // ConfigError naming the file on any failure.
 ReliefMap load_relief_images(const ReliefImageSource& src, double depth_per_texel);
 
+// Where a file given as a depth map holds another surface in its alpha channel (the common
+// `*_nm.png`: RGB normals, height in alpha), whose first channel, read as the depth, is then a
+// component of the normals: why, with the fix; "" otherwise. Throws ConfigError as
+// load_relief_images() does for an unreadable file.
+std::string depth_file_alpha_problem(const std::string& depth_path);
+
 // Writes an RGB(A) float image (row 0 = bottom, as GL reads back) to an 8-bit PNG, flipping
 // it so that the file's first row is the top of the picture. Writes to a temporary file and
 // renames it, so an interrupted run never leaves a truncated image.

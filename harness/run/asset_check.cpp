@@ -48,6 +48,9 @@ std::vector<std::string> check_sweep_assets(const SweepConfig& config) {
     try {
       const ReliefSourceDesc& r = scene.relief;
       if (!r.normal_path.empty() || !r.depth_path.empty()) load_relief_images(image_source(r), 1.0);
+      if (r.normal_path.empty() && !r.depth_path.empty())
+        if (const std::string why = depth_file_alpha_problem(r.depth_path); !why.empty())
+          warnings.push_back("relieflab: warning: " + at(true, "relief") + why);
       if (!r.mesh_path.empty())
         if (std::string w = closure_warning(scene, load_mesh(r.mesh_path)); !w.empty())
           warnings.push_back(std::move(w));

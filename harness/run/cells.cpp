@@ -79,6 +79,13 @@ const ColumnDeclaration runner_columns(
      {"texture_size", "texels", "the map's size as built, WxH", ColumnKind::Text},
      {"renderer", "", "the GL renderer the row was measured on", ColumnKind::Text},
      {"key", "", "the cell's key in the result store", ColumnKind::Text},
+     {"setting", "", "the technique's parameters at this cell, every one named (name=value)",
+      ColumnKind::Text},
+     {"measured_from", "",
+      "digests of everything the row was measured from beyond its key: inputs, truth_code, "
+      "metrics_code, draw_code, technique_code, programs, renderer, cost_model "
+      "(output/provenance.h); a run reuses a stored row only when every one is as it is now",
+      ColumnKind::Text},
      {"image_render", "", "the render's PNG, relative to the run's folder", ColumnKind::Text},
      {"image_truth", "", "the truth's PNG", ColumnKind::Text},
      {"image_error", "", "the error heat map's PNG", ColumnKind::Text},
@@ -89,16 +96,13 @@ const ColumnDeclaration runner_columns(
 
 namespace {
 
-// Results change when the harness's measuring changes: bump this when a metric or the truth
-// is redefined, so stale rows are not mistaken for current ones.
-// 2: the exact heightfield truth and its bounds; 3: the bound along the surface's own normal;
-// 4: the cost of every shaded fragment (metrics/fragment_cost.h), cone maps safe under
-// filtering, depth slicing without slack on float maps; 6: warp_fetches_per_px, the default
-// Pareto cost (a stored row without it would drop out of the fronts). The op counts,
-// model_frame_ms and gpu_frame_ms (the default Pareto cost since) did not bump it: that would
-// re-key every committed reproduction; a run folder stored before them resumes without them,
-// and its rows stay out of the fronts in time until it is run afresh.
-constexpr int kMeasurementVersion = 6;
+// A part of every truth key since keys were first made, once bumped by hand when a metric or the
+// truth was redefined (2: the exact heightfield truth and its bounds; 3: the bound along the
+// surface's own normal; 4: the cost of every shaded fragment; 6: warp_fetches_per_px). Frozen:
+// what a bump said is now derived, from the code's digests in every row's provenance
+// (output/provenance.h), and the number stays only so that stored and committed rows keep
+// their keys.
+constexpr int kKeyFormat = 6;
 
 }  // namespace
 
@@ -151,7 +155,7 @@ void key_cell(Cell& c, const SweepConfig& config, const SceneDesc& drawn,
                                      {"el", c.view.elevation_deg},
                                      {"az", c.view.azimuth_deg},
                                      {"tol", config.truth_tolerance},
-                                     {"v", kMeasurementVersion}};
+                                     {"v", kKeyFormat}};
   if (c.view.roll_deg != 0) truth_id["roll"] = c.view.roll_deg;  // absent: keys hold
   c.truth_key = hex64(fnv1a64(truth_id.dump()));
   ParamValues keyed = c.params;

@@ -1,7 +1,9 @@
 #pragma once
 // Sweep expansion: the product of scenes x techniques x parameter settings x texture
-// resolutions x viewports x views, each cell keyed by a stable hash of what determines it.
-// Cells sharing (scene, texture resolution, viewport, view) share one truth.
+// resolutions x viewports x views, each cell keyed by a stable hash of what the config varies
+// (the code and the inputs' roles are in each row's provenance beside it:
+// run/cell_provenance.h). Cells sharing (scene, texture resolution, viewport, view) share one
+// truth.
 #include <string>
 #include <vector>
 

@@ -27,6 +27,7 @@
 #include "relief/cell_complex.h"
 #include "relief/image_backend.h"
 #include "run/asset_check.h"
+#include "run/cell_provenance.h"
 #include "run/cells.h"
 #include "run/memory_estimate.h"
 #include "run/sweep_stages.h"
@@ -159,6 +160,15 @@ void log_plan(Log& log, const SweepConfig& config, const RunOptions& options,
            "), frames timed by " +
            (gl.is_software() ? "wall clock + glFinish" : "GL_TIME_ELAPSED"));
   log.line("relieflab: image files through " + image_backend_description());
+  // Which file each surface of each scene comes from, and how it is read.
+  for (const SceneDesc& scene : config.scenes) {
+    auto it = config.scene_inputs.find(scene.name);
+    if (it == config.scene_inputs.end() || it->second.empty()) continue;
+    std::string line = "relieflab: scene " + scene.name + " reads";
+    for (size_t i = 0; i < it->second.size(); ++i)
+      line += std::string(i ? ";" : "") + " " + it->second[i].role + " from " + it->second[i].path;
+    log.line(line);
+  }
 }
 
 // Cells in order of (asset, truth), keeping the config's order otherwise: each asset is built
@@ -223,7 +233,9 @@ struct SharedInputs {
               const Camera& camera, const CellFiles& files, Log& log, SweepSummary& summary) {
     const SceneDesc& scene = config.scenes[cell.scene_index];
     if (cell.asset_key != asset_key_) {
+      const ProgramUses uses;
       asset = build_asset(config, scene, cell, options.progress);
+      asset->programs = uses.programs();
       asset_key_ = cell.asset_key;
       truth_key_.clear();
       ++summary.asset_builds;
@@ -284,10 +296,12 @@ std::string done_line(const SweepSummary& summary, const RunOptions& options, si
   char buf[512];
   std::snprintf(
       buf, sizeof buf,
-      "relieflab: done in %s: %zu cells, %zu new rows, %zu already done; traced truth "
-      "%zu times, built %zu assets; wrote %s/rows.csv, %zu table(s), pareto.md and plots/",
-      hms(summary.elapsed_s).c_str(), summary.cells, summary.new_rows, summary.already_done,
-      summary.truth_traces, summary.asset_builds, options.out_dir.c_str(), tables);
+      "relieflab: done in %s: %zu cells, %zu new rows (%zu of them re-measured), %zu "
+      "reused; traced truth %zu times, built %zu assets; wrote %s/rows.csv, %zu table(s), "
+      "pareto.md and plots/",
+      hms(summary.elapsed_s).c_str(), summary.cells, summary.new_rows, summary.remeasured,
+      summary.already_done, summary.truth_traces, summary.asset_builds, options.out_dir.c_str(),
+      tables);
   return buf;
 }
 
@@ -318,10 +332,16 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
   ResultStore store(options.out_dir + "/results.sqlite");
   std::set<std::string> done = store.keys();
   const std::vector<std::string> dropped = drop_unusable_rows(store, cells, done);
-  for (const Cell& c : cells) summary.already_done += done.count(c.key);
   GlContext& gl = GlContext::shared();
   summary.renderer = gl.renderer();
+  // A stored row is reused only where everything it was measured from is as it is now.
+  const ProvenanceContext provenance = provenance_context(config, renderer_identity());
+  const ReusePlan reuse = plan_reuse(config, cells, store, done, provenance);
+  done = reuse.reuse;
+  summary.already_done = reuse.reuse.size();
+  summary.remeasured = reuse.stale;
   log_plan(log, config, options, summary, all_cells.size(), duplicates, dropped, gl);
+  if (reuse.reuse.size() + reuse.stale > 0) log.line("relieflab: " + reuse.summary());
   for (const std::string& w : asset_warnings) log.line(w);
 
   const size_t todo = cells.size() - summary.already_done;
@@ -355,9 +375,16 @@ SweepSummary run_sweep(const SweepConfig& config, const RunOptions& options) {
       log.line(measured.fetch_bound_warning + where);
     }
     Row row = cell_row(cell, scene, camera, asset, measured, truth, gl.renderer());
+    std::vector<ProgramDesc> programs;
+    for (const auto& [k, p] : measured.programs) programs.push_back(p);
+    row["measured_from"] =
+        cell_provenance(provenance, config, cell, programs_digest(programs)).text();
     write_cell_files(row, config, options, files, scene, cell, camera, measured.g, truth.g,
                      asset.metric_texel);
-    store.insert(cell.key, row);
+    // Replaces a row measured from other code or inputs, in one statement.
+    auto older = reuse.replaces.find(cell.key);
+    store.put(cell.key, row, programs_text(measured.programs),
+              older == reuse.replaces.end() ? "" : older->second);
     ++summary.new_rows;
     ++finished;
     auto& [ms, n] = technique_ms[cell.technique];

@@ -21,7 +21,8 @@ struct RunOptions {
 
 struct SweepSummary {
   size_t cells = 0;
-  size_t already_done = 0;  // found in the store, not redone
+  size_t already_done = 0;  // found in the store, measured from what this run has, not redone
+  size_t remeasured = 0;    // found in the store, measured from other code or inputs: redone
   size_t new_rows = 0;
   size_t truth_traces = 0;  // truth G-buffers traced in this run
   size_t asset_builds = 0;

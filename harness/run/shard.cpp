@@ -16,6 +16,7 @@
 #include "core/hash.h"
 #include "output/result_store.h"
 #include "output/run_folder.h"
+#include "run/cell_provenance.h"
 #include "run/runner.h"
 
 namespace rl {
@@ -153,8 +154,10 @@ void refuse_another_shard(const ShardSpec& shard, const std::string& out_dir) {
 
 namespace {
 
-// The config every folder ran (they must agree), rebuilt from the first one's record.
-SweepConfig recorded_config(const std::vector<std::string>& dirs) {
+// The config every folder ran (they must agree), rebuilt from the first one's record. One
+// whose files read differently now is refused, unless `changed_files` is given: `status` then
+// reports what a run of the config as it reads now would reuse, and sets it to say so.
+SweepConfig recorded_config(const std::vector<std::string>& dirs, bool* changed_files = nullptr) {
   if (dirs.empty()) throw ConfigError("give the run's output folder(s)");
   const nlohmann::json first = read_record(dirs.front());
   for (const std::string& d : dirs) {
@@ -171,7 +174,8 @@ SweepConfig recorded_config(const std::vector<std::string>& dirs) {
       parse_sweep_config(first["text"].get<std::string>(), first["source"].get<std::string>(),
                          first["base_dir"].get<std::string>());
   const std::string recorded = first["config_hash"].get<std::string>();
-  if (config_hash_as_recorded(config, recorded) != recorded)
+  if (changed_files) *changed_files = config_hash_as_recorded(config, recorded) != recorded;
+  if (!changed_files && config_hash_as_recorded(config, recorded) != recorded)
     throw ConfigError(dirs.front() +
                       ": its config reads differently here (its files changed "
                       "since it ran?); config hash " +
@@ -231,6 +235,17 @@ void refuse_disagreeing_rows(const std::string& out_dir, const std::vector<std::
       const nlohmann::ordered_json row = *store.row(c.key);
       auto [it, fresh] = first.emplace(c.key, std::make_pair(row, d));
       if (fresh) continue;
+      const std::vector<std::string> parts =
+          differing_parts(Provenance::parse(it->second.first.value("measured_from", "")),
+                          Provenance::parse(row.value("measured_from", "")));
+      if (!parts.empty() && parts.front() != "all") {
+        std::string names;
+        for (const std::string& p : parts) names += (names.empty() ? "" : ", ") + p;
+        throw ConfigError("merge: " + it->second.second + " and " + d + " measured " + c.technique +
+                          " (key " + c.key + ") from different " + names +
+                          " (output/provenance.h); merge shards of one build and one set of "
+                          "inputs (nothing was written)");
+      }
       for (const DeclaredColumn& col : declared_columns()) {
         if (varies_between_runs(col.spec)) continue;
         const nlohmann::ordered_json& kept = it->second.first;
@@ -259,9 +274,9 @@ size_t missing_cells(const std::vector<Cell>& cells, const ResultStore& store) {
 }  // namespace
 
 RunStatus run_status(const std::vector<std::string>& dirs) {
-  const SweepConfig config = recorded_config(dirs);
-  std::vector<Cell> cells = expand_cells(config);
   RunStatus s;
+  const SweepConfig config = recorded_config(dirs, &s.files_changed);
+  std::vector<Cell> cells = expand_cells(config);
   s.name = config.name;
   s.source = config.source;
   if (dirs.size() == 1) {
@@ -271,18 +286,29 @@ RunStatus run_status(const std::vector<std::string>& dirs) {
       s.shard = shard.text();
     }
   }
-  // A row counts as done when a run would reuse it (a corrupt one is measured again).
-  std::set<std::string> have, stored;
+  // A row counts as done when a run would reuse it: whole, and measured from what this build
+  // and the files give now (a corrupt or stale one is measured again).
+  std::set<std::string> have, stored, whole;
+  const ProvenanceContext provenance = provenance_context(config, renderer_identity());
+  std::map<std::string, size_t> reasons;
   for (const std::string& d : dirs) {
     const ResultStore store(d + "/results.sqlite", ResultStore::Access::ReadOnly);
     const std::set<std::string> keys = store.keys();
+    std::set<std::string> usable;
     for (const Cell& c : cells)
       if (keys.count(c.key) && !have.count(c.key)) {
         stored.insert(c.key);
-        if (stored_row_problem(store, c).empty()) have.insert(c.key);
+        if (stored_row_problem(store, c).empty()) usable.insert(c.key), whole.insert(c.key);
       }
+    const ReusePlan plan = plan_reuse(config, cells, store, usable, provenance);
+    have.insert(plan.reuse.begin(), plan.reuse.end());
+    s.stale += plan.stale;
+    for (const auto& [why, n] : plan.reasons) reasons[why] += n;
   }
-  s.unusable = stored.size() - have.size();
+  s.unusable = stored.size() - whole.size();
+  for (const auto& [why, n] : reasons) s.stale_reasons.push_back({why, n});
+  std::stable_sort(s.stale_reasons.begin(), s.stale_reasons.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
   std::map<std::string, std::pair<size_t, size_t>> truths, techniques;
   std::vector<std::string> order;
   for (const Cell& c : cells) {
@@ -309,9 +335,9 @@ size_t rewrite_outputs(const std::string& dir) {
   const ShardSpec shard = recorded_shard(dir);
   cells = shard_cells(config, cells, shard);
   const ResultStore store(dir + "/results.sqlite", ResultStore::Access::ReadOnly);
-  // Rows under none of the sweep's keys were measured by another version of the measurement
-  // (cells.cpp's kMeasurementVersion is in every key): rewriting from them would replace the
-  // folder's tables with empty ones.
+  // Rows under none of the sweep's keys were stored by a relieflab whose keys were made
+  // otherwise (run/cells.cpp): rewriting from them would replace the folder's tables with empty
+  // ones.
   const size_t stored = store.keys().size(), found = cells.size() - missing_cells(cells, store);
   if (stored > 0 && found == 0)
     throw ConfigError("report: " + dir + "/results.sqlite holds " + std::to_string(stored) +
@@ -330,10 +356,23 @@ std::string format_run_status(const RunStatus& s) {
                 s.shard.empty() ? "" : (", shard " + s.shard).c_str(), s.done, s.cells,
                 s.cells ? 100.0 * s.done / s.cells : 100.0, s.truths_done, s.truths);
   std::string out = line;
+  if (s.files_changed)
+    out +=
+        "  its config's files read differently now than when it ran: counted as a run of "
+        "the config as it reads now would count them\n";
   if (s.unusable)
     out += "  " + std::to_string(s.unusable) +
            " stored row(s) cannot stand for their cells (cut short, edited, or out of their "
            "columns' range): not counted; the next run measures them again\n";
+  if (s.stale) {
+    out += "  " + std::to_string(s.stale) +
+           " stored row(s) were measured from other code or inputs: not counted; the next run "
+           "measures them again:";
+    for (size_t i = 0; i < s.stale_reasons.size(); ++i)
+      out += std::string(i ? "," : "") + " " + s.stale_reasons[i].first + " (" +
+             std::to_string(s.stale_reasons[i].second) + ")";
+    out += "\n";
+  }
   for (const auto& [t, c] : s.techniques) {
     std::snprintf(line, sizeof line, "  %-26s %zu / %zu\n", t.c_str(), c.first, c.second);
     out += line;

@@ -58,6 +58,11 @@ struct RunStatus {
   std::string name, source, shard;  // shard: "i/n", or "" for a whole run or several folders
   size_t cells = 0, done = 0, truths = 0, truths_done = 0;
   size_t unusable = 0;  // stored rows that cannot stand for their cell (not counted as done)
+  // Stored rows measured from other code or inputs than this build's and the files' now: not
+  // counted as done (a run measures them again), and why, as a run would say it.
+  size_t stale = 0;
+  std::vector<std::pair<std::string, size_t>> stale_reasons;
+  bool files_changed = false;  // the config's files read differently now than when it ran
   std::vector<std::pair<std::string, std::pair<size_t, size_t>>> techniques;  // done, all
 };
 RunStatus run_status(const std::vector<std::string>& dirs);

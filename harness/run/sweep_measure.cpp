@@ -22,13 +22,16 @@ using Clock = std::chrono::steady_clock;
 std::pair<std::unique_ptr<Technique>, double>& prepared_technique(const SweepConfig& config,
                                                                   const SceneDesc& scene,
                                                                   Asset& asset, const Cell& cell) {
-  auto& slot = asset.prepared[cell.technique + "|" + describe_params(cell)];
+  const std::string key = cell.technique + "|" + describe_params(cell);
+  auto& slot = asset.prepared[key];
   if (!slot.first) {
+    const ProgramUses uses;
     slot.first = TechniqueRegistry::instance().create(cell.technique, cell.params, config.source);
     const auto t0 = Clock::now();
     slot.first->prepare_scene(scene, asset.map);
     glFinish();
     slot.second = ms_since(t0);
+    asset.prepared_programs[key] = uses.programs();
   }
   return slot;
 }
@@ -126,6 +129,7 @@ std::string check_fetch_bound(const TechniqueInfo& info, const Cell& cell, const
 CellMeasure measure_cell(const SweepConfig& config, const SceneDesc& scene, Asset& asset,
                          const Cell& cell, const Camera& camera, const TruthView& truth,
                          bool software_gl) {
+  const ProgramUses uses;
   auto& [technique, prepare_ms] = prepared_technique(config, scene, asset, cell);
   FrameInput frame{scene,
                    asset.map,
@@ -178,6 +182,10 @@ CellMeasure measure_cell(const SweepConfig& config, const SceneDesc& scene, Asse
   out.precompute_ms = prepare_ms;
   out.precompute_cached = technique->prepared_from_cache();
   out.technique_bytes = technique->memory_bytes();
+  out.programs = uses.programs();
+  out.programs.insert(asset.programs.begin(), asset.programs.end());
+  const auto& prepared = asset.prepared_programs[cell.technique + "|" + describe_params(cell)];
+  out.programs.insert(prepared.begin(), prepared.end());
   return out;
 }
 

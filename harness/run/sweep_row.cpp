@@ -225,6 +225,7 @@ Row cell_row(const Cell& cell, const SceneDesc& scene, const Camera& camera, con
   row["truth"] = truth_label;
   row["renderer"] = renderer;
   row["key"] = cell.key;
+  row["setting"] = describe_params(cell);
   check_columns_declared(row, cell);
   return row;
 }

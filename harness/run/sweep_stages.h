@@ -13,6 +13,7 @@
 
 #include "config/config.h"
 #include "gl/frame_timer.h"
+#include "gl/shader_library.h"
 #include "metrics/fragment_cost.h"
 #include "metrics/metrics.h"
 #include "metrics/op_cost.h"
@@ -54,6 +55,10 @@ struct Asset {
   bool ao_from_cache = false;
   // Prepared technique instances by (technique, parameters): prepare() runs once per asset.
   std::map<std::string, std::pair<std::unique_ptr<Technique>, double>> prepared;
+  // The GL programs building the asset drew with (a GPU-sampled cell complex, a fragment-shader
+  // AO map), and each prepared instance's prepare(): part of every row drawn from them.
+  std::map<std::string, ProgramDesc> programs;
+  std::map<std::string, std::map<std::string, ProgramDesc>> prepared_programs;
 };
 
 // The truth of one (asset, viewport, view): its G-buffer and how it was traced.
@@ -79,6 +84,8 @@ struct CellMeasure {
   size_t technique_bytes = 0;
   // Set when a fragment paid more fetches than the technique declares it can (contract.h).
   std::string fetch_bound_warning;
+  // Every GL program the row depends on: its asset's, its prepare()'s and its frames'.
+  std::map<std::string, ProgramDesc> programs;
 };
 
 // Where a cell's pictures and G-buffers go.

@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/code_digest.h"
 #include "core/error.h"
 #include "technique/elf_check.h"
 #include "technique/technique.h"
@@ -55,10 +56,14 @@ LoadedPlugin load_one(const fs::path& file) {
     throw ConfigError("plugin " + path + ": cannot load: " + (why ? why : "unknown error"));
   }
   LoadedPlugin loaded{path, {}};
+  // Its code is its bytes: a precompute cached by its code (core/precompute_cache.h) and its
+  // rows' technique_code name them.
+  const std::string digest = file_digest(path);
   for (const std::string& name : registry.names())
     if (!std::binary_search(before.begin(), before.end(), name)) {
       registry.set_plugin(name, path);
       loaded.techniques.push_back(name);
+      register_folder_digest(source_folder(registry.find(name)->source), digest);
     }
   if (!refused.empty()) {
     // The shared object stays loaded (its code may be referenced by what it did register),

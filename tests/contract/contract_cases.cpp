@@ -13,6 +13,7 @@
 #include "gl/context.h"
 #include "gl/op_count_buffer.h"
 #include "gl/render_target.h"
+#include "gl/shader_library.h"
 #include "gpu/gpu_scene.h"
 #include "relief/cell_complex.h"
 #include "relief/heightfield_faces.h"
@@ -346,6 +347,26 @@ PixelOpCounts count_ops(size_t index, const std::string& technique, const ParamV
   OpCountingScope counting;
   render_frame(*t, input, RenderTarget::Kind::ColorOnly);
   return ops.read_back();
+}
+
+std::pair<std::set<std::string>, std::set<std::string>> programs_of_two_frames(
+    size_t index, const std::string& technique, const ParamValues& params) {
+  CaseAssets& a = assets(index);
+  const RenderCase& c = render_cases()[index];
+  auto t = TechniqueRegistry::instance().create(technique, params, "contract");
+  t->prepare_scene(c.scene, a.map);
+  FrameInput input{c.scene, a.map, *a.relief, *a.base, a.camera, c.scene.effects, a.objects.get()};
+  RenderTarget target(kFrameSize, kFrameSize, RenderTarget::Kind::GBuffer);
+  auto frame = [&] {
+    const ProgramUses uses;
+    target.bind_and_clear();
+    render_frame(*t, input, RenderTarget::Kind::GBuffer);
+    std::set<std::string> digests;
+    for (const auto& [key, desc] : uses.programs()) digests.insert(program_digest(desc));
+    return digests;
+  };
+  std::set<std::string> first = frame();
+  return {first, frame()};
 }
 
 // Several clauses read the same frame (its fetches, its finite outputs, its columns): each case,

@@ -4,6 +4,7 @@
 // whole frames of scenes with their truths. Which technique meets which case is decided by
 // what it declares (cannot_render, contract.ray_probe), never by its name.
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -118,6 +119,12 @@ Frame render(size_t index, const std::string& technique, const ParamValues& para
 // What each pixel's fragments executed, by kind, in case `index`'s timed frame drawn once in
 // its op-counting form (gl/op_counting.h).
 PixelOpCounts count_ops(size_t index, const std::string& technique, const ParamValues& params);
+
+// The digests of the programs each of two successive frames of case `index` requested from the
+// shader library (one technique instance, prepared once): a run records what a row was drawn
+// with from these requests (run/cell_provenance.h), so every frame must make them.
+std::pair<std::set<std::string>, std::set<std::string>> programs_of_two_frames(
+    size_t index, const std::string& technique, const ParamValues& params);
 
 // The registry's names, for parameterising the contract's tests.
 std::vector<std::string> technique_names();

@@ -232,6 +232,20 @@ TEST_P(Contract, EveryShadedFragmentCountsItsOps) {
   }
 }
 
+// --- What a row was drawn with (run/cell_provenance.h). ---
+
+// A run names the programs a row was drawn with from what its frames request of the shader
+// library; a technique that kept a program from an earlier frame would draw later cells with
+// programs no row names, and an edited shader would leave those rows standing.
+TEST_P(Contract, EveryFrameRequestsItsPrograms) {
+  const ParamValues params = settings(name());
+  for (size_t k : drawable_cases(info())) {
+    const auto [first, second] = programs_of_two_frames(k, name(), params);
+    EXPECT_FALSE(first.empty()) << render_cases()[k].name;
+    EXPECT_EQ(first, second) << name() << " on " << render_cases()[k].name;
+  }
+}
+
 // --- Exact answers. ---
 
 TEST_P(ExactContract, ExactHitsMatchTheClosedForm) {

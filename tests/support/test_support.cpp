@@ -14,6 +14,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "core/atomic_write.h"
+#include "core/precompute_cache.h"
 #include "gl/context.h"
 #include "gl/render_target.h"
 #include "gpu/gpu_scene.h"
@@ -216,6 +217,11 @@ std::string scratch_dir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir.parent_path());
   return dir.string();
+}
+
+bool read_precompute_cache_elsewhere(const std::string& folder, const std::string& options,
+                                     uint64_t map_hash, void* out, size_t bytes) {
+  return read_precompute_cache(folder, options, map_hash, out, bytes);
 }
 
 SweepConfig run_sweep_in(const std::string& toml, const std::string& dir) {

@@ -94,6 +94,11 @@ std::string write_obj(const TriangleMesh& mesh, const std::string& path);
 // A fresh, empty folder under the build's temporary directory.
 std::string scratch_dir(const std::string& name);
 
+// read_precompute_cache called from this file's folder (tests/support/): code in another folder
+// than the caller's test, whose entries must not be read as its own (core/precompute_cache.h).
+bool read_precompute_cache_elsewhere(const std::string& folder, const std::string& options,
+                                     uint64_t map_hash, void* out, size_t bytes);
+
 // Parses the sweep config `toml` (relative paths resolved from `dir`) and runs it quietly
 // into dir + "/out"; returns the parsed config (expand_cells(config) gives its cell keys).
 SweepConfig run_sweep_in(const std::string& toml, const std::string& dir);
