@@ -71,6 +71,21 @@ mkdir "$work/empty"
   --plugins "$plugin") >"$work/run.log" 2>&1 || { cat "$work/run.log"; exit 1; }
 rows=$(grep -c '^interval_mapping,\|,interval_mapping,' "$work/out/rows.csv" || true)
 test "$rows" -eq 8 || { echo "expected 8 interval_mapping rows, got $rows:"; head -3 "$work/out/rows.csv"; exit 1; }
+# Run again into the same folder: every row reused. Then the plugin rebuilt with an edited
+# shader (its linear search one step shorter): its 8 rows are measured again, relief's 4 kept.
+sweep_again() {
+  (cd "$work/empty" && "$relieflab" run "$work/sweep.toml" --out "$work/out" -q \
+    --plugins "$plugin") >"$1" 2>&1 || { cat "$1"; exit 1; }
+}
+sweep_again "$work/again.log"
+expect "relieflab: 12 row(s) reused" "$work/again.log"
+sed -i 's/for (int i = 1; i < RL_LINEAR_STEPS; i++)/for (int i = 1; i < RL_LINEAR_STEPS - 1; i++)/' \
+  "$work/plugin/interval_mapping.glsl"
+cmake --build "$work/plugin-build" -j2 >"$work/rebuild.log" || { cat "$work/rebuild.log"; exit 1; }
+sweep_again "$work/edited.log"
+expect "relieflab: 4 row(s) reused; 8 re-measured: " "$work/edited.log"
+expect "the programs of technique interval_mapping changed (8)" "$work/edited.log"
+
 # Without the plugin the same config is refused, naming the technique.
 if (cd "$work/empty" && "$relieflab" run "$work/sweep.toml" --out "$work/out2" -q) \
   >"$work/refused.log" 2>&1; then
