@@ -28,6 +28,8 @@ while [ $# -gt 0 ]; do
   esac
 done
 [ -x "$build/relieflab" ] || { echo "make-package: no built CLI at $build/relieflab" >&2; exit 2; }
+# ldconfig is in /sbin, which a normal user's PATH may not hold.
+PATH="$PATH:/usr/sbin:/sbin"
 
 work=""
 if [ -z "$stage" ]; then
@@ -74,10 +76,26 @@ for name in libEGL.so.1 libOpenGL.so.0 libGL.so.1 libGLX.so.0 libGLdispatch.so.0
   [ -n "$path" ] && cp -L "$path" "$stage/lib/glvnd/$name"
 done
 
+# Every file's size, so that a package cut short (an interrupted copy or extraction) is named
+# before it is run, not met as a SIGBUS when the loader maps a truncated library.
+(cd "$stage" && find bin lib -type f -printf '%s %p\n' | sort -k2) > "$stage/SIZES"
+
 cat > "$stage/run-relieflab" <<'EOF'
 #!/bin/sh
-# Runs the packaged relieflab with the package's libraries; arguments go to relieflab.
-here=$(cd "$(dirname "$0")" && pwd)
+# Runs the packaged relieflab with the package's libraries; arguments go to relieflab. Called
+# through a link too: the package is where the script itself lies.
+here=$(cd "$(dirname "$(readlink -f "$0")")" && pwd)
+PATH="$PATH:/usr/sbin:/sbin"
+if ! (cd "$here" && find bin lib -type f -printf '%s %p\n' | sort -k2) | cmp -s - "$here/SIZES"; then
+  while read -r size file; do
+    actual=$(stat -c %s "$here/$file" 2>/dev/null || echo "no")
+    if [ "$actual" != "$size" ]; then
+      echo "run-relieflab: $here/$file has $actual bytes where the package made $size: the" \
+        "package is incomplete (an interrupted copy or extraction?); unpack it again" >&2
+      exit 3
+    fi
+  done < "$here/SIZES"
+fi
 libs="$here/lib"
 # glvnd's loader from the package only where the system lacks a part of it.
 for lib in libEGL.so.1 libOpenGL.so.0 libGL.so.1 libGLX.so.0 libGLdispatch.so.0; do
@@ -94,7 +112,10 @@ EOF
 chmod +x "$stage/run-relieflab"
 
 if [ -n "$work" ]; then
-  tar -C "$work" -cf - relieflab | xz -T0 -6 > "$out"
+  # Under a temporary name, renamed when whole: a kill leaves no archive that looks finished.
+  trap 'rm -rf "$work" "$out.partial.$$"' EXIT
+  tar -C "$work" -cf - relieflab | xz -T0 -6 > "$out.partial.$$"
+  mv -f "$out.partial.$$" "$out"
   echo "make-package: $out ($(du -h "$out" | cut -f1); $(du -sh "$stage" | cut -f1) unpacked)"
 else
   echo "make-package: staged in $stage ($(du -sh "$stage" | cut -f1))"

@@ -68,14 +68,27 @@ const std::string& data_root() {
     if (const char* env = std::getenv("RELIEFLAB_DATA_DIR"); env && *env) return std::string(env);
     const std::string lib = library_dir();
     std::error_code ec;
-    if (!lib.empty()) {
-      const std::filesystem::path installed =
-          std::filesystem::path(lib).parent_path() / "share" / "relieflab";
-      if (std::filesystem::is_directory(installed / "assets", ec)) return installed.string();
-    }
-    return std::string(RELIEFLAB_SOURCE_DIR);
+    const std::filesystem::path installed =
+        std::filesystem::path(lib).parent_path() / "share" / "relieflab";
+    if (!lib.empty() && std::filesystem::is_directory(installed / "assets", ec))
+      return installed.string();
+    // The source tree only for the build tree's own libraries: an installed or relocated copy
+    // whose share/ is missing must not read whatever lies at the build's paths on this machine.
+    if (in_build_tree()) return std::string(RELIEFLAB_SOURCE_DIR);
+    throw ConfigError("ReliefLab's data (assets/ and configs/) is not where its libraries expect "
+                      "it: " +
+                      (installed / "assets").string() +
+                      " is missing (an incomplete install or package?); reinstall, or set "
+                      "RELIEFLAB_DATA_DIR to the folder holding assets/ and configs/");
   }();
   return root;
+}
+
+bool in_build_tree() {
+  std::error_code ec;
+  const std::filesystem::path built = std::filesystem::canonical(RELIEFLAB_BUILD_LIB_DIR, ec);
+  const std::string lib = library_dir();
+  return !ec && !lib.empty() && built == std::filesystem::path(lib);
 }
 
 }  // namespace rl

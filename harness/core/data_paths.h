@@ -7,8 +7,13 @@ namespace rl {
 
 // The folder holding assets/ and configs/: $RELIEFLAB_DATA_DIR when set; else, for a library
 // installed under a prefix, <prefix>/share/relieflab (found from the library's own location);
-// else the source tree the library was built from.
+// else, for the build tree's own libraries, the source tree they were built from. An installed
+// or relocated library without its share/relieflab throws ConfigError saying so.
 const std::string& data_root();
+
+// Whether this library is the one the build made, in its build folder (not an installed or
+// relocated copy).
+bool in_build_tree();
 
 // The folder the core library was loaded from (the build folder, or <prefix>/lib).
 std::string library_dir();

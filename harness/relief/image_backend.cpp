@@ -22,15 +22,15 @@ struct LoadedBackend {
 };
 
 // Where a module named `file` may be: beside the libraries (the build folder, or <prefix>/lib
-// installed), the path the build wrote in, beside the running program.
-std::vector<std::string> module_candidates(const std::string& file, const char* built_path) {
-  std::vector<std::string> candidates;
-  if (const std::string dir = library_dir(); !dir.empty()) candidates.push_back(dir + "/" + file);
-  if (built_path && *built_path) candidates.push_back(built_path);
+// installed or relocated), else, where the libraries' own folder cannot be found, beside the
+// running program. Never a path the build wrote in: a package moved to another machine must not
+// load whatever lies at its build folder's path there (another user's code, under /tmp).
+std::vector<std::string> module_candidates(const std::string& file) {
+  if (const std::string dir = library_dir(); !dir.empty()) return {dir + "/" + file};
   std::error_code ec;
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) candidates.push_back((self.parent_path() / file).string());
-  return candidates;
+  if (!ec) return {(self.parent_path() / file).string()};
+  return {};
 }
 
 // The first of `candidates` that loads and has the entry point; `tried` collects why the
@@ -53,13 +53,6 @@ const ImageBackend* first_loading(const std::vector<std::string>& candidates, st
   return nullptr;
 }
 
-#ifndef RELIEFLAB_IMAGE_MODULE
-#define RELIEFLAB_IMAGE_MODULE ""
-#endif
-#ifndef RELIEFLAB_IMAGE_FALLBACK_MODULE
-#define RELIEFLAB_IMAGE_FALLBACK_MODULE ""
-#endif
-
 LoadedBackend load_backend() {
   std::string from, tried;
   if (const char* env = std::getenv("RELIEFLAB_IMAGE_MODULE"); env && *env) {
@@ -67,10 +60,11 @@ LoadedBackend load_backend() {
       return {b, std::string(b->name) + " from " + from + " (RELIEFLAB_IMAGE_MODULE)"};
     throw std::runtime_error("cannot load the image module RELIEFLAB_IMAGE_MODULE names:" + tried);
   }
-  const auto oiio = module_candidates("librelieflab_oiio.so", RELIEFLAB_IMAGE_MODULE);
-  if (const ImageBackend* b = first_loading(oiio, from, tried)) return {b, std::string(b->name)};
+  const auto oiio = module_candidates("librelieflab_oiio.so");
+  if (const ImageBackend* b = first_loading(oiio, from, tried))
+    return {b, std::string(b->name) + " from " + from};
   const std::string oiio_failures = tried;
-  const auto stb = module_candidates("librelieflab_stb.so", RELIEFLAB_IMAGE_FALLBACK_MODULE);
+  const auto stb = module_candidates("librelieflab_stb.so");
   if (const ImageBackend* b = first_loading(stb, from, tried))
     return {b, std::string(b->name) + " from " + from +
                    " (the fallback: OpenImageIO's module did not load:" + oiio_failures + ")"};
@@ -93,6 +87,10 @@ const ImageBackend& image_backend() {
 
 std::string image_backend_description() {
   return loaded().description;
+}
+
+std::string image_backend_name() {
+  return loaded().backend->name;
 }
 
 }  // namespace rl

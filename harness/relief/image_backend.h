@@ -53,13 +53,17 @@ struct ImageBackend {
 
 // The backend, loaded on first use: from $RELIEFLAB_IMAGE_MODULE alone when it is set, else the
 // OpenImageIO module (librelieflab_oiio.so) beside the ReliefLab libraries (the build folder,
-// or <prefix>/lib installed), the path the build wrote in, or beside the running program; where
-// none of those loads, the stb fallback (librelieflab_stb.so) from the same places. Throws
-// std::runtime_error naming what it tried.
+// or <prefix>/lib installed or relocated; beside the running program only where the libraries'
+// folder cannot be found; never a path the build wrote in); where it does not load, the stb
+// fallback (librelieflab_stb.so) from the same place. Throws std::runtime_error naming what it
+// tried.
 const ImageBackend& image_backend();
 
 // Which module reads and writes images, from where, and why the fallback if it is one: a line
 // for the run's log. Loads the module if nothing has yet.
 std::string image_backend_description();
+// Its name alone ("OpenImageIO", "stb_image"): what decodes the inputs, for the rows' provenance
+// (run/cell_provenance.h), wherever the module lies.
+std::string image_backend_name();
 
 }  // namespace rl

@@ -36,7 +36,7 @@ std::string cost_model_digest(const std::optional<CostModel>& model) {
 // Every file of the scene by role and content, and the reader that decodes its images: the
 // same bytes read as a depth map and as a normal map are two surfaces.
 std::string inputs_digest(const std::vector<SceneInput>& inputs) {
-  std::string text = "images through " + image_backend_description();
+  std::string text = "images through " + image_backend_name();
   for (const SceneInput& in : inputs) text += "|" + in.role + "=" + in.digest;
   return digest_of(text);
 }

@@ -10,7 +10,10 @@ source=$(cd "$2" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-bash "$source/scripts/make-package.sh" --build "$build" --stage "$work/staged" > /dev/null
+# With a normal user's PATH (no /usr/sbin, where ldconfig is).
+PATH=/usr/local/bin:/usr/bin:/bin bash "$source/scripts/make-package.sh" --build "$build" \
+  --stage "$work/staged" > /dev/null
+[ -x "$work/staged/run-relieflab" ] || { echo "make-package left no runner"; exit 1; }
 mkdir "$work/elsewhere"
 mv "$work/staged" "$work/elsewhere/relieflab"  # relocated: no path of the build survives
 pkg="$work/elsewhere/relieflab"
@@ -87,6 +90,31 @@ if outside:
 print("%d libraries loaded: from the package, glibc, the GL loader or the driver (%d)" %
       (len(path_of), len(driver)))
 PY
+
+# Without RELIEFLAB_IMAGE_MODULE, through a link to the runner and from a folder of its own: the
+# package's own stb module loads (never the build folder's OpenImageIO module, though that path
+# exists on this machine), and run.log names the file.
+ln -s "$pkg/run-relieflab" "$work/relieflab-link"
+RELIEFLAB_CACHE_DIR="$work/cache" "$work/relieflab-link" run "$work/sweep.toml" --out "$work/out2" -q
+grep -q "image files through stb.* from $pkg/lib/librelieflab_stb.so" "$work/out2/run.log" ||
+  { echo "the package did not load its own stb module:"; grep "image files" "$work/out2/run.log"; exit 1; }
+
+# Without its share/relieflab data the package says so, and reads nothing of the source tree's.
+mv "$pkg/share/relieflab/assets" "$work/assets-away"
+if RELIEFLAB_CACHE_DIR="$work/cache" "$pkg/run-relieflab" run --out "$work/out3" -q \
+  > "$work/nodata.log" 2>&1; then
+  echo "the package ran the default sweep without its assets"; exit 1
+fi
+grep -q "RELIEFLAB_DATA_DIR" "$work/nodata.log" || { cat "$work/nodata.log"; exit 1; }
+mv "$work/assets-away" "$pkg/share/relieflab/assets"
+
+# A library cut short (an interrupted copy) is named before anything is loaded.
+cp -a "$pkg" "$work/cut"
+core=$(ls "$work/cut/lib"/librelieflab_core.so.*.* | head -1)
+truncate -s 4096 "$core"
+if "$work/cut/run-relieflab" list > "$work/cut.log" 2>&1; then echo "a cut package ran"; exit 1; fi
+grep -q "librelieflab_core.so.*the package is incomplete" "$work/cut.log" || { cat "$work/cut.log"; exit 1; }
+rm -rf "$work/cut"
 
 size=$(tar -C "$work/elsewhere" -cf - relieflab | xz -T0 -1 | wc -c)
 [ "$size" -lt $((64 * 1024 * 1024)) ] || { echo "packs to $size bytes, over 64 MiB"; exit 1; }
