@@ -282,6 +282,62 @@ TEST(Claims, VerifyChecksTheReadmeSectionAndWriteRegeneratesIt) {
       << output;
 }
 
+// What verify reads is what a run wrote: a record that leaves rows.csv out, a link standing in
+// for the record or the rows, a value its column cannot take (recorded as if a run wrote it),
+// and a report edited after the run are refused; the verdict panel verify --write fills is not
+// an edit.
+TEST(Claims, VerifyRefusesRecordsAndRowsARunDidNotWrite) {
+  const std::string readme = std::string("# R\n\n") + kClaimsBegin + "\n" + kClaimsEnd + "\n";
+  const std::string dir = folder_with("claims_tamper", kRows, kClaims, readme);
+  std::string report;
+  ASSERT_EQ(verify_result_folder(dir, true, report), 0) << report;
+  auto refused = [&](const std::string& expect) {
+    report.clear();
+    EXPECT_GT(verify_result_folder(dir, false, report), 0);
+    EXPECT_NE(report.find(expect), std::string::npos) << report;
+  };
+  write_outputs_record(dir, {{"README.md", readme}});
+  refused("does not list rows.csv, whose rows the verdicts read");
+  const std::string other = folder_with("claims_tamper_other", kRows, kClaims, readme);
+  std::filesystem::remove(dir + "/outputs.json");
+  std::filesystem::create_symlink(other + "/outputs.json", dir + "/outputs.json");
+  refused("outputs.json: a link, not the record this folder's run wrote");
+  std::filesystem::remove(dir + "/outputs.json");
+  std::filesystem::remove(dir + "/rows.csv");
+  std::filesystem::create_symlink(other + "/rows.csv", dir + "/rows.csv");
+  write_outputs_record(dir, {{"rows.csv", kRows}});
+  refused("rows.csv: a link, not the file the run wrote");
+  std::filesystem::remove(dir + "/rows.csv");
+  const std::string negative =
+      std::string(kRows).replace(std::string(kRows).find(",40,4.0,"), 8, ",40,-50,");
+  write_rows(dir, negative);
+  refused("rows.csv: row 2: 'wrong_pct' holds -50, a value its column cannot take");
+  // The report as the run wrote it, then its panel filled by verify --write: still as written.
+  write_rows(dir, kRows);
+  const std::string page =
+      "<html><script type=\"application/json\" id=\"rl-verdicts\">null</script>"
+      "<script src=\"report_assets/report.js\"></script>wrong 2.5</html>";
+  write(dir + "/report.html", page);
+  write_outputs_record(dir, {{"rows.csv", kRows}, {"report.html", page}});
+  report.clear();
+  EXPECT_EQ(verify_result_folder(dir, true, report), 0) << report;
+  std::string shared = read_text(dir + "/report.html");
+  shared.replace(shared.find("\"report_assets/"), 15, "\"../report_assets/");
+  write(dir + "/report.html", shared);  // as scripts/reproduce.sh points it at the shared copy
+  report.clear();
+  EXPECT_EQ(verify_result_folder(dir, false, report), 0) << report;
+  std::string edited = shared;
+  edited.replace(edited.find("wrong 2.5"), 9, "wrong 0.5");
+  write(dir + "/report.html", edited);
+  refused("report.html: differs from what the run wrote");
+  // A folder holding no claims verifies nothing: that is no pass.
+  const std::string empty = test::scratch_dir("claims_none");
+  std::filesystem::create_directories(empty);
+  std::string output;
+  EXPECT_EQ(test::run_cli("verify " + empty, output), 1) << output;
+  EXPECT_NE(output.find("nothing was verified"), std::string::npos) << output;
+}
+
 // A claim about pictures names the rows it describes; the README links their committed files or
 // gives the command that makes them, and a claim that speaks of pictures without naming them, or
 // names uncommitted ones without a command, fails.

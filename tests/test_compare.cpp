@@ -242,6 +242,9 @@ TEST(Compare, ToleranceFilesAreChecked) {
   refused("[tolerances]\nwrong_pct = { absolute = 1 }\n", "absolute");
   refused("[tolerances]\nwrong_pct = { abs = -1 }\n", "abs");
   refused("[thresholds]\n", "thresholds");
+  // A column's declared direction is not the file's to reverse (a regression would read better).
+  refused("[tolerances]\nwrong_pct = { abs = 1, lower_is_better = false }\n",
+          "'wrong_pct' is declared lower-is-better (by metrics); a tolerance file cannot reverse");
   std::ofstream(dir + "/ok.toml") << "[tolerances]\nframe_ms = { rel = 0.3 }\n";
   auto tol = default_tolerances();
   read_tolerances(dir + "/ok.toml", tol);

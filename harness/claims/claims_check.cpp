@@ -8,7 +8,9 @@
 #include <sstream>
 
 #include "claims/claims.h"
+#include "claims/rows_csv.h"
 #include "core/atomic_write.h"
+#include "core/columns.h"
 #include "core/error.h"
 #include "output/outputs_record.h"
 #include "output/report.h"
@@ -417,11 +419,32 @@ int verify_rows_as_written(const std::string& dir, std::string& report) {
 
 }  // namespace
 
+// Every number of rows.csv is one its column can take (a wrong_pct of -50 would pass a claim
+// that the error is small): the check a run makes before reusing a stored row.
+int verify_values_in_range(const std::string& dir, const std::vector<CsvRow>& rows,
+                           std::string& report) {
+  int failures = 0;
+  for (size_t i = 0; i < rows.size(); ++i)
+    for (const auto& [column, text] : rows[i]) {
+      const DeclaredColumn* col = find_column(column);
+      double v = 0;
+      if (!col || col->spec.kind != ColumnKind::Number || !parse_number(text, v)) continue;
+      if (const std::string why = value_outside_range(col->spec, v); !why.empty()) {
+        report += dir + "/rows.csv: row " + std::to_string(i + 1) + ": '" + column + "' holds " +
+                  text + ", a value its column cannot take: " + why + "\n";
+        ++failures;
+      }
+    }
+  return failures;
+}
+
 int verify_result_folder(const std::string& dir, bool write, std::string& report) {
   // Nothing is checked or rewritten from rows the run did not write.
   if (const int edited = verify_rows_as_written(dir, report)) return edited;
+  const std::vector<CsvRow> rows = read_rows_csv(dir + "/rows.csv");
+  if (const int outside = verify_values_in_range(dir, rows, report)) return outside;
   const ClaimsFile file = load_claims(dir + "/claims.toml");
-  std::vector<ClaimResult> results = check_claims(file, read_rows_csv(dir + "/rows.csv"));
+  std::vector<ClaimResult> results = check_claims(file, rows);
   for (size_t i = 0; i < results.size(); ++i)
     check_pictures_committed(dir, file.claims[i], results[i]);
   int failures = 0;

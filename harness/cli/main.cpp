@@ -104,7 +104,8 @@ int update_docs(const std::string& root) {
 }
 
 // `relieflab verify`: each folder's claims against its rows, README and report (a folder
-// without claims.toml is listed as unchecked). Exit status 1 when any claim fails.
+// without claims.toml is listed as unchecked). Exit status 1 when any claim fails, or when no
+// folder holds claims.
 int verify_folders(const std::vector<std::string>& dirs, bool write) {
   int failures = 0, checked = 0;
   std::string report;
@@ -120,6 +121,11 @@ int verify_folders(const std::vector<std::string>& dirs, bool write) {
   }
   std::fputs(report.c_str(), stdout);
   std::printf("relieflab: %d folder(s) with claims checked, %d failure(s)\n", checked, failures);
+  // A check that checked nothing (a folder without claims, a mistyped glob) must not pass.
+  if (checked == 0) {
+    std::printf("relieflab: no folder given holds claims.toml: nothing was verified\n");
+    return 1;
+  }
   return failures ? 1 : 0;
 }
 

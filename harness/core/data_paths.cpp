@@ -75,11 +75,12 @@ const std::string& data_root() {
     // The source tree only for the build tree's own libraries: an installed or relocated copy
     // whose share/ is missing must not read whatever lies at the build's paths on this machine.
     if (in_build_tree()) return std::string(RELIEFLAB_SOURCE_DIR);
-    throw ConfigError("ReliefLab's data (assets/ and configs/) is not where its libraries expect "
-                      "it: " +
-                      (installed / "assets").string() +
-                      " is missing (an incomplete install or package?); reinstall, or set "
-                      "RELIEFLAB_DATA_DIR to the folder holding assets/ and configs/");
+    throw ConfigError(
+        "ReliefLab's data (assets/ and configs/) is not where its libraries expect "
+        "it: " +
+        (installed / "assets").string() +
+        " is missing (an incomplete install or package?); reinstall, or set "
+        "RELIEFLAB_DATA_DIR to the folder holding assets/ and configs/");
   }();
   return root;
 }

@@ -52,7 +52,18 @@ void read_tolerances(const std::string& path, std::map<std::string, MetricTolera
     MetricTolerance tol = into.count(name) ? into[name] : MetricTolerance{};
     if (auto* n = m->get("abs")) tol.abs = number_in(*n, src, "abs", 0, 1e30);
     if (auto* n = m->get("rel")) tol.rel = number_in(*n, src, "rel", 0, 1e30);
-    if (auto* n = m->get("lower_is_better")) tol.lower_is_better = boolean_of(*n, src, name);
+    if (auto* n = m->get("lower_is_better")) {
+      tol.lower_is_better = boolean_of(*n, src, name);
+      // A column's direction is what its producer declares: a file that reversed it would turn
+      // a regression into an improvement.
+      const DeclaredColumn* col = find_column(name);
+      if (col && col->spec.better != Better::Neither &&
+          tol.lower_is_better != (col->spec.better == Better::Lower))
+        fail(src.at(*n), "'" + name + "' is declared " +
+                             (col->spec.better == Better::Lower ? "lower" : "higher") +
+                             "-is-better (by " + col->producer +
+                             "); a tolerance file cannot reverse it");
+    }
     into[name] = tol;
   }
 }

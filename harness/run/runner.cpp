@@ -438,8 +438,10 @@ size_t write_sweep_outputs(const SweepConfig& config, const std::vector<Cell>& c
     fronts += write_pareto_plots(rows, p, parameter_columns(config), out_dir) + "\n";
   written["pareto.md"] = fronts;
   for (const auto& [name, text] : written) write_text_atomic(out_dir + "/" + name, text);
-  write_outputs_record(out_dir, written);
   write_report(config, rows, parameter_columns(config), out_dir);
+  // The report too: it shows the rows' numbers, and an edit to it is one to the results.
+  written["report.html"] = read_text(out_dir + "/report.html");
+  write_outputs_record(out_dir, written);
   return left_out;
 }
 
