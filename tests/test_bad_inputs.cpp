@@ -205,6 +205,32 @@ TEST(BadInputs, FifosReachedIndirectlyAreRefusedNotWaitedOn) {
   }
 }
 
+// A cost model that is a FIFO is named as what it is (it exists: "no model file" misled), and
+// never opened; a config whose read fails is named, not parsed as the part read before it.
+TEST(BadInputs, ACostModelFifoAndAnUnreadableConfigAreNamed) {
+  const fs::path dir = test::scratch_dir("model_fifo");
+  fs::create_directories(dir);
+  ASSERT_EQ(::mkfifo((dir / "model.toml").c_str(), 0600), 0);
+  const std::string text =
+      "[sweep]\nname = \"bad\"\nelevations = [45]\ncost_model = \"model.toml\"\n"
+      "[[scene]]\nname = \"flat\"\nrelief = { procedural = \"sines\", resolution = 8 }\n"
+      "[[technique]]\nname = \"relief\"\n";
+  try {
+    parse_sweep_config(text, (dir / "sweep.toml").string(), dir.string());
+    ADD_FAILURE() << "accepted a FIFO as the cost model";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("model.toml is not a regular file"), std::string::npos)
+        << e.what();
+  }
+  try {
+    load_sweep_config("/proc/self/mem");  // a regular file whose every read fails (EIO)
+    ADD_FAILURE() << "read /proc/self/mem as a config";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("/proc/self/mem: cannot read ("), std::string::npos)
+        << e.what();
+  }
+}
+
 // verify and ledger read whatever file they are pointed at: a README of 300 MiB (sparse here,
 // so it costs no disk) is refused by size, not read whole into memory.
 TEST(BadInputs, AHugeTextFileIsRefusedNotReadWhole) {

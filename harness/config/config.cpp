@@ -14,6 +14,7 @@
 #include "config/config_toml.h"
 #include "config/cost_model_file.h"
 #include "config/scene_files.h"
+#include "core/atomic_write.h"
 #include "core/data_paths.h"
 #include "core/error.h"
 #include "gl/embedded_files.h"
@@ -449,12 +450,9 @@ SweepConfig load_sweep_config(const std::string& path) {
   if (fs::file_size(path) > (1u << 20))
     throw ConfigError(path + ": is " + std::to_string(fs::file_size(path)) +
                       " bytes; a sweep config is at most 1 MiB");
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot read config file");
-  std::stringstream ss;
-  ss << in.rdbuf();
+  const std::string text = read_text(path, 1u << 20);  // a read error is named, not taken as EOF
   std::string dir = fs::absolute(path).parent_path().string();
-  return parse_sweep_config(ss.str(), path, dir);
+  return parse_sweep_config(text, path, dir);
 }
 
 const std::vector<std::string>& run_owned_names() {

@@ -1,5 +1,6 @@
 #include "config/cost_model_file.h"
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <set>
@@ -49,6 +50,12 @@ CostModel parse_model(const std::string& path) {
     // Non-negative: no count makes a frame faster; a fit that says otherwise is not a model.
     *slots[i] = number_in(*w, src, names[i], 0, 1e6);
   }
+  // Every weight 0 predicts every frame free: no fit gives that, and every Pareto front in time
+  // would collapse to one point.
+  if (std::all_of(slots.begin(), slots.end(), [](const double* w) { return *w == 0; }))
+    throw ConfigError(path +
+                      ": every weight in [weights] is 0, which prices every frame at 0 ms; "
+                      "not a fitted model");
   return m;
 }
 
@@ -58,8 +65,12 @@ std::optional<CostModel> load_cost_model(const std::string& value, const std::st
                                          const std::string& where) {
   if (value == "none") return std::nullopt;
   const std::string path = model_path(value, base_dir, where);
-  if (!fs::is_regular_file(path))
+  std::error_code ec;
+  if (!fs::exists(path, ec))
     throw ConfigError(where + ": cost_model '" + value + "': no model file " + path);
+  // A FIFO would block the read, a device or a folder is no model: said as they are.
+  if (!fs::is_regular_file(path, ec))
+    throw ConfigError(where + ": cost_model '" + value + "': " + path + " is not a regular file");
   try {
     return parse_model(path);
   } catch (const ConfigError& e) {

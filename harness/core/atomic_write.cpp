@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include "core/error.h"
@@ -59,10 +60,30 @@ std::string read_text(const std::string& path, uintmax_t max_bytes) {
   if (!ec && size > max_bytes)
     throw ConfigError(path + ": " + std::to_string(size) + " bytes, more than the " +
                       std::to_string(max_bytes) + " this reads");
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+  // Read with the system's own calls: a stream takes a read error (EIO, /proc/self/mem) for the
+  // end of the file, and a config cut short there parses as another config.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw ConfigError(path + ": cannot open (" + std::strerror(errno) + ")");
+  std::string text;
+  char buf[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n == 0) break;
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int err = errno;
+      ::close(fd);
+      throw ConfigError(path + ": cannot read (" + std::strerror(err) + ")");
+    }
+    text.append(buf, size_t(n));
+    if (text.size() > max_bytes) {
+      ::close(fd);
+      throw ConfigError(path + ": more than the " + std::to_string(max_bytes) +
+                        " bytes this reads");
+    }
+  }
+  ::close(fd);
+  return text;
 }
 
 }  // namespace rl
