@@ -69,11 +69,15 @@ TEST(RunFolder, ARunWaitsForTheCommandWritingIntoItsFolder) {
   {
     const RunFolderLock held(out);  // as a merge or a report writing into it would
     run = std::thread([&] { code = test::run_cli("run " + config + " --out " + out, output); });
-    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    std::this_thread::sleep_for(std::chrono::milliseconds(700));
+    // The lock is the folder's own: no file in it whose deletion would let the run in.
+    for (const auto& e : fs::directory_iterator(out)) fs::remove_all(e.path());
+    std::this_thread::sleep_for(std::chrono::milliseconds(800));
     EXPECT_FALSE(fs::exists(out + "/sweep.json")) << "the run wrote while the folder was held";
   }
   run.join();
   EXPECT_EQ(code, 0) << output;
+  EXPECT_FALSE(fs::exists(out + "/.relieflab-lock")) << "a lock file left behind";
   EXPECT_NE(output.find("waiting for another relieflab command writing into " + out),
             std::string::npos)
       << output;

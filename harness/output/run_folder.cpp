@@ -51,11 +51,13 @@ void check_run_folder(const std::string& dir) {
 }
 
 RunFolderLock::RunFolderLock(const std::string& dir) {
-  const std::string path = dir + "/.relieflab-lock";
-  fd_ = open(path.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
+  // The folder itself, not a file in it: a lock file deleted during a run let a second command
+  // lock a new one and write into the folder beside the first, and it stayed behind after.
+  const std::string& path = dir;
+  fd_ = open(path.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
   if (fd_ < 0)
-    throw ConfigError(path + ": cannot open the folder's lock file (" + std::strerror(errno) +
-                      "); a run folder must be writable");
+    throw ConfigError(path + ": cannot open the run folder to lock it (" + std::strerror(errno) +
+                      ")");
   if (flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
   if (errno != EWOULDBLOCK) {
     // A file system without locks (some network mounts): the run goes on, unguarded, and

@@ -16,8 +16,8 @@ void check_run_folder(const std::string& dir);
 // Held by every command that writes into a run folder (run, merge, report) from its checks to
 // its last output: two at once into one folder would leave one sweep's sweep.json beside the
 // other's rows. A second command waits, saying so on stderr, then runs on the folder as the
-// first left it. An advisory lock (flock) on DIR/.relieflab-lock, released when the process
-// ends, however it ends.
+// first left it. An advisory lock (flock) on the folder itself, which no command can delete
+// from under it, released when the process ends, however it ends.
 class RunFolderLock {
  public:
   explicit RunFolderLock(const std::string& dir);
