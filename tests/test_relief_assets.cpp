@@ -275,5 +275,31 @@ TEST(ReliefImages, NodataTexelsAreLeftOutOfTheRangeAndFilledAtTheDeepest) {
   EXPECT_FLOAT_EQ(map.depth_texel(3, 0), 0.0f);           // height 115, the top
 }
 
+// An int16 DEM (SRTM's format: heights 100 to 115 stored as integers, two texels at -32768): its
+// nodata is matched as the file stores it (it reads as -1.00003 in floats), and without one,
+// normalize is refused naming the stored value, not left to squeeze the terrain into a sliver.
+TEST(ReliefImages, AnIntegerDemsNodataIsTheValueTheFileStores) {
+  ReliefImageSource src;
+  src.depth_path =
+      std::string(RELIEFLAB_SOURCE_DIR) + "/tests/bad_inputs/assets/terrain_int16_nodata.tif";
+  src.normalize = true;
+  try {
+    load_relief_images(src, 1.0);
+    ADD_FAILURE() << "normalized an int16 DEM's nodata into its range";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("2 texel(s) hold -32768, the usual nodata value"),
+              std::string::npos)
+        << e.what();
+  }
+  src.nodata = -32768;
+  const ReliefMap map = load_relief_images(src, 1.0);
+  EXPECT_FLOAT_EQ(map.min_depth(), 0.0f);
+  EXPECT_FLOAT_EQ(map.max_depth(), 1.0f);
+  // File row 0 (v = 1, the map's last row): 100, 101, nodata, 102, ...; texel (2, 7) is nodata.
+  EXPECT_FLOAT_EQ(map.depth_texel(2, 7), 1.0f);
+  EXPECT_NEAR(map.depth_texel(0, 7), 1.0, 1e-6);  // the lowest height: the deepest
+  EXPECT_LT(map.depth_texel(1, 7), map.depth_texel(0, 7));
+}
+
 }  // namespace
 }  // namespace rl

@@ -26,6 +26,26 @@ std::unique_ptr<OIIO::ImageInput> open_unassociated(const std::string& path) {
   return OIIO::ImageInput::open(path, &config);
 }
 
+// What OpenImageIO divides an integer format by when it reads it as float (0: not integer).
+double integer_max(const OIIO::TypeDesc& t) {
+  switch (t.basetype) {
+    case OIIO::TypeDesc::UINT8:
+      return 255.0;
+    case OIIO::TypeDesc::INT8:
+      return 127.0;
+    case OIIO::TypeDesc::UINT16:
+      return 65535.0;
+    case OIIO::TypeDesc::INT16:
+      return 32767.0;
+    case OIIO::TypeDesc::UINT32:
+      return 4294967295.0;
+    case OIIO::TypeDesc::INT32:
+      return 2147483647.0;
+    default:
+      return 0.0;
+  }
+}
+
 bool read_header(const std::string& path, ImageHeader& header, std::string& error) {
   auto in = open_unassociated(path);
   if (!in) {
@@ -33,7 +53,8 @@ bool read_header(const std::string& path, ImageHeader& header, std::string& erro
     return false;
   }
   const OIIO::ImageSpec& spec = in->spec();
-  header = {spec.width, spec.height, spec.nchannels, spec.format == OIIO::TypeDesc::UINT8};
+  header = {spec.width, spec.height, spec.nchannels, spec.format == OIIO::TypeDesc::UINT8,
+            integer_max(spec.format)};
   return true;
 }
 

@@ -14,6 +14,9 @@ namespace rl {
 struct ImageHeader {
   int width = 0, height = 0, channels = 0;
   bool eight_bit = false;  // stored as 8 bits per channel
+  // An integer format's largest value (255, 65535, 32767 for int16, ...), which the float read
+  // divides by: a value the file stores is the float times this. 0 for a float format.
+  double integer_max = 0;
 };
 
 // An attribute of a written file's header (an EXR's matrices, viewport and labels).

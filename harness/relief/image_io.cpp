@@ -16,9 +16,15 @@ namespace {
 struct Image {
   int width = 0, height = 0, channels = 0;
   bool eight_bit = false;
+  double integer_max = 0;     // ImageHeader's: an integer format's largest value, else 0
   std::vector<float> pixels;  // row 0 = top of the file
   float at(int x, int y, int c) const {
     return pixels[(static_cast<size_t>(y) * width + x) * channels + std::min(c, channels - 1)];
+  }
+  // A read value as the file stores it: an int16 DEM's -32768, not the -1.00003 it reads as.
+  // What nodata and the usual nodata values are compared with.
+  double stored(float v) const {
+    return integer_max > 0 ? std::round(double(v) * integer_max) : double(v);
   }
 };
 
@@ -41,6 +47,7 @@ Image read_image(const std::string& path) {
   img.height = spec.height;
   img.channels = spec.channels;
   img.eight_bit = spec.eight_bit;
+  img.integer_max = spec.integer_max;
   if (!files.read_pixels(path, spec, img.pixels, error))
     throw ConfigError("cannot decode image " + path + ": " + one_line(error));
   if (img.width < 2 || img.height < 2) throw ConfigError("image too small: " + path);
@@ -118,13 +125,14 @@ std::string file_of(const ReliefImageSource& src) {
 // squeeze the terrain into a sliver of the depth and show its missing texels as pits.
 void refuse_unnamed_nodata(const ReliefImageSource& src, const Image& depth, int channel,
                            float file_lo, float file_hi) {
-  for (float sentinel : {file_lo, file_hi}) {
-    if (!usual_nodata_value(sentinel)) continue;
+  for (float end : {file_lo, file_hi}) {
+    const double sentinel = depth.stored(end);
+    if (!usual_nodata_value(float(sentinel))) continue;
     long count = 0;
-    float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+    double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
     for (int y = 0; y < depth.height; ++y)
       for (int x = 0; x < depth.width; ++x) {
-        const float v = depth.at(x, y, channel);
+        const double v = depth.stored(depth.at(x, y, channel));
         if (v == sentinel)
           ++count;
         else
@@ -136,8 +144,8 @@ void refuse_unnamed_nodata(const ReliefImageSource& src, const Image& depth, int
                   ": %ld texel(s) hold %.9g, the usual nodata value of a GeoTIFF; normalize would "
                   "fold it into the range, squeezing the other values (%.6g to %.6g) into %.2g%% "
                   "of the depth: give nodata = %.9g to fill them at the deepest valid depth",
-                  count, double(sentinel), double(lo), double(hi),
-                  100.0 * double(hi - lo) / (double(file_hi) - double(file_lo)), double(sentinel));
+                  count, sentinel, lo, hi,
+                  100.0 * (hi - lo) / (depth.stored(file_hi) - depth.stored(file_lo)), sentinel);
     throw ConfigError(file_of(src) + text);
   }
 }
@@ -149,7 +157,7 @@ DepthRange depth_range(const Image& depth, int channel, const ReliefImageSource&
   for (int y = 0; y < depth.height; ++y)
     for (int x = 0; x < depth.width; ++x) {
       const float v = depth.at(x, y, channel);
-      if (v == float(src.nodata)) {  // never true for NaN (none given)
+      if (depth.stored(v) == src.nodata) {  // never true for NaN (none given)
         ++r.nodata;
         continue;
       }
@@ -216,7 +224,7 @@ ReliefMap load_relief_images(const ReliefImageSource& src, double depth_per_texe
     for (int x = 0; x < w; ++x) {
       const float v = depth.at(x, file_row, depth_channel);
       // A texel without data sits at the deepest valid depth (the lowest valid height).
-      float d = v == float(src.nodata) ? range.hi : src.height_convention ? 1.0f - v : v;
+      float d = depth.stored(v) == src.nodata ? range.hi : src.height_convention ? 1.0f - v : v;
       glm::vec4 t(0.5f, 0.5f, 1.0f, std::clamp(d, 0.0f, 1.0f));
       if (src.normalize && range.hi > range.lo) t.a = (d - range.lo) / (range.hi - range.lo);
       if (has_normals) {

@@ -33,7 +33,8 @@ bool read_header(const std::string& path, ImageHeader& header, std::string& erro
     error = "stb cannot read it: " + stb_failure();
     return false;
   }
-  header = {w, h, n, !stbi_is_16_bit(path.c_str()) && !stbi_is_hdr(path.c_str())};
+  const bool hdr = stbi_is_hdr(path.c_str()), sixteen = stbi_is_16_bit(path.c_str());
+  header = {w, h, n, !sixteen && !hdr, hdr ? 0.0 : sixteen ? 65535.0 : 255.0};
   return true;
 }
 
