@@ -1,6 +1,7 @@
 #include "core/triangle_mesh.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -257,18 +258,53 @@ void check_obj_material_library(const std::string& path, std::istringstream& wor
   }
 }
 
-// What Assimp reads of an OBJ without a word: its material libraries, and the numbers of its
-// vertex lines (it reads "nan" in a texture coordinate as 0, so a NaN uv was accepted).
+// The indices an OBJ face names ("v", "v/vt", "v//vn", "v/vt/vn"), each checked against the
+// lines of its kind: a negative one against those read so far, a positive one, which may look
+// ahead, against the file's count at its end (`ahead`: the largest positive index of each kind
+// and the line that named it). Assimp drops a uv index past the end and reads the mesh as
+// having none, which a base mesh then reported as "no texture coordinates".
+struct ObjIndexUse {
+  long largest = 0;
+  int line = 0;
+};
+void check_obj_face(const std::string& path, int number, std::istringstream& words,
+                    const std::array<long, 3>& counts, std::array<ObjIndexUse, 3>& ahead) {
+  static const char* kinds[3] = {"vertex", "texture coordinate", "normal"};
+  for (std::string corner; words >> corner && corner[0] != '#';) {
+    std::istringstream parts(corner);
+    std::string index;
+    for (int k = 0; k < 3 && std::getline(parts, index, '/'); ++k) {
+      if (index.empty()) continue;
+      char* end = nullptr;
+      const long i = std::strtol(index.c_str(), &end, 10);
+      const bool bad = *end != '\0' || i == 0 || (i < 0 && -i > counts[size_t(k)]);
+      if (bad)
+        throw ConfigError("mesh " + path + ":" + std::to_string(number) + ": a face names " +
+                          kinds[k] + " " + index.substr(0, 20) + " of " +
+                          std::to_string(counts[size_t(k)]) + " defined so far");
+      if (i > ahead[size_t(k)].largest) ahead[size_t(k)] = {i, number};
+    }
+  }
+}
+
+// What Assimp reads of an OBJ without a word: its material libraries, the numbers of its
+// vertex lines (it reads "nan" in a texture coordinate as 0, so a NaN uv was accepted) and the
+// indices its faces name.
 void check_obj(const std::string& path) {
+  static const char* kinds[3] = {"vertex", "texture coordinate", "normal"};
   std::ifstream in(path);
   int number = 0;
+  std::array<long, 3> counts{};  // v, vt, vn lines
+  std::array<ObjIndexUse, 3> ahead{};
   for (std::string line; std::getline(in, line);) {
     ++number;
     std::istringstream words(line);
     std::string word;
     words >> word;
     if (word == "mtllib") check_obj_material_library(path, words);
+    if (word == "f") check_obj_face(path, number, words, counts, ahead);
     if (word != "v" && word != "vt" && word != "vn") continue;
+    ++counts[word == "v" ? 0 : word == "vt" ? 1 : 2];
     for (std::string value; words >> value && value[0] != '#';) {
       char* end = nullptr;
       const double x = std::strtod(value.c_str(), &end);
@@ -277,6 +313,11 @@ void check_obj(const std::string& path) {
                           "' value '" + value.substr(0, 40) + "' is not a finite number");
     }
   }
+  for (size_t k = 0; k < 3; ++k)
+    if (ahead[k].largest > counts[k])
+      throw ConfigError("mesh " + path + ":" + std::to_string(ahead[k].line) + ": a face names " +
+                        kinds[k] + " " + std::to_string(ahead[k].largest) + " of " +
+                        std::to_string(counts[k]) + " the file defines");
 }
 
 }  // namespace
@@ -284,6 +325,11 @@ void check_obj(const std::string& path) {
 TriangleMesh load_mesh(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
   for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  // OBJ and PLY only, the formats whose files are checked before Assimp reads them: its other
+  // importers took files they abort on (a truncated OFF ended the process in its triangulation).
+  if (extension != ".obj" && extension != ".ply")
+    throw ConfigError("mesh " + path + ": '" + extension +
+                      "' is not read; meshes are OBJ (.obj) or PLY (.ply) files");
   if (extension == ".ply") check_ply(path);
   if (extension == ".obj") check_obj(path);
   Assimp::Importer importer;
