@@ -231,6 +231,31 @@ TEST(BadInputs, ACostModelFifoAndAnUnreadableConfigAreNamed) {
   }
 }
 
+// The fallback image module (the relocatable package's) reads no file cut short as a whole one:
+// stb fills the missing part with zeros, so it reads only formats it can check (a TGA of 20
+// bytes, or half of one, ran as a map before), and an uncompressed BMP is held to its header.
+TEST(BadInputs, TheFallbackImageModuleRefusesFilesCutShort) {
+  const std::string corpus = std::string(RELIEFLAB_TEST_DIR) + "/bad_inputs/assets/";
+  const std::string stb = fs::path(RELIEFLAB_CLI).parent_path().string() + "/librelieflab_stb.so";
+  const fs::path dir = test::scratch_dir("stb_cut");
+  fs::create_directories(dir);
+  for (const auto& [file, expect] : std::vector<std::pair<std::string, std::string>>{
+           {"tiny.tga", "reads PNG, JPEG, BMP and Radiance HDR files, and this is none of them"},
+           {"half.tga", "reads PNG, JPEG, BMP and Radiance HDR files, and this is none of them"},
+           {"truncated.bmp", "a BMP cut short: 2000 bytes where its header needs 66614"}}) {
+    const std::string config = (dir / (file + ".toml")).string();
+    std::ofstream(config) << "[sweep]\nname = \"cut\"\nelevations = [45]\nviewports = [16]\n"
+                             "[[scene]]\nname = \"cut\"\nrelief = { depth = \""
+                          << corpus << file << "\" }\n[[technique]]\nname = \"relief\"\n";
+    std::string out;
+    EXPECT_EQ(test::run_cli("run " + config + " --out " + (dir / "out").string() + " -q", out,
+                            "env RELIEFLAB_IMAGE_MODULE=" + stb + " "),
+              2)
+        << out;
+    EXPECT_NE(out.find(expect), std::string::npos) << file << ": " << out;
+  }
+}
+
 // verify and ledger read whatever file they are pointed at: a README of 300 MiB (sparse here,
 // so it costs no disk) is refused by size, not read whole into memory.
 TEST(BadInputs, AHugeTextFileIsRefusedNotReadWhole) {

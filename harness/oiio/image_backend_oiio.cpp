@@ -66,6 +66,11 @@ bool read_pixels(const std::string& path, const ImageHeader& header, std::vector
     error = failure(in);
     return false;
   }
+  // A TIFF cut short reads "successfully" as zeros past its end, the failure only in the log.
+  if (const std::string why = in->geterror(); !why.empty()) {
+    error = why;
+    return false;
+  }
   return true;
 }
 

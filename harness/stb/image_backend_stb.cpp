@@ -3,8 +3,10 @@
 // the relocatable package (scripts/make-package.sh). Built as librelieflab_stb.so; the harness
 // loads it when the OpenImageIO module does not load, or when RELIEFLAB_IMAGE_MODULE names it.
 //
-// What it does differently: it reads PNG, BMP, TGA, JPEG, GIF, PSD, HDR and PNM and writes PNG,
-// BMP, TGA and JPEG, 8 bits a channel (no OpenEXR: G-buffer export needs OpenImageIO); it
+// What it does differently: it reads PNG, BMP, JPEG and Radiance HDR (stb reads TGA, GIF, PSD
+// and PNM too, but takes a file cut short for a whole one, filling zeros: a 20-byte TGA ran as a
+// map; an uncompressed BMP is held to the size its header gives) and writes PNG, BMP, TGA and
+// JPEG, 8 bits a channel (no OpenEXR: G-buffer export needs OpenImageIO); it
 // resamples with stb_image_resize's default filters (Mitchell down, Catmull-Rom up) rather
 // than OpenImageIO's, so resampled maps differ from OpenImageIO's in the last bits.
 #include <stb/stb_image.h>
@@ -13,7 +15,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <vector>
 
@@ -27,7 +32,47 @@ std::string stb_failure() {
   return why ? why : "unknown error";
 }
 
+uint32_t little_endian(const unsigned char* p, int bytes) {
+  uint32_t v = 0;
+  for (int i = bytes - 1; i >= 0; --i) v = (v << 8) | p[i];
+  return v;
+}
+
+// Why stb must not read `path` ("" when it may): a format it reads without noticing a file cut
+// short, or an uncompressed BMP shorter than its header says.
+std::string unchecked_format(const std::string& path) {
+  unsigned char head[54] = {};
+  FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return "cannot open it";
+  const size_t got = std::fread(head, 1, sizeof head, f);
+  std::fclose(f);
+  const bool png = got >= 8 && std::memcmp(head, "\x89PNG\r\n\x1a\n", 8) == 0;
+  const bool jpeg = got >= 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF;
+  const bool hdr = got >= 2 && head[0] == '#' && head[1] == '?';
+  if (png || jpeg || hdr) return "";
+  if (got < 2 || head[0] != 'B' || head[1] != 'M')
+    return "the fallback image module reads PNG, JPEG, BMP and Radiance HDR files, and this is "
+           "none of them (convert it, or run where OpenImageIO's module loads)";
+  if (got < sizeof head) return "a BMP shorter than its headers";
+  const uint32_t offset = little_endian(head + 10, 4), compression = little_endian(head + 30, 4);
+  const int32_t width = int32_t(little_endian(head + 18, 4)),
+                height = int32_t(little_endian(head + 22, 4));
+  const uint32_t bits = little_endian(head + 28, 2);
+  if (compression != 0 || width <= 0) return "";  // left to stb's own checks
+  const uint64_t stride = (uint64_t(width) * bits + 31) / 32 * 4;
+  const uint64_t needed = offset + stride * uint64_t(std::abs(int64_t(height)));
+  const uint64_t size = std::filesystem::file_size(path);
+  if (size < needed)
+    return "a BMP cut short: " + std::to_string(size) + " bytes where its header needs " +
+           std::to_string(needed);
+  return "";
+}
+
 bool read_header(const std::string& path, ImageHeader& header, std::string& error) {
+  if (const std::string why = unchecked_format(path); !why.empty()) {
+    error = why;
+    return false;
+  }
   int w = 0, h = 0, n = 0;
   if (!stbi_info(path.c_str(), &w, &h, &n)) {
     error = "stb cannot read it: " + stb_failure();
