@@ -256,6 +256,29 @@ TEST(BadInputs, TheFallbackImageModuleRefusesFilesCutShort) {
   }
 }
 
+// The memory a cell may use is what this process may use, not what the machine has: under an
+// address-space limit (ulimit -v; a cgroup's memory.max reads the same way) a sweep the limit
+// cannot hold is refused before anything is written, naming the limit.
+TEST(BadInputs, ASweepBeyondTheProcesssMemoryLimitIsRefusedUpFront) {
+  const fs::path dir = test::scratch_dir("rlimit");
+  fs::create_directories(dir);
+  std::ofstream(dir / "big.toml")
+      << "[sweep]\nname = \"big\"\nelevations = [45]\nviewports = [4096]\n"
+         "[[scene]]\nname = \"flat\"\nrelief = { procedural = \"sines\", resolution = 16 }\n"
+         "[[technique]]\nname = \"relief\"\n";
+  std::string out;
+  EXPECT_EQ(test::run_cli(
+                "run " + (dir / "big.toml").string() + " --out " + (dir / "out").string() + " -q",
+                out, "prlimit --as=3221225472 "),
+            2)
+      << out;
+  EXPECT_NE(out.find("needs about 5.9 GiB, mostly its G-buffers (5.9 GiB), and this process may "
+                     "use (its address-space limit, ulimit -v) 3.0 GiB"),
+            std::string::npos)
+      << out;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
 // verify and ledger read whatever file they are pointed at: a README of 300 MiB (sparse here,
 // so it costs no disk) is refused by size, not read whole into memory.
 TEST(BadInputs, AHugeTextFileIsRefusedNotReadWhole) {

@@ -342,5 +342,29 @@ relief = { procedural = "sines", resolution = 64 }
   EXPECT_GE(baked - runtime, 4096.0 * 4096.0 * 30);
 }
 
+// Layers scale with layer 0 (texture_res): 7 layers of 2048 at texture_res 8192 over a 2048 map
+// are built at 8192 each, and estimated so (they passed at their declared size and then climbed
+// past 6 GB).
+TEST(MetaReliefSweep, TheMemoryEstimateCountsLayersAtTheirScaledSize) {
+  std::string text = R"(
+[sweep]
+name = "t"
+elevations = [45]
+viewports = [16]
+texture_res = [8192]
+[[technique]]
+name = "relief"
+[[scene]]
+name = "meta"
+relief = { procedural = "sines", resolution = 2048 }
+)";
+  for (int i = 0; i < 7; ++i)
+    text +=
+        "[[scene.meta_relief.layers]]\nrelief = { procedural = \"bricks\", resolution = 2048 }\n";
+  const SweepConfig config = parse_sweep_config(text, "t.toml", ".");
+  const double bytes = estimate_cell_memory(config, expand_cells(config).front()).bytes;
+  EXPECT_GE(bytes, 7 * 8192.0 * 8192.0 * 30);
+}
+
 }  // namespace
 }  // namespace rl

@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <new>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -325,6 +326,14 @@ int run_command(const CLI::App& app, const CliArgs& a) {
   } catch (const rl::ConfigError& e) {
     std::fprintf(stderr, "relieflab: config error: %s\n", e.what());
     return 2;
+  } catch (const std::bad_alloc&) {
+    // Past what the estimate before the run foresaw (run/memory_estimate.h): said as such.
+    std::fprintf(stderr,
+                 "relieflab: error: out of memory: a setting needed more than this process may "
+                 "use, past what the estimate made before the run foresaw; lower texture_res, "
+                 "the viewport, a cell complex's grid or subdivide, or a curved base's segments "
+                 "(rows already stored are kept; the run resumes where it stopped)\n");
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "relieflab: error: %s\n", e.what());
     return 1;

@@ -18,6 +18,7 @@
 #include "core/data_paths.h"
 #include "core/error.h"
 #include "gl/embedded_files.h"
+#include "scene/relief_asset.h"
 #include "technique/technique.h"
 
 namespace rl {
@@ -175,6 +176,17 @@ void enter_scene(SweepConfig& c, json& canon, std::set<std::string>& scene_names
   SceneDesc& scene = c.scenes.back();
   // Layers cost memory per texel and layer (7 floats baked, then 28 bytes uploaded).
   for (int res : c.texture_res) {
+    // A meta-relief's layers scale with layer 0: one past the largest map is refused here, not
+    // after minutes of building, naming the resolution it would have.
+    for (size_t i = 0; i < scene.meta.layers.size(); ++i)
+      if (const int side = meta_layer_resolution(scene, scene.meta.layers[i], res); side > 8192)
+        fail(src.at(n), "scene '" + scene.name + "': meta_relief layer " + std::to_string(i + 1) +
+                            " (" + std::to_string(scene.meta.layers[i].relief.native.longer()) +
+                            " texels a side) scales with texture_res " +
+                            (res ? std::to_string(res) : std::string("0 (native)")) + " to " +
+                            std::to_string(side) +
+                            " texels a side, past the largest map (8192): lower texture_res or "
+                            "the layer's size");
     const MapSize size = scene.relief.size_at(res);
     if (scene.relief.layers > 0 &&
         double(size.width) * size.height * scene.relief.layers > double(1 << 26))

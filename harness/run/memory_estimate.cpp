@@ -1,11 +1,15 @@
 #include "run/memory_estimate.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 
 #include "core/error.h"
+#include "scene/relief_asset.h"
 
 namespace rl {
 namespace {
@@ -23,12 +27,16 @@ std::string gib(double bytes) {
   return text;
 }
 
-// A meta-relief's finer layers, each a map of its own size (with its AO map and GPU copy),
-// and the bake of their combination where the scene bakes it.
-double meta_relief_bytes(const SceneDesc& scene) {
+// A meta-relief's finer layers, each a map of its own size scaled as layer 0 is to `resolution`
+// (with its AO map and GPU copy), and the bake of their combination where the scene bakes it.
+double meta_relief_bytes(const SceneDesc& scene, int resolution) {
   double bytes = 0;
-  for (const MetaLayerDesc& layer : scene.meta.layers)
-    bytes += double(layer.relief.native.width) * layer.relief.native.height * kBytesPerTexel;
+  for (const MetaLayerDesc& layer : scene.meta.layers) {
+    const double side = meta_layer_resolution(scene, layer, resolution);
+    const double native = std::max(1, layer.relief.native.longer());
+    bytes += double(layer.relief.native.width) * layer.relief.native.height * (side / native) *
+             (side / native) * kBytesPerTexel;
+  }
   if (scene.meta.active() && !scene.meta.runtime()) {
     const MapSize base = scene.relief.native;
     const double side = scene.meta.bake_resolution > 0 ? scene.meta.bake_resolution
@@ -58,8 +66,8 @@ MemoryEstimate estimate_cell_memory(const SweepConfig& config, const Cell& cell)
       (scene.truth_color_texture_res > 0
            ? double(truth_color.width) * truth_color.height * 16 + texels * kBytesPerTexel
            : 0);
-  const double maps =
-      texels * kBytesPerTexel * std::max(1, r.faces) + color_maps + meta_relief_bytes(scene);
+  const double maps = texels * kBytesPerTexel * std::max(1, r.faces) + color_maps +
+                      meta_relief_bytes(scene, cell.texture_res);
   double cells = 0;
   if (r.cells.active) {
     const double n = r.cells.grid > 0 ? r.cells.grid : r.cells.grid_max;
@@ -87,8 +95,58 @@ double physical_memory_bytes() {
   return pages > 0 && page > 0 ? double(pages) * double(page) : 0.0;
 }
 
+namespace {
+
+// A cgroup's memory limit in bytes, from its control file's text ("max", or a number): 0 when
+// none.
+double cgroup_limit(const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  return end != text.c_str() && v > 0 && v < 1e18 ? v : 0;
+}
+
+// The first line of a small file ("" when it cannot be read).
+std::string first_line(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
+// The memory limit of this process's cgroup (v2 memory.max, v1 memory.limit_in_bytes), as
+// Slurm's --mem and containers set it: 0 when none.
+double cgroup_memory_limit() {
+  std::ifstream in("/proc/self/cgroup");
+  for (std::string line; std::getline(in, line);) {
+    const size_t colon = line.rfind(':');
+    if (colon == std::string::npos) continue;
+    const std::string path = line.substr(colon + 1);
+    const bool v2 = line.rfind("0::", 0) == 0;
+    const bool v1 = line.find(":memory:") != std::string::npos;
+    if (!v2 && !v1) continue;
+    const std::string file = v2 ? "/sys/fs/cgroup" + path + "/memory.max"
+                                : "/sys/fs/cgroup/memory" + path + "/memory.limit_in_bytes";
+    if (const double limit = cgroup_limit(first_line(file)); limit > 0) return limit;
+  }
+  return 0;
+}
+
+}  // namespace
+
+MemoryLimit usable_memory() {
+  MemoryLimit m{physical_memory_bytes(), "this machine has"};
+  rlimit as{};
+  if (getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY &&
+      (m.bytes <= 0 || double(as.rlim_cur) < m.bytes))
+    m = {double(as.rlim_cur), "this process may use (its address-space limit, ulimit -v)"};
+  if (const double cg = cgroup_memory_limit(); cg > 0 && (m.bytes <= 0 || cg < m.bytes))
+    m = {cg, "this process's cgroup may use (memory.max, as Slurm's --mem sets it)"};
+  return m;
+}
+
 void refuse_cells_beyond_memory(const SweepConfig& config, const std::vector<Cell>& cells) {
-  const double have = physical_memory_bytes();
+  const MemoryLimit limit = usable_memory();
+  const double have = limit.bytes;
   if (have <= 0) return;
   for (const Cell& c : cells) {
     const MemoryEstimate e = estimate_cell_memory(config, c);
@@ -97,7 +155,7 @@ void refuse_cells_beyond_memory(const SweepConfig& config, const std::vector<Cel
     throw ConfigError(config.source + ": scene '" + scene.name + "' at viewport " +
                       std::to_string(c.width) + "x" + std::to_string(c.height) + ", texture_res " +
                       std::to_string(c.texture_res) + " needs about " + gib(e.bytes) + ", mostly " +
-                      e.what + ", and this machine has " + gib(have) +
+                      e.what + ", and " + limit.what + " " + gib(have) +
                       ": lower the viewport, texture_res or grid (nothing was run)");
   }
 }

@@ -28,8 +28,16 @@ MemoryEstimate estimate_cell_memory(const SweepConfig& config, const Cell& cell)
 // The machine's physical memory in bytes (0 when unknown).
 double physical_memory_bytes();
 
+// What this process may actually use: the least of the machine's memory, its address-space
+// limit (RLIMIT_AS) and its cgroup's memory limit, and which of them that is, in words.
+struct MemoryLimit {
+  double bytes = 0;  // 0 when unknown
+  std::string what;  // "this machine has", ...
+};
+MemoryLimit usable_memory();
+
 // Throws ConfigError naming the scene, the viewport and texture resolution, the estimate and
-// the machine's memory when a cell would need more than the machine has.
+// the memory this process may use when a cell would need more.
 void refuse_cells_beyond_memory(const SweepConfig& config, const std::vector<Cell>& cells);
 
 }  // namespace rl

@@ -166,6 +166,12 @@ ReliefMap build_map(const SceneDesc& scene, const ReliefSourceDesc& relief, int 
 
 }  // namespace
 
+int meta_layer_resolution(const SceneDesc& scene, const MetaLayerDesc& layer, int resolution) {
+  const double scale =
+      double(scene.relief.size_at(resolution).longer()) / std::max(1, scene.relief.native.longer());
+  return std::max(2, int(std::lround(layer.relief.native.longer() * scale)));
+}
+
 ReliefMap build_relief_asset(const SceneDesc& scene, int resolution) {
   return build_relief_asset(scene, resolution, scene.color_texture_res);
 }
@@ -188,11 +194,9 @@ ReliefMap build_relief_asset(const SceneDesc& scene, int resolution, int color_r
   // factor from its native size (so "native" keeps each layer's own), each at its tiling.
   std::vector<MetaLayer> layers;
   layers.push_back({map, 1.0, scene.meta.weight_normal, scene.meta.weight_depth});
-  const double scale =
-      double(scene.relief.size_at(resolution).longer()) / std::max(1, scene.relief.native.longer());
   for (const MetaLayerDesc& d : scene.meta.layers) {
-    const int layer_res = std::max(2, int(std::lround(d.relief.native.longer() * scale)));
-    ReliefMap layer = build_map(scene, d.relief, layer_res, d.tiling);
+    ReliefMap layer =
+        build_map(scene, d.relief, meta_layer_resolution(scene, d, resolution), d.tiling);
     if (scene.quantize) quantize_8bit(layer);
     layers.push_back({std::move(layer), d.tiling, d.weight_normal, d.weight_depth});
   }

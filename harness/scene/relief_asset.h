@@ -14,6 +14,10 @@
 namespace rl {
 
 ReliefMap build_relief_asset(const SceneDesc& scene, int resolution);
+
+// The longer side a meta-relief's `layer` is built at when the sweep asks for `resolution`
+// (layer 0's): scaled from its native size by the factor that takes layer 0 from its own.
+int meta_layer_resolution(const SceneDesc& scene, const MetaLayerDesc& layer, int resolution);
 // The same with its colour map at `color_resolution` (longer side; 0: the map's own), as the
 // truth's colour where the scene sets truth_color_resolution.
 ReliefMap build_relief_asset(const SceneDesc& scene, int resolution, int color_resolution);
