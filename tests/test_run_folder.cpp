@@ -119,6 +119,16 @@ TEST(RunFolder, AMergeKilledBeforeItsRecordResumes) {
   ASSERT_EQ(test::run_cli("merge " + merged + " " + dir + "/s0 " + dir + "/s1", output), 0)
       << output;
   EXPECT_EQ(csv_rows(merged + "/rows.csv"), 4u);
+  // Killed while making its store: an empty file, or an SQLite file with no table yet.
+  for (const bool sqlite_header : {false, true}) {
+    const std::string cut = dir + (sqlite_header ? "/cut-sqlite" : "/cut-empty");
+    fs::create_directories(cut);
+    std::ofstream(cut + "/results.sqlite");
+    if (sqlite_header) test::store_exec(cut + "/results.sqlite", "PRAGMA user_version = 1");
+    ASSERT_EQ(test::run_cli("merge " + cut + " " + dir + "/s0 " + dir + "/s1", output), 0)
+        << output;
+    EXPECT_EQ(csv_rows(cut + "/rows.csv"), 4u);
+  }
   // A store holding a row of a cell this sweep lacks is not a merge of it.
   const std::string other = dir + "/other";
   fs::create_directories(other);

@@ -221,6 +221,25 @@ size_t ResultStore::merge_from(const std::string& other_path) {
   return merged;
 }
 
+bool store_creation_cut_short(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return false;
+  if (std::filesystem::file_size(path, ec) == 0 && !ec) return true;
+  sqlite3* db = nullptr;
+  bool empty = false;
+  if (sqlite3_open_v2(sqlite_uri(path, "mode=ro").c_str(), &db,
+                      SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr) == SQLITE_OK) {
+    sqlite3_stmt* s = nullptr;
+    if (sqlite3_prepare_v2(db, "SELECT count(*) FROM sqlite_master", -1, &s, nullptr) ==
+            SQLITE_OK &&
+        sqlite3_step(s) == SQLITE_ROW)
+      empty = sqlite3_column_int(s, 0) == 0;
+    sqlite3_finalize(s);
+  }
+  sqlite3_close(db);
+  return empty;
+}
+
 std::string stored_value_outside_range(const nlohmann::ordered_json& row) {
   if (!row.is_object()) return "";
   for (const DeclaredColumn& c : declared_columns()) {

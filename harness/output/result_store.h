@@ -54,6 +54,11 @@ class ResultStore {
   std::string path_;
 };
 
+// Whether `path` is a store whose creation was cut short: an empty file, or an SQLite file that
+// holds no table yet (what a command killed while it made the store leaves); such a store is
+// made again, not refused as "not a ReliefLab result store".
+bool store_creation_cut_short(const std::string& path);
+
 // "" when every number a stored row holds is one its column can take (core/columns.h:
 // column_range); else "holds a value in 'COLUMN' its column cannot take: WHY". A row edited or
 // damaged in the store is neither reused, published nor compared with such a value.

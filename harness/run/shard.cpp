@@ -197,7 +197,8 @@ void refuse_another_sweep(const std::string& out_dir, const nlohmann::json& shar
                         there["config_hash"].get<std::string>() + ") than the shards (" +
                         shards["config_hash"].get<std::string>() +
                         "); merge into a new folder (nothing was written)");
-  } else if (fs::exists(out_dir + "/results.sqlite")) {
+  } else if (fs::exists(out_dir + "/results.sqlite") &&
+             !store_creation_cut_short(out_dir + "/results.sqlite")) {
     std::set<std::string> keys;
     for (const Cell& c : cells) keys.insert(c.key);
     const ResultStore store(out_dir + "/results.sqlite", ResultStore::Access::ReadOnly);
@@ -226,7 +227,10 @@ void refuse_disagreeing_rows(const std::string& out_dir, const std::vector<std::
                              const std::vector<Cell>& cells) {
   std::map<std::string, std::pair<nlohmann::ordered_json, std::string>> first;  // key: row, dir
   std::vector<std::string> sources = dirs;
-  if (fs::exists(out_dir + "/results.sqlite")) sources.insert(sources.begin(), out_dir);
+  // A store whose making was cut short (a merge killed then) holds nothing to disagree with.
+  if (fs::exists(out_dir + "/results.sqlite") &&
+      !store_creation_cut_short(out_dir + "/results.sqlite"))
+    sources.insert(sources.begin(), out_dir);
   for (const std::string& d : sources) {
     const ResultStore store(d + "/results.sqlite", ResultStore::Access::ReadOnly);
     const std::set<std::string> keys = store.keys();
