@@ -279,6 +279,23 @@ TEST(BadInputs, ASweepBeyondTheProcesssMemoryLimitIsRefusedUpFront) {
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
+// A cell complex's subdivide multiplies its mesh by 4^k: the estimate counts the mesh so (a
+// million triangles at subdivide 4 ended in a bare bad_alloc after minutes).
+TEST(BadInputs, TheMemoryEstimateCountsASubdividedMesh) {
+  auto estimate = [](int subdivide) {
+    const std::string text =
+        "[sweep]\nname = \"s\"\nelevations = [45]\nviewports = [16]\n[[scene]]\nname = "
+        "\"bunny\"\nrelief = { cells = \"" +
+        std::string(RELIEFLAB_SOURCE_DIR) +
+        "/assets/meshes/bunny.obj\", up = \"y\", grid = 2, resolution = 8, subdivide = " +
+        std::to_string(subdivide) + " }\n[[technique]]\nname = \"cell_complex\"\n";
+    const SweepConfig config = parse_sweep_config(text, "s.toml", ".");
+    return estimate_cell_memory(config, expand_cells(config).front()).bytes;
+  };
+  // The bunny's 3,674 triangles, 256 times over at subdivide 4, at no less than 80 bytes each.
+  EXPECT_GE(estimate(4) - estimate(0), 3674.0 * 255 * 80);
+}
+
 // verify and ledger read whatever file they are pointed at: a README of 300 MiB (sparse here,
 // so it costs no disk) is refused by size, not read whole into memory.
 TEST(BadInputs, AHugeTextFileIsRefusedNotReadWhole) {

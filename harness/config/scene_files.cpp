@@ -84,7 +84,9 @@ void read_scene_files(ParsedScene& parsed) {
   }
   if (!r.mesh_path.empty() && !s.base.curved()) {
     // A baked mesh keeps its proportions: the relief depth follows from the footprint.
-    const BakeFrame frame = relief_bake_frame(r, mesh_at(parsed.sites.relief, r.mesh_path));
+    const TriangleMesh mesh = mesh_at(parsed.sites.relief, r.mesh_path);
+    r.mesh_triangles = mesh.triangles.size();
+    const BakeFrame frame = relief_bake_frame(r, mesh);
     s.depth = s.size * frame.height / frame.side;
     canon["depth"] = s.depth;
   }

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -18,6 +19,23 @@ constexpr double kBytesPerPixel = 300;      // 2 G-buffers of 5 vec4 + targets +
 constexpr double kBytesPerTexel = 100;      // map, colour, GPU copies, mip and AO levels
 constexpr double kBytesPerCellTexel = 20;   // distance, normal and colour per face texel
 constexpr double kFacesPerSurfaceCell = 3;  // domain faces of a grey cell, at most
+// A cell complex's mesh after subdivide, with its Embree truth: about 90 bytes a triangle as
+// measured on the bunny at subdivide 0 to 2 (2026-12-06), rounded up.
+constexpr double kBytesPerMeshTriangle = 120;
+// A curved base's triangle with its share of the truth's prisms and sheet: 1.1 to 2.9 KB as
+// measured on a sphere at 512 and 256 segments (2026-12-06), the larger taken.
+constexpr double kBytesPerBaseTriangle = 3000;
+
+// The triangles a generated curved base has at its `segments` (a sphere's or torus's chart is
+// segments x segments / 2 quads; a cube's six faces segments / 8 quads a side); a mesh file's
+// or the teapot's are its own, and small beside the maps.
+double generated_base_triangles(const BaseDesc& base) {
+  const double n = base.segments;
+  if (base.kind == "sphere" || base.kind == "torus") return n * n;
+  if (base.kind == "cube")
+    return 12.0 * std::max(1.0, std::floor(n / 8)) * std::max(1.0, std::floor(n / 8));
+  return 0;
+}
 // scene_shadows' map: its depth, and the op counts of its pass while they are counted.
 constexpr double kBytesPerShadowTexel = 4 + 32;
 
@@ -72,14 +90,19 @@ MemoryEstimate estimate_cell_memory(const SweepConfig& config, const Cell& cell)
   if (r.cells.active) {
     const double n = r.cells.grid > 0 ? r.cells.grid : r.cells.grid_max;
     cells = 6 * n * n * kFacesPerSurfaceCell * texels * kBytesPerCellTexel;  // texels per face
+    // subdivide = k splits every triangle into 4^k.
+    cells += double(r.mesh_triangles) * std::pow(4.0, r.cells.subdivide) * kBytesPerMeshTriangle;
   }
   const double shadow_map =
       scene.effects.has(Effect::SceneShadows)
           ? double(scene.shadow_map.size) * scene.shadow_map.size * kBytesPerShadowTexel
           : 0;
+  const double base = generated_base_triangles(scene.base) * kBytesPerBaseTriangle;
   MemoryEstimate e;
-  e.bytes = viewport + maps + cells + shadow_map;
-  if (shadow_map >= viewport && shadow_map >= maps && shadow_map >= cells)
+  e.bytes = viewport + maps + cells + shadow_map + base;
+  if (base >= viewport && base >= maps && base >= cells && base >= shadow_map)
+    e.what = "its curved base and its truth (" + gib(base) + ")";
+  else if (shadow_map >= viewport && shadow_map >= maps && shadow_map >= cells)
     e.what = "its shadow map (" + gib(shadow_map) + ")";
   else if (cells >= viewport && cells >= maps)
     e.what = "its cell complex's maps (" + gib(cells) + ")";
@@ -152,11 +175,13 @@ void refuse_cells_beyond_memory(const SweepConfig& config, const std::vector<Cel
     const MemoryEstimate e = estimate_cell_memory(config, c);
     if (e.bytes <= have) continue;
     const SceneDesc& scene = config.scenes[c.scene_index];
-    throw ConfigError(config.source + ": scene '" + scene.name + "' at viewport " +
-                      std::to_string(c.width) + "x" + std::to_string(c.height) + ", texture_res " +
-                      std::to_string(c.texture_res) + " needs about " + gib(e.bytes) + ", mostly " +
-                      e.what + ", and " + limit.what + " " + gib(have) +
-                      ": lower the viewport, texture_res or grid (nothing was run)");
+    throw ConfigError(
+        config.source + ": scene '" + scene.name + "' at viewport " + std::to_string(c.width) +
+        "x" + std::to_string(c.height) + ", texture_res " + std::to_string(c.texture_res) +
+        " needs about " + gib(e.bytes) + ", mostly " + e.what + ", and " + limit.what + " " +
+        gib(have) +
+        ": lower the viewport, texture_res, a cell complex's grid or subdivide, or a curved "
+        "base's segments (nothing was run)");
   }
 }
 

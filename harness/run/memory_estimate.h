@@ -20,7 +20,9 @@ struct MemoryEstimate {
 // The peak of one cell: the technique's and the truth's G-buffers and the render targets
 // (about 300 bytes a pixel), the relief map on the CPU and the GPU (about 100 bytes a texel,
 // per heightfield face), and a cell complex's domain-face maps (about 20 bytes a texel, an
-// upper bound on the faces a surface can cross: 6 N^2 cells with 3 faces each), and
+// upper bound on the faces a surface can cross: 6 N^2 cells with 3 faces each) and its mesh
+// after `subdivide` (about 120 bytes a triangle, 4^k times the file's), a generated curved
+// base's triangles with the truth's prisms (about 3 KB each at its `segments`), and
 // scene_shadows' map (36 bytes a texel with its op counts). An upper bound in the common case,
 // not a measurement.
 MemoryEstimate estimate_cell_memory(const SweepConfig& config, const Cell& cell);

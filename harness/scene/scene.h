@@ -70,6 +70,7 @@ struct ReliefSourceDesc {
   // filled at the deepest valid depth. NaN: none given.
   double nodata = std::numeric_limits<double>::quiet_NaN();
   std::string mesh_path;   // a mesh baked into the map (Baboud & Decoret)
+  size_t mesh_triangles = 0;  // its triangles as read with the config, for the memory estimate
   int mesh_up = 1;         // its up axis: 0, 1, 2 = x, y, z
   double reverse_cop = 0;  // reverse perspective: centre of projection depth (> 1), or 0
   // > 0: the mesh is an object from that many heightfields (1, 2, 3 or 6 faces of its bounding
