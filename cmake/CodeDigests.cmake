@@ -48,11 +48,5 @@ const char* build_settings_digest() {
 
 }  // namespace rl
 ")
-if(EXISTS "${OUTPUT}")
-  file(READ "${OUTPUT}" old)
-else()
-  set(old "")
-endif()
-if(NOT old STREQUAL text)
-  file(WRITE "${OUTPUT}" "${text}")
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/WriteIfChanged.cmake)
+relieflab_write_if_changed("${OUTPUT}" "${text}")
