@@ -85,7 +85,7 @@ struct SweepConfig {
   std::vector<PlotSpec> plots;                         // Pareto plots of error against cost
   std::map<std::string, std::string> scene_canonical;  // per scene: text of what defines it
   // Per scene: every file it reads, in the role it is read in, with its content digest (the
-  // rows' provenance names them: run/provenance.h).
+  // rows' provenance names them: run/cell_provenance.h).
   std::map<std::string, std::vector<SceneInput>> scene_inputs;
   // Per scene: "file:line" of its [[scene]] table and of its relief = { ... }, so that an asset
   // that fails to load later is reported where the config asked for it.

@@ -3,8 +3,6 @@
 #include <sys/stat.h>
 
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <mutex>
 #include <stdexcept>
 
@@ -53,8 +51,7 @@ std::string source_folder(const std::string& source_file) {
 }
 
 std::string folder_digest(const std::string& folder) {
-  if (auto it = source_digests().find(folder); it != source_digests().end())
-    return hex64(fnv1a64(std::string(build_settings_digest()) + "|" + folder + "=" + it->second));
+  if (source_digests().count(folder)) return code_digest({folder.c_str()});
   const std::lock_guard<std::mutex> lock(digests_mutex());
   auto it = plugin_folders().find(folder);
   return it == plugin_folders().end() ? "" : it->second;
@@ -107,10 +104,7 @@ std::string file_digest(const std::string& path) {
         it->second.mtime_ns == mtime_ns)
       return it->second.digest;
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return "";
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string digest = hex64(fnv1a64(bytes));
+  const std::string digest = hex64(file_content_hash(path));
   const std::lock_guard<std::mutex> lock(digests_mutex());
   ++reads();
   // The stamp taken before the read: a file rewritten while it was read is read again next time.

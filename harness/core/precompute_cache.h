@@ -8,8 +8,8 @@
 // corrupted file is recomputed, never read. The options text names the code that computed it
 // too (core/code_digest.h: the harness layers and the calling folder's sources, as built), so a
 // rebuilt change to a precompute's code computes it afresh instead of reading what the old code
-// made. Files are written to a temporary name and renamed,
-// so a reader never sees half a file; a failure to write only costs a recompute.
+// made. Files are written to a temporary name and renamed, so a reader never sees half a file;
+// a failure to write only costs a recompute.
 #include <cstddef>
 #include <cstdint>
 #include <source_location>

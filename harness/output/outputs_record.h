@@ -1,7 +1,8 @@
 #pragma once
 // outputs.json: the files a run wrote into its folder (rows.csv, its tables, pareto.md, the
 // report but for its verdict panel) with each file's content digest; rows.csv must be among
-// them, and neither the record nor a file it lists may be a link. Written by the producer of the rows, never by a check: an edit
+// them, and neither the record nor a file it lists may be a link. Written by the producer of
+// the rows, never by a check: an edit
 // made to rows.csv or a table afterwards is told from what the run wrote, and `relieflab
 // verify --write` refuses to regenerate verdicts from such rows (it would launder them while
 // the tables and the report still showed the run's numbers).

@@ -18,11 +18,16 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// The key of a cell's prepared technique instance (and its prepare()'s programs) in its asset.
+std::string prepared_key(const Cell& cell) {
+  return cell.technique + "|" + describe_params(cell);
+}
+
 // The technique instance of a cell, prepared once per asset and parameter setting.
 std::pair<std::unique_ptr<Technique>, double>& prepared_technique(const SweepConfig& config,
                                                                   const SceneDesc& scene,
                                                                   Asset& asset, const Cell& cell) {
-  const std::string key = cell.technique + "|" + describe_params(cell);
+  const std::string key = prepared_key(cell);
   auto& slot = asset.prepared[key];
   if (!slot.first) {
     const ProgramUses uses;
@@ -184,7 +189,7 @@ CellMeasure measure_cell(const SweepConfig& config, const SceneDesc& scene, Asse
   out.technique_bytes = technique->memory_bytes();
   out.programs = uses.programs();
   out.programs.insert(asset.programs.begin(), asset.programs.end());
-  const auto& prepared = asset.prepared_programs[cell.technique + "|" + describe_params(cell)];
+  const auto& prepared = asset.prepared_programs[prepared_key(cell)];
   out.programs.insert(prepared.begin(), prepared.end());
   return out;
 }

@@ -69,10 +69,10 @@ struct ReliefSourceDesc {
   // A value marking texels without data (a GeoTIFF's nodata): left out of the depth range and
   // filled at the deepest valid depth. NaN: none given.
   double nodata = std::numeric_limits<double>::quiet_NaN();
-  std::string mesh_path;   // a mesh baked into the map (Baboud & Decoret)
+  std::string mesh_path;      // a mesh baked into the map (Baboud & Decoret)
   size_t mesh_triangles = 0;  // its triangles as read with the config, for the memory estimate
-  int mesh_up = 1;         // its up axis: 0, 1, 2 = x, y, z
-  double reverse_cop = 0;  // reverse perspective: centre of projection depth (> 1), or 0
+  int mesh_up = 1;            // its up axis: 0, 1, 2 = x, y, z
+  double reverse_cop = 0;     // reverse perspective: centre of projection depth (> 1), or 0
   // > 0: the mesh is an object from that many heightfields (1, 2, 3 or 6 faces of its bounding
   // cube: relief/heightfield_faces.h), each with reverse_cop; 0: one bake from the top of its
   // footprint box.
