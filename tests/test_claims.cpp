@@ -1,5 +1,6 @@
 // Claims as data (claims/claims.h): rows.csv read back, values and checks evaluated, the README's
 // verdict section generated and verified, and malformed claims refused with file and line.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -8,11 +9,13 @@
 
 #include "claims/claims.h"
 #include "claims/ledger.h"
-#include "claims/rows_csv.h"
+#include "config/config.h"
 #include "core/atomic_write.h"
 #include "core/error.h"
 #include "output/compare.h"
 #include "output/outputs_record.h"
+#include "output/rows_csv.h"
+#include "output/tables.h"
 #include "support/test_support.h"
 
 namespace rl {
@@ -336,6 +339,57 @@ TEST(Claims, VerifyRefusesRecordsAndRowsARunDidNotWrite) {
   std::string output;
   EXPECT_EQ(test::run_cli("verify " + empty, output), 1) << output;
   EXPECT_NE(output.find("nothing was verified"), std::string::npos) << output;
+}
+
+// The tables follow from rows.csv: rows edited under them, and their digest recomputed (any tool
+// can compute an FNV-1a digest), still disagree with the table the run laid out, which verify
+// lays out again from the folder's config. rows.csv read back keeps a key of digits as text.
+TEST(Claims, VerifyLaysTheTablesOutAgainFromTheRows) {
+  const std::string readme = std::string("# R\n\n") + kClaimsBegin + "\n" + kClaimsEnd + "\n";
+  const std::string dir = folder_with("claims_tables", kRows, kClaims, readme);
+  write(dir + "/config.toml", R"([sweep]
+name = "tables"
+elevations = [45, 20]
+viewports = [16]
+[[scene]]
+name = "panel"
+relief = { procedural = "sines", resolution = 8 }
+[[technique]]
+name = "relief"
+[[table]]
+rows = ["technique"]
+columns = ["elevation_deg"]
+values = ["wrong_pct", "fetches_mean"]
+)");
+  const TableSpec spec = load_sweep_config(dir + "/config.toml").tables.at(0);
+  auto write_run = [&](const std::string& rows) {
+    const std::string table = format_table_file(rows_as_values(parse_rows_csv(rows, "rows")), spec);
+    write(dir + "/rows.csv", rows);
+    write(dir + "/" + spec.file, table);
+    write_outputs_record(dir, {{"rows.csv", rows}, {spec.file, table}});
+  };
+  write_run(kRows);
+  std::string report;
+  ASSERT_EQ(verify_result_folder(dir, true, report), 0) << report;
+  std::string edited = kRows;
+  edited.replace(edited.find(",40,4.0,"), 8, ",40,0.4,");
+  write(dir + "/rows.csv", edited);
+  write_outputs_record(dir, {{"rows.csv", edited}, {spec.file, read_text(dir + "/" + spec.file)}});
+  report.clear();
+  EXPECT_EQ(verify_result_folder(dir, false, report), 1) << report;
+  EXPECT_NE(report.find(spec.file + ": does not follow from rows.csv"), std::string::npos)
+      << report;
+  EXPECT_NE(report.find("| relief | 2.5 | 30.5 | 4 | 40 |"), std::string::npos) << report;
+  write(dir + "/config.toml", "[sweep]\nname = 3\n");
+  report.clear();
+  EXPECT_EQ(verify_result_folder(dir, false, report), 1) << report;
+  EXPECT_NE(report.find("no longer loads"), std::string::npos) << report;
+  const std::vector<Row> typed = rows_as_values(parse_rows_csv(
+      "key,wrong_pct,truth_flagged,texture_res\n5715578093281401,nan,true,256\n", "r"));
+  EXPECT_TRUE(typed[0]["key"].is_string());
+  EXPECT_TRUE(std::isnan(typed[0]["wrong_pct"].get<double>()));
+  EXPECT_TRUE(typed[0]["truth_flagged"].get<bool>());
+  EXPECT_TRUE(typed[0]["texture_res"].is_number_integer());
 }
 
 // A claim about pictures names the rows it describes; the README links their committed files or

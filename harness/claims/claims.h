@@ -33,7 +33,7 @@
 #include <string>
 #include <vector>
 
-#include "claims/rows_csv.h"
+#include "output/rows_csv.h"
 
 namespace rl {
 

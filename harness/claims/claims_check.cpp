@@ -8,12 +8,13 @@
 #include <sstream>
 
 #include "claims/claims.h"
-#include "claims/rows_csv.h"
+#include "claims/tables_follow_rows.h"
 #include "core/atomic_write.h"
 #include "core/columns.h"
 #include "core/error.h"
 #include "output/outputs_record.h"
 #include "output/report.h"
+#include "output/rows_csv.h"
 
 namespace rl {
 namespace {
@@ -443,6 +444,7 @@ int verify_result_folder(const std::string& dir, bool write, std::string& report
   if (const int edited = verify_rows_as_written(dir, report)) return edited;
   const std::vector<CsvRow> rows = read_rows_csv(dir + "/rows.csv");
   if (const int outside = verify_values_in_range(dir, rows, report)) return outside;
+  if (const int unfollowed = verify_tables_follow_rows(dir, report)) return unfollowed;
   const ClaimsFile file = load_claims(dir + "/claims.toml");
   std::vector<ClaimResult> results = check_claims(file, rows);
   for (size_t i = 0; i < results.size(); ++i)

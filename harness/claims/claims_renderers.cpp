@@ -4,7 +4,7 @@
 #include <filesystem>
 
 #include "claims/claims.h"
-#include "claims/rows_csv.h"
+#include "output/rows_csv.h"
 
 namespace rl {
 namespace {

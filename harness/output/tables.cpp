@@ -351,4 +351,9 @@ std::string format_latex_table(const std::vector<Row>& rows, const TableSpec& sp
   return out;
 }
 
+std::string format_table_file(const std::vector<Row>& rows_read_back, const TableSpec& spec) {
+  return spec.format == "latex" ? format_latex_table(rows_read_back, spec)
+                                : format_markdown_table(rows_read_back, spec);
+}
+
 }  // namespace rl

@@ -61,6 +61,9 @@ std::string format_markdown_table(const std::vector<Row>& rows, const TableSpec&
 // The same table as a LaTeX booktabs tabular in a table float (the title as its caption), the
 // best value of each value column in bold (format = "latex": what researchers paste into papers).
 std::string format_latex_table(const std::vector<Row>& rows, const TableSpec& spec);
+// A [[table]]'s file as a run writes it: its format's text, laid out from rows.csv's rows as
+// rows_as_values reads them back (output/rows_csv.h), so that the table follows from rows.csv.
+std::string format_table_file(const std::vector<Row>& rows_read_back, const TableSpec& spec);
 // Is a lower value of `metric` better? `has_best` is false for columns with no better or worse
 // (pixel counts, grid sizes, truth settings), which get no bold.
 bool best_is_lowest(const std::string& metric, bool& has_best);

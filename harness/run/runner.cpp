@@ -22,6 +22,7 @@
 #include "output/pareto.h"
 #include "output/report.h"
 #include "output/result_store.h"
+#include "output/rows_csv.h"
 #include "output/run_folder.h"
 #include "output/tables.h"
 #include "relief/cell_complex.h"
@@ -430,9 +431,9 @@ size_t write_sweep_outputs(const SweepConfig& config, const std::vector<Cell>& c
   // Each file's text, written and recorded with its digest (output/outputs_record.h).
   std::map<std::string, std::string> written;
   written["rows.csv"] = format_csv(rows, csv_columns(rows, leading));
-  for (const TableSpec& t : config.tables)
-    written[t.file] =
-        t.format == "latex" ? format_latex_table(rows, t) : format_markdown_table(rows, t);
+  const std::vector<Row> read_back =
+      rows_as_values(parse_rows_csv(written["rows.csv"], out_dir + "/rows.csv"));
+  for (const TableSpec& t : config.tables) written[t.file] = format_table_file(read_back, t);
   std::string fronts;
   for (const PlotSpec& p : config.plots)
     fronts += write_pareto_plots(rows, p, parameter_columns(config), out_dir) + "\n";

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "output/row.h"
+
 namespace rl {
 
 using CsvRow = std::map<std::string, std::string>;
@@ -15,5 +17,10 @@ std::vector<CsvRow> read_rows_csv(const std::string& path);
 // A cell (or a number in a claim) as a finite number: the whole text must parse.
 bool parse_number(const std::string& text, double& out);
 std::vector<CsvRow> parse_rows_csv(const std::string& text, const std::string& where);
+// The rows again as values, each cell as format_csv wrote it: an integer, another number (nan and
+// inf included), true or false, else text; an empty cell is no value. A run lays its tables out
+// from these, so every table follows from rows.csv's bytes alone, and `relieflab verify` lays
+// them out again to tell a table from rows that were edited under it.
+std::vector<Row> rows_as_values(const std::vector<CsvRow>& rows);
 
 }  // namespace rl

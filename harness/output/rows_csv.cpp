@@ -1,10 +1,11 @@
-#include "claims/rows_csv.h"
+#include "output/rows_csv.h"
 
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 
 #include "core/atomic_write.h"
+#include "core/columns.h"
 #include "core/error.h"
 
 namespace rl {
@@ -83,6 +84,44 @@ std::vector<CsvRow> parse_rows_csv(const std::string& text, const std::string& w
     rows.push_back(std::move(row));
   }
   return rows;
+}
+
+namespace {
+
+// A declared column of text, or a naming identity (technique, scene: no unit), holds text even
+// where it reads as a number (a key of sixteen digits).
+bool holds_text(const std::string& column) {
+  const DeclaredColumn* c = find_column(column);
+  return c && (c->spec.kind == ColumnKind::Text ||
+               (c->spec.kind == ColumnKind::Identity && c->spec.unit.empty()));
+}
+
+nlohmann::ordered_json cell_as_value(const std::string& column, const std::string& text) {
+  if (holds_text(column)) return text;
+  if (text == "true" || text == "false") return text == "true";
+  if (text == "nan" || text == "inf" || text == "-inf")
+    return text == "nan" ? std::nan("") : (text[0] == '-' ? -HUGE_VAL : HUGE_VAL);
+  const bool integral = !text.empty() && text.size() < 19 &&
+                        text.find_first_not_of("0123456789", text[0] == '-') == std::string::npos &&
+                        text != "-";
+  if (integral) return std::stoll(text);
+  double v = 0;
+  if (parse_number(text, v)) return v;
+  return text;
+}
+
+}  // namespace
+
+std::vector<Row> rows_as_values(const std::vector<CsvRow>& rows) {
+  std::vector<Row> out;
+  out.reserve(rows.size());
+  for (const CsvRow& r : rows) {
+    Row row = Row::object();
+    for (const auto& [column, text] : r)
+      if (!text.empty()) row[column] = cell_as_value(column, text);
+    out.push_back(std::move(row));
+  }
+  return out;
 }
 
 std::vector<CsvRow> read_rows_csv(const std::string& path) {
