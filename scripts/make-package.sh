@@ -59,7 +59,7 @@ is_system() {
 
 # The closure of everything in bin/ and lib/, as the loader resolves it here.
 LD_LIBRARY_PATH="$stage/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
-  ldd "$stage/bin/relieflab" "$stage"/lib/*.so* 2>/dev/null |
+  ldd "$stage/bin/relieflab" "$stage"/lib/*.so* "$stage"/lib/relieflab/* 2>/dev/null |
   awk '$2 == "=>" && $3 ~ /^\// { print $3 }' | sort -u |
   while read -r lib; do
     name=$(basename "$lib")

@@ -12,14 +12,21 @@
 //                                        cells that got worse from one run to another; exit
 //                                        status 1 when any did, or when the new run lacks
 //                                        cells of the base (output/compare.h)
+//   relieflab contract [--technique NAME]... [--all] [--plugins DIR]
+//                                        hold techniques to the promise their describe()
+//                                        declares (the contract suite, tests/contract/)
 // Every command first loads the techniques built outside the tree from --plugins PATH and
 // $RELIEFLAB_PLUGIN_PATH (technique/plugins.h).
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <new>
 #include <string>
+
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 
@@ -27,6 +34,7 @@
 #include "claims/ledger.h"
 #include "config/config.h"
 #include "core/atomic_write.h"
+#include "core/data_paths.h"
 #include "core/error.h"
 #include "output/compare.h"
 #include "relief/pattern_mesh.h"
@@ -189,6 +197,8 @@ struct CliArgs {
   bool verify_write = false;
   std::string ledger_results = "results", ledger_readme = "README.md";
   bool ledger_write = false;
+  std::vector<std::string> contract_techniques;
+  bool contract_all = false;
 };
 
 // The commands and their options, bound to `a`.
@@ -264,6 +274,52 @@ void add_commands(CLI::App& app, CliArgs& a) {
   ledger->add_option("--readme", a.ledger_readme,
                      "The README whose totals section to check or write (default: README.md)");
   ledger->add_flag("--write", a.ledger_write, "Write the ledger instead of checking it");
+
+  CLI::App* contract = app.add_subcommand(
+      "contract",
+      "Hold techniques to the promise their describe() declares (the contract suite, as `ctest "
+      "-L contract` runs it in a build): the techniques of --plugins, or those named");
+  contract->add_option("--technique", a.contract_techniques, "A technique to hold (repeatable)");
+  contract->add_flag("--all", a.contract_all, "Every technique, built in and loaded");
+}
+
+// The contract suite's program: installed beside the libraries, or the build tree's own.
+std::string contract_program() {
+  return rl::in_build_tree() ? rl::library_dir() + "/tests/relieflab-contract"
+                             : rl::library_dir() + "/relieflab/relieflab-contract";
+}
+
+// `relieflab contract`: runs the contract suite on the chosen techniques, loading the same
+// plugins; its exit status is the suite's.
+int run_contract(const CliArgs& a, const std::vector<std::string>& plugins,
+                 const std::vector<rl::LoadedPlugin>& loaded) {
+  std::vector<std::string> names = a.contract_techniques;
+  if (names.empty() && !a.contract_all)
+    for (const rl::LoadedPlugin& p : loaded)
+      names.insert(names.end(), p.techniques.begin(), p.techniques.end());
+  if (names.empty() && !a.contract_all)
+    throw rl::ConfigError(
+        "contract: no technique to hold: load a plugin (--plugins DIR), name one (--technique "
+        "NAME) or ask for --all");
+  std::string filter = "--gtest_filter=";
+  for (const std::string& n : names) {
+    if (!rl::TechniqueRegistry::instance().find(n))
+      throw rl::ConfigError("contract: no technique '" + n + "' (relieflab list names them)");
+    filter += (filter.back() == '=' ? "*/" : ":*/") + n;
+  }
+  const std::string program = contract_program();
+  if (!std::filesystem::is_regular_file(program))
+    throw rl::ConfigError("contract: the contract suite is not at " + program +
+                          " (it is built and installed with the tests: RELIEFLAB_BUILD_TESTS)");
+  std::string path;
+  for (const std::string& p : plugins) path += (path.empty() ? "" : ":") + p;
+  setenv("RELIEFLAB_PLUGIN_PATH", path.c_str(), 1);
+  std::vector<char*> argv = {const_cast<char*>(program.c_str())};
+  if (!a.contract_all) argv.push_back(filter.data());
+  argv.push_back(nullptr);
+  std::fflush(stdout);
+  execv(program.c_str(), argv.data());
+  throw rl::ConfigError("contract: cannot run " + program + ": " + std::strerror(errno));
 }
 
 // `relieflab ledger`: exit status 1 naming each stale file and each inconsistency.
@@ -282,7 +338,8 @@ int run_command(const CLI::App& app, const CliArgs& a) {
   try {
     std::vector<std::string> plugins = rl::plugin_paths_from_environment();
     plugins.insert(plugins.end(), a.plugin_paths.begin(), a.plugin_paths.end());
-    rl::load_plugins(plugins);
+    const std::vector<rl::LoadedPlugin> loaded = rl::load_plugins(plugins);
+    if (app.got_subcommand("contract")) return run_contract(a, plugins, loaded);
     if (app.got_subcommand("list")) {
       a.markdown ? print_markdown() : print_list();
       return 0;

@@ -46,8 +46,9 @@ std::string contract_markdown(const TechniqueInfo& info) {
         return ", finest " + format_param(p, c.finest.at(knob));
     return "";
   };
-  std::string out = "Promise (held by `ctest -L contract`): " + answer_name(c.answer) +
-                    " answer; at most " + c.max_fetches_formula + " fetches per pixel";
+  std::string out =
+      "Promise (held by `relieflab contract`, and by `ctest -L contract` in a build): " +
+      answer_name(c.answer) + " answer; at most " + c.max_fetches_formula + " fetches per pixel";
   if (!c.knobs.empty()) {
     out += "; accuracy knobs: ";
     for (size_t i = 0; i < c.knobs.size(); ++i) {

@@ -1,7 +1,7 @@
 // The contract suite's main: techniques built outside the tree, named by
 // $RELIEFLAB_PLUGIN_PATH, are loaded before the registry is iterated, so a plugin is held to its
-// own declaration like a built-in technique:
-//   RELIEFLAB_PLUGIN_PATH=DIR build/tests/test_contract --gtest_filter='*/my_technique'
+// own declaration like a built-in technique. `relieflab contract --plugins DIR` runs it so,
+// installed as lib/relieflab/relieflab-contract (in the build tree, tests/relieflab-contract).
 #include <gtest/gtest.h>
 
 #include "technique/plugins.h"

@@ -93,11 +93,18 @@ if (cd "$work/empty" && "$relieflab" run "$work/sweep.toml" --out "$work/out2" -
 fi
 expect "unknown technique 'interval_mapping'" "$work/refused.log"
 
-# The contract suite (built in the tree; its main loads $RELIEFLAB_PLUGIN_PATH) holds the plugin
-# to what its describe() declares, as it holds the built-in techniques.
-RELIEFLAB_PLUGIN_PATH=$work/plugin-build "$build/tests/test_contract" \
-  --gtest_filter='*/interval_mapping' >"$work/contract.log" 2>&1 ||
+# The installed package holds the plugin to what its describe() declares, as `ctest -L contract`
+# holds the built-in techniques: `relieflab contract` with the plugin loaded runs its techniques.
+"$relieflab" contract --plugins "$work/plugin-build" >"$work/contract.log" 2>&1 ||
   { cat "$work/contract.log"; exit 1; }
+expect "/interval_mapping" "$work/contract.log"
+if grep -q "/relief_exact " "$work/contract.log"; then
+  echo "contract held built-in techniques it was not asked for"; cat "$work/contract.log"; exit 1
+fi
+if "$relieflab" contract --technique no_such >"$work/contract-unknown.log" 2>&1; then
+  echo "contract accepted an unknown technique"; exit 1
+fi
+expect "no technique 'no_such'" "$work/contract-unknown.log"
 passed=$(sed -n 's/^\[  PASSED  \] \([0-9]*\) test.*/\1/p' "$work/contract.log")
 test "${passed:-0}" -ge 5 || { echo "contract ran ${passed:-0} tests:"; cat "$work/contract.log"; exit 1; }
 echo "plugin built out of tree, listed, swept ($rows rows) and held to its contract ($passed tests)"
