@@ -32,7 +32,7 @@ function(relieflab_layer folder)
   endif()
   set_target_properties(${target} PROPERTIES
     VERSION ${PROJECT_VERSION} SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR}
-    EXPORT_NAME ${folder})
+    EXPORT_NAME ${folder} UNITY_BUILD ${RELIEFLAB_UNITY_BUILD})
   relieflab_warnings(${target})
   install(FILES ${headers} DESTINATION include/relieflab/${folder} COMPONENT devel)
   set_property(GLOBAL APPEND PROPERTY RELIEFLAB_LAYERS ${target})

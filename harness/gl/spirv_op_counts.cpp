@@ -1,6 +1,5 @@
 #include "gl/spirv_op_counts.h"
 
-#define SPV_ENABLE_UTILITY_CODE
 #include <spirv_cross/GLSL.std.450.h>
 #include <spirv_cross/spirv.h>
 
