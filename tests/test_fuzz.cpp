@@ -1,7 +1,8 @@
 // Seeded mutation fuzzing of what reads user input: the config parser
 // (with its asset checks) and the image and mesh loaders. Each mutated input must either load
 // or be refused with a ConfigError; any other exception is a failure, and the input that
-// caused it is saved for the bad-input corpus. A crash ends the test binary.
+// caused it is saved for the bad-input corpus. A crash ends the test binary. Each target is a
+// suite of its own, so CTest runs them side by side (under the sanitizers they took 99 s in one).
 //
 // In the suite each target runs for a few seconds' worth of inputs; for a long run:
 //   RELIEFLAB_FUZZ_SECONDS=600 ./build/tests/test_fuzz
@@ -145,7 +146,7 @@ FuzzResult fuzz(const std::string& name, const std::vector<std::string>& seeds,
   return r;
 }
 
-TEST(Fuzz, ConfigParserAcceptsOrRefusesCleanly) {
+TEST(FuzzConfig, ParserAcceptsOrRefusesCleanly) {
   std::vector<std::string> seeds;
   for (const auto& e : fs::directory_iterator(kCorpus))
     if (e.path().extension() == ".toml" && fs::file_size(e.path()) < 4096)
@@ -200,7 +201,7 @@ group = ["scene"]
   for (const std::string& f : r.failures) ADD_FAILURE() << f;
 }
 
-TEST(Fuzz, ImageAndMeshLoadersAcceptOrRefuseCleanly) {
+TEST(FuzzInputFiles, ImageAndMeshLoadersAcceptOrRefuseCleanly) {
   const std::string dir = test::scratch_dir("fuzz-files-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   std::vector<float> px(16 * 16 * 4);
@@ -256,7 +257,7 @@ TEST(Fuzz, ImageAndMeshLoadersAcceptOrRefuseCleanly) {
 // offsets and sizes set to extreme values, or the file cut at any length. `relieflab --plugins
 // FILE list` must refuse it with exit 2 (or, untouched where it counts, load it), never die of
 // a signal. Each input runs in its own process, as a bad plugin would end it.
-TEST(Fuzz, PluginFilesDamagedInTheirStructureAreRefusedNotFatal) {
+TEST(FuzzPlugins, FilesDamagedInTheirStructureAreRefusedNotFatal) {
   const std::string seed_file =
       fs::canonical(fs::path(RELIEFLAB_CLI).parent_path() / "librelieflab_stb.so").string();
   const std::string seed = read_file(seed_file);
@@ -318,7 +319,7 @@ TEST(Fuzz, PluginFilesDamagedInTheirStructureAreRefusedNotFatal) {
 // The structural check must not refuse what linkers write: every shared object this test
 // program has loaded (ReliefLab's libraries, Mesa, Embree, glibc's, ... built by GNU ld and
 // others) passes it.
-TEST(Fuzz, EverySharedObjectThisProcessLoadedPassesThePluginCheck) {
+TEST(FuzzPlugins, EverySharedObjectThisProcessLoadedPassesThePluginCheck) {
   std::ifstream maps("/proc/self/maps");
   std::set<std::string> objects;
   for (std::string line; std::getline(maps, line);) {
@@ -336,7 +337,7 @@ TEST(Fuzz, EverySharedObjectThisProcessLoadedPassesThePluginCheck) {
 // finish with the folder's outputs rewritten or refuse with a ConfigError, or an error naming the
 // damaged store; anything else is a failure. A crash ends the test binary; a hang, its CTest
 // timeout.
-TEST(Fuzz, RunFoldersForStatusCompareReportAndMergeFailCleanly) {
+TEST(FuzzRunFolders, StatusCompareReportAndMergeFailCleanly) {
   const std::string dir = test::scratch_dir("fuzz-runs-" + std::to_string(::getpid()));
   test::run_sweep_in(R"(
 [sweep]
