@@ -9,7 +9,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS=-O1 \
   -DRELIEFLAB_SANITIZE=ON -DRELIEFLAB_BUILD_BENCHMARKS=OFF
+start=$SECONDS
 cmake --build build-sanitize -j"$(nproc)"
+built=$SECONDS
 export ASAN_OPTIONS=detect_leaks=0
 export UBSAN_OPTIONS=print_stacktrace=1
 ctest --test-dir build-sanitize --output-on-failure -j"$(nproc)" -LE slow
+echo "sanitize.sh: sanitized build $((built - start)) s, its tests $((SECONDS - built)) s"
