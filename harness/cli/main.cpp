@@ -311,8 +311,13 @@ int run_contract(const CliArgs& a, const std::vector<std::string>& plugins,
   if (!std::filesystem::is_regular_file(program))
     throw rl::ConfigError("contract: the contract suite is not at " + program +
                           " (it is built and installed with the tests: RELIEFLAB_BUILD_TESTS)");
-  std::string path;
-  for (const std::string& p : plugins) path += (path.empty() ? "" : ":") + p;
+  std::string path;  // the suite loads the same plugins, from a ':'-separated list
+  for (const std::string& p : plugins) {
+    if (p.find(':') != std::string::npos)
+      throw rl::ConfigError("contract: plugin path '" + p +
+                            "' holds a ':', which $RELIEFLAB_PLUGIN_PATH cannot carry");
+    path += (path.empty() ? "" : ":") + p;
+  }
   setenv("RELIEFLAB_PLUGIN_PATH", path.c_str(), 1);
   std::vector<char*> argv = {const_cast<char*>(program.c_str())};
   if (!a.contract_all) argv.push_back(filter.data());
