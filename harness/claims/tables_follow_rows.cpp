@@ -1,27 +1,24 @@
 #include "claims/tables_follow_rows.h"
 
 #include <filesystem>
-#include <regex>
 
 #include "config/config.h"
 #include "core/atomic_write.h"
 #include "core/error.h"
 #include "output/rows_csv.h"
+#include "output/run_folder.h"
 #include "output/tables.h"
 
 namespace rl {
 namespace fs = std::filesystem;
 namespace {
 
-// The config path run.log's first line names ("relieflab: sweep 'NAME' from PATH: N cells").
+// The config path run.log's first line names (output/run_folder.h).
 std::string run_log_config(const std::string& dir) {
   const fs::path log = fs::path(dir) / "run.log";
   if (!fs::is_regular_file(log)) return "";
   const std::string text = read_text(log.string());
-  static const std::regex first(R"(^relieflab: sweep '.*' from (.+): \d+ cells)");
-  std::smatch m;
-  const std::string line = text.substr(0, text.find('\n'));
-  return std::regex_search(line, m, first) ? m[1].str() : "";
+  return sweep_log_source(text.substr(0, text.find('\n')));
 }
 
 // The line at which two texts first differ, each side quoted, for a message.

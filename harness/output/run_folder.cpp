@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <regex>
 
 #include "config/config.h"
 #include "core/error.h"
@@ -81,6 +82,16 @@ RunFolderLock::RunFolderLock(const std::string& dir) {
 
 RunFolderLock::~RunFolderLock() {
   if (fd_ >= 0) close(fd_);  // releases the lock
+}
+
+std::string sweep_log_line_start(const std::string& name, const std::string& source) {
+  return "relieflab: sweep '" + name + "' from " + source + ": ";
+}
+
+std::string sweep_log_source(const std::string& first_line) {
+  static const std::regex line(R"(^relieflab: sweep '.*' from (.+): \d+ cells)");
+  std::smatch m;
+  return std::regex_search(first_line, m, line) ? m[1].str() : "";
 }
 
 }  // namespace rl

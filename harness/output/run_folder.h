@@ -29,4 +29,10 @@ class RunFolderLock {
   int fd_ = -1;
 };
 
+// run.log's first line opens with the sweep and the config it ran from ("relieflab: sweep 'NAME'
+// from SOURCE: N cells ..."): written by the run, read back by `verify` to find a folder's config.
+std::string sweep_log_line_start(const std::string& name, const std::string& source);
+// The SOURCE such a line names; "" when `first_line` is not one.
+std::string sweep_log_source(const std::string& first_line);
+
 }  // namespace rl

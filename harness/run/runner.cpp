@@ -145,8 +145,8 @@ std::vector<std::string> drop_unusable_rows(ResultStore& store, const std::vecto
 void log_plan(Log& log, const SweepConfig& config, const RunOptions& options,
               const SweepSummary& summary, size_t all_cells, size_t duplicates,
               const std::vector<std::string>& dropped, GlContext& gl) {
-  log.line("relieflab: sweep '" + config.name + "' from " + config.source + ": " +
-           std::to_string(summary.cells) + " cells" +
+  log.line(sweep_log_line_start(config.name, config.source) + std::to_string(summary.cells) +
+           " cells" +
            (options.shard.active()
                 ? " (shard " + options.shard.text() + " of " + std::to_string(all_cells) + ")"
                 : std::string()) +
