@@ -35,7 +35,7 @@ std::string file_id(const std::string& path) {
 void note_relief_images(const ReliefSourceDesc& r, const std::string& prefix,
                         std::vector<SceneInput>& inputs) {
   auto note = [&](const std::string& path, const std::string& role) {
-    if (!path.empty()) inputs.push_back({prefix + role, path, content_hash(path)});
+    if (!path.empty()) inputs.push_back({prefix + role, path, content_hash(path), true});
   };
   note(r.normal_path,
        r.depth_path.empty() ? "normal (RGB normal; depth from alpha)" : "normal (RGB normal)");

@@ -34,9 +34,10 @@ std::string cost_model_digest(const std::optional<CostModel>& model) {
 }
 
 // Every file of the scene by role and content, and the reader that decodes its images: the
-// same bytes read as a depth map and as a normal map are two surfaces.
+// same bytes read as a depth map and as a normal map are two surfaces. A scene of no image
+// (procedural, or meshes alone) is decoded by no reader, and does not load one to say so.
 std::string inputs_digest(const std::vector<SceneInput>& inputs) {
-  std::string text = "images through " + image_backend_name();
+  std::string text = reads_images(inputs) ? "images through " + image_backend_name() : "no images";
   for (const SceneInput& in : inputs) text += "|" + in.role + "=" + in.digest;
   return digest_of(text);
 }

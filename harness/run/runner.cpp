@@ -160,7 +160,12 @@ void log_plan(Log& log, const SweepConfig& config, const RunOptions& options,
   log.line("relieflab: OpenGL " + gl.version() + " on " + gl.renderer() + " (" + gl.platform() +
            "), frames timed by " +
            (gl.is_software() ? "wall clock + glFinish" : "GL_TIME_ELAPSED"));
-  log.line("relieflab: image files through " + image_backend_description());
+  // The image module is loaded only for a sweep that reads or writes an image.
+  bool any_image = config.write_images;
+  for (const auto& [scene, inputs] : config.scene_inputs)
+    any_image = any_image || reads_images(inputs);
+  log.line(any_image ? "relieflab: image files through " + image_backend_description()
+                     : std::string("relieflab: no image files read or written"));
   // Which file each surface of each scene comes from, and how it is read.
   for (const SceneDesc& scene : config.scenes) {
     auto it = config.scene_inputs.find(scene.name);
