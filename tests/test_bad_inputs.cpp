@@ -12,6 +12,7 @@
 #include "config/config.h"
 #include "core/error.h"
 #include "output/outputs_record.h"
+#include "relief/image_io.h"
 #include "run/asset_check.h"
 #include "run/cells.h"
 #include "run/memory_estimate.h"
@@ -62,6 +63,25 @@ TEST(BadInputs, EveryCorpusInputIsRefusedWithAClearMessage) {
     for (const std::string& e : expect)
       EXPECT_NE(message.find(e), std::string::npos) << "expected '" << e << "' in: " << message;
   }
+}
+
+// The asset check remembers images that loaded cleanly, by their bytes: the same image cut short
+// in place afterwards (its header whole, so the config still parses) is refused, not passed
+// from memory.
+TEST(BadInputs, AnImageCutShortAfterACleanCheckIsRefused) {
+  const std::string dir = test::scratch_dir("cut-after-check");
+  fs::create_directories(dir);
+  const std::string png = dir + "/depth.png";
+  std::vector<float> pixels(64 * 64 * 3);
+  for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = float((i * 37) % 101) / 100.0f;
+  write_png(png, 64, 64, 3, pixels);
+  const std::string text =
+      "[sweep]\nname = \"cut\"\n[[scene]]\nname = \"s\"\nrelief = { depth = \"depth.png\" }\n"
+      "[[technique]]\nname = \"relief\"\n";
+  EXPECT_NO_THROW(check_sweep_assets(parse_sweep_config(text, dir + "/cut.toml", dir)));
+  fs::resize_file(png, fs::file_size(png) / 2);
+  const SweepConfig cut = parse_sweep_config(text, dir + "/cut.toml", dir);
+  EXPECT_THROW(check_sweep_assets(cut), ConfigError);
 }
 
 // Mistakes on the command line (hostile input, second round): an empty --shard ran every cell; a

@@ -69,6 +69,23 @@ TEST(MeshBake, MeshTruthHitsTheMeshItself) {
   EXPECT_EQ(truth.primary_rays(), 2u);
 }
 
+// load_mesh() keeps what it read, by the file's bytes: the same file again is the same mesh,
+// and the file rewritten in place (same size, within the same clock tick as like as not) is read
+// again, not served from memory.
+TEST(MeshBake, AMeshRewrittenInPlaceIsReadAgain) {
+  const std::string path = pyramid_obj();
+  const TriangleMesh first = load_mesh(path);
+  const TriangleMesh again = load_mesh(path);
+  EXPECT_EQ(again.positions, first.positions);
+  EXPECT_EQ(again.triangles.size(), first.triangles.size());
+  // The apex raised from y = 2 to 3: one byte changes, the size does not.
+  std::ofstream(path) << "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 3 0\n"
+                         "f 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\nf 1 3 2\nf 1 4 3\n";
+  const TriangleMesh edited = load_mesh(path);
+  EXPECT_EQ(edited.hi.y, 3.0);
+  EXPECT_EQ(first.hi.y, 2.0);
+}
+
 TEST(MeshBake, UnreadableMeshIsAConfigError) {
   EXPECT_THROW(load_mesh("/no/such/mesh.obj"), ConfigError);
   const std::string empty = test::scratch_dir("empty") + ".obj";

@@ -8,7 +8,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <list>
 #include <map>
+#include <mutex>
 #include <sstream>
 #include <tuple>
 
@@ -17,6 +19,7 @@
 #include <assimp/Importer.hpp>
 
 #include "core/error.h"
+#include "core/hash.h"
 
 namespace rl {
 namespace {
@@ -320,9 +323,8 @@ void check_obj(const std::string& path) {
                         std::to_string(counts[k]) + " the file defines");
 }
 
-}  // namespace
-
-TriangleMesh load_mesh(const std::string& path) {
+// Reads and checks the file; load_mesh() keeps what it read.
+TriangleMesh read_mesh_file(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
   for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
   // OBJ and PLY only, the formats whose files are checked before Assimp reads them: its other
@@ -347,6 +349,61 @@ TriangleMesh load_mesh(const std::string& path) {
   }
   check_not_degenerate(m, path);
   return m;
+}
+
+// The meshes a process read, by path and content: a config, its check, its asset and its truth
+// each load the relief's mesh, and `verify` loads the same meshes for many folders' configs.
+// Keyed by the bytes (hashing them is a small part of parsing them), not by a file's time
+// stamp, which a file rewritten within a clock tick keeps. The oldest go past kMemoBytes.
+struct MemoMesh {
+  uint64_t content = 0;
+  TriangleMesh mesh;
+};
+constexpr size_t kMemoBytes = size_t(256) << 20;
+
+size_t mesh_bytes(const TriangleMesh& m) {
+  return m.positions.size() * sizeof(glm::vec3) + m.uvs.size() * sizeof(glm::vec2) +
+         m.triangles.size() * sizeof(glm::uvec3) + m.triangle_colors.size() * sizeof(glm::vec3);
+}
+
+std::mutex& memo_mutex() {
+  static std::mutex m;
+  return m;
+}
+std::list<std::pair<std::string, MemoMesh>>& memo() {  // newest first
+  static std::list<std::pair<std::string, MemoMesh>> meshes;
+  return meshes;
+}
+
+void remember(const std::string& path, uint64_t content, const TriangleMesh& mesh) {
+  if (mesh_bytes(mesh) > kMemoBytes) return;
+  auto& meshes = memo();
+  std::erase_if(meshes, [&](const auto& entry) { return entry.first == path; });
+  meshes.push_front({path, {content, mesh}});
+  size_t bytes = 0;
+  for (auto it = meshes.begin(); it != meshes.end(); ++it) {
+    bytes += mesh_bytes(it->second.mesh);
+    if (bytes > kMemoBytes) {
+      meshes.erase(it, meshes.end());
+      break;
+    }
+  }
+}
+
+}  // namespace
+
+TriangleMesh load_mesh(const std::string& path) {
+  // The bytes hashed before they are parsed: a file rewritten between the two is read again.
+  const uint64_t content = file_content_hash(path);
+  {
+    const std::lock_guard<std::mutex> lock(memo_mutex());
+    for (const auto& [at, kept] : memo())
+      if (at == path && kept.content == content) return kept.mesh;
+  }
+  TriangleMesh mesh = read_mesh_file(path);
+  const std::lock_guard<std::mutex> lock(memo_mutex());
+  remember(path, content, mesh);
+  return mesh;
 }
 
 std::vector<uint32_t> welded_vertex_ids(const TriangleMesh& mesh) {

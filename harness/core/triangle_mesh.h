@@ -17,9 +17,10 @@ struct TriangleMesh {
   glm::dvec3 lo{0}, hi{0};                 // bounding box
 };
 
-// Loads OBJ, PLY and other formats Assimp reads, triangulated, as one mesh. Throws
-// ConfigError naming the file if it cannot be read, holds no triangles, or is non-finite,
-// out of range (beyond 1e15), malformed or degenerate.
+// Loads an OBJ or PLY file through Assimp, triangulated, as one mesh. Throws ConfigError
+// naming the file if it cannot be read, holds no triangles, or is non-finite, out of range
+// (beyond 1e15), malformed or degenerate. The same file with the same bytes, loaded again in
+// the process, comes from memory.
 TriangleMesh load_mesh(const std::string& path);
 
 // One id per distinct vertex position, per vertex: a file may split a vertex by uv or normal.

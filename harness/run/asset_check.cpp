@@ -1,6 +1,11 @@
 #include "run/asset_check.h"
 
+#include <cstdio>
+#include <mutex>
+#include <set>
+
 #include "core/error.h"
+#include "core/hash.h"
 #include "relief/image_io.h"
 #include "relief/mesh_bake.h"
 #include "scene/relief_asset.h"
@@ -31,6 +36,31 @@ std::string closure_warning(const SceneDesc& scene, const TriangleMesh& mesh) {
          ": expect errors where rays pass through its gaps, counted against it";
 }
 
+// The image sources that loaded cleanly in this process, by their files' bytes and how they
+// are read: configs checked again and again (`verify`, the fuzz tests) decode each once.
+std::string image_source_key(const ReliefImageSource& s) {
+  std::string key;
+  for (const std::string* path : {&s.normal_path, &s.depth_path, &s.color_path})
+    key += *path + "=" + (path->empty() ? "" : hex64(file_content_hash(*path))) + "|";
+  char options[64];
+  std::snprintf(options, sizeof options, "%d%d%d|%.17g", s.height_convention, s.flip_green,
+                s.normalize, s.nodata);
+  return key + options;
+}
+
+void check_relief_images(const ReliefImageSource& source) {
+  static std::mutex mutex;
+  static std::set<std::string> clean;
+  const std::string key = image_source_key(source);
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (clean.count(key)) return;
+  }
+  load_relief_images(source, 1.0);
+  const std::lock_guard<std::mutex> lock(mutex);
+  clean.insert(key);
+}
+
 }  // namespace
 
 std::vector<std::string> check_sweep_assets(const SweepConfig& config) {
@@ -47,7 +77,7 @@ std::vector<std::string> check_sweep_assets(const SweepConfig& config) {
     std::string where = at(true, "relief");
     try {
       const ReliefSourceDesc& r = scene.relief;
-      if (!r.normal_path.empty() || !r.depth_path.empty()) load_relief_images(image_source(r), 1.0);
+      if (!r.normal_path.empty() || !r.depth_path.empty()) check_relief_images(image_source(r));
       if (r.normal_path.empty() && !r.depth_path.empty())
         if (const std::string why = depth_file_alpha_problem(r.depth_path); !why.empty())
           warnings.push_back("relieflab: warning: " + at(true, "relief") + why);
@@ -57,7 +87,7 @@ std::vector<std::string> check_sweep_assets(const SweepConfig& config) {
       where = at(true, "meta_relief");
       for (const MetaLayerDesc& layer : scene.meta.layers)
         if (!layer.relief.normal_path.empty() || !layer.relief.depth_path.empty())
-          load_relief_images(image_source(layer.relief), 1.0);
+          check_relief_images(image_source(layer.relief));
       where = at(false, "base");
       if (scene.base.kind == "file") load_mesh(scene.base.path);
       where = at(false, "objects");
