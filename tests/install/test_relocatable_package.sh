@@ -116,6 +116,8 @@ if "$work/cut/run-relieflab" list > "$work/cut.log" 2>&1; then echo "a cut packa
 grep -q "librelieflab_core.so.*the package is incomplete" "$work/cut.log" || { cat "$work/cut.log"; exit 1; }
 rm -rf "$work/cut"
 
-size=$(tar -C "$work/elsewhere" -cf - relieflab | xz -T0 -1 | wc -c)
-[ "$size" -lt $((64 * 1024 * 1024)) ] || { echo "packs to $size bytes, over 64 MiB"; exit 1; }
-echo "package: runs relocated with the stb fallback; packs to $((size / 1024 / 1024)) MiB (xz -1)"
+# gzip -1 packs looser than make-package's xz -6 (44 MiB where xz -1 gives 31, 2026-12-07),
+# in a fifth of xz's time: under 64 MiB here, the shipped archive is too.
+size=$(tar -C "$work/elsewhere" -cf - relieflab | gzip -1 | wc -c)
+[ "$size" -lt $((64 * 1024 * 1024)) ] || { echo "packs to $size bytes (gzip -1), over 64 MiB"; exit 1; }
+echo "package: runs relocated with the stb fallback; packs to $((size / 1024 / 1024)) MiB (gzip -1)"
