@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   cmake g++ make pkg-config
+  ninja-build                         # builds: starts a library's files before the libraries it links are linked
   python3                             # figure scripts read rows.csv (scripts/limberger-fig14-figures.sh)
   libembree-dev                       # truth: Embree 3 ray tracing
   libopenimageio-dev openimageio-tools # image files (the tools package is needed by OIIO's CMake config)
