@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Every ctest name in the build tree BUILD names one test: prints the names given to more than
-# one add_test (the build's CTestTestfile.cmake files and the test programs' group files they include) and
-# fails if there are any. Reads the files rather than running `ctest -N`, which would rewrite
+# one add_test (the build's CTestTestfile.cmake files and the test programs' group files they
+# include) and fails if there are any. Reads the files rather than running `ctest -N`, which would rewrite
 # Testing/Temporary/LastTest.log under the ctest run this is part of.
 set -euo pipefail
 build="$1"
