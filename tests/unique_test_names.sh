@@ -7,9 +7,9 @@ set -euo pipefail
 build="$1"
 # The group files read are those a CTestTestfile.cmake includes: a build folder can hold group
 # files of programs that no longer exist.
-testfiles=$(find "$build" -name CTestTestfile.cmake)
-groups=$(sed -nE 's/^include\("([^"]+_groups\.cmake)"\)$/\1/p' $testfiles)
-lines=$(cat $testfiles $groups | grep -h '^add_test' || true)
+mapfile -d '' testfiles < <(find "$build" -name CTestTestfile.cmake -print0)
+mapfile -t groups < <(sed -nE 's/^include\("([^"]+_groups\.cmake)"\)$/\1/p' "${testfiles[@]}")
+lines=$(cat "${testfiles[@]}" "${groups[@]}" | grep -h '^add_test' || true)
 names=$(sed -nE 's/^add_test\(\[=\[([^]]+)\]=\].*/\1/p' <<<"$lines")
 # A name this cannot read would hide its duplicates: every add_test must give one.
 count() { grep -c . <<<"$1" || true; }
